@@ -1,0 +1,45 @@
+#pragma once
+/// @file Geodetic origin of a local ENU frame. Every georeferenced file carries one explicitly;
+/// there is no default origin.
+#include <Eigen/Core>
+
+namespace mapfuse::geo {
+
+/// A WGS84 point: latitude and longitude in degrees, altitude in metres (ellipsoidal).
+struct LatLonAlt {
+  double lat = 0.0;  ///< deg, [-90, 90]
+  double lon = 0.0;  ///< deg, [-180, 180]
+  double alt = 0.0;  ///< m
+};
+
+using GeoOrigin = LatLonAlt;
+
+/// @brief True when lat/lon are finite and within their ranges.
+bool isValid(const LatLonAlt& p);
+
+/// Converts between WGS84 and East-North-Up metres about one origin (GeographicLib's
+/// LocalCartesian: exact ellipsoidal transform, not a flat-earth approximation).
+class EnuConverter {
+ public:
+  /// @throws InputError when the origin is not a valid WGS84 point.
+  explicit EnuConverter(const GeoOrigin& origin);
+  ~EnuConverter();
+  EnuConverter(const EnuConverter&);
+  EnuConverter& operator=(const EnuConverter&);
+
+  const GeoOrigin& origin() const { return origin_; }
+  Eigen::Vector3d toEnu(const LatLonAlt& p) const;
+  LatLonAlt toWgs84(const Eigen::Vector3d& enu) const;
+
+ private:
+  struct Impl;
+  GeoOrigin origin_;
+  Impl* impl_;
+};
+
+/// @brief Rotation (radians, counter-clockwise from East) between local grid north and true
+/// north is ignored by ENU; this returns the great-circle distance in metres between two points
+/// (GeographicLib geodesic), used by tests and summaries.
+double geodesicDistance(const LatLonAlt& a, const LatLonAlt& b);
+
+}  // namespace mapfuse::geo

@@ -1,0 +1,84 @@
+#include "mapfuse/core/cli.hpp"
+
+#include <fstream>
+#include <iostream>
+
+namespace mapfuse::cli {
+
+void addCommonOptions(CLI::App& app, CommonOptions& common) {
+  app.add_option("--config", common.config_file,
+                 "JSON file mirroring the parameters (configs/<stage>.json); command-line "
+                 "options override it")
+      ->check(CLI::ExistingFile);
+  app.add_flag("-v,--verbose", common.verbosity, "More log output on stderr (repeatable)");
+  app.add_flag("-q,--quiet", common.quiet, "No progress or info lines, warnings and errors only");
+}
+
+void applyCommonOptions(const CommonOptions& common) {
+  if (common.quiet) setLogLevel(LogLevel::kWarn);
+  else if (common.verbosity > 0) setLogLevel(LogLevel::kDebug);
+  else setLogLevel(LogLevel::kInfo);
+}
+
+std::string optionName(const char* key) {
+  std::string name = std::string("--") + key;
+  for (char& c : name)
+    if (c == '_') c = '-';
+  return name;
+}
+
+int run(CLI::App& app, int argc, char** argv, const std::function<void()>& body) {
+  const std::string tool = app.get_name();
+  try {
+    try {
+      app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+      return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+      return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+      return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+      app.exit(e);
+      return static_cast<int>(ExitCode::kUsage);
+    }
+    body();
+    return static_cast<int>(ExitCode::kOk);
+  } catch (const Error& e) {
+    std::cerr << tool << ": error: " << e.what() << '\n';
+    return static_cast<int>(e.exitCode());
+  } catch (const std::bad_alloc&) {
+    std::cerr << tool << ": error: out of memory\n";
+    return static_cast<int>(ExitCode::kInternal);
+  } catch (const std::exception& e) {
+    std::cerr << tool << ": internal error: " << e.what() << '\n';
+    return static_cast<int>(ExitCode::kInternal);
+  }
+}
+
+std::vector<std::string> expandInputList(const std::vector<std::string>& args) {
+  std::vector<std::string> out;
+  auto readList = [&](std::istream& in) {
+    std::string line;
+    while (std::getline(in, line)) {
+      const auto b = line.find_first_not_of(" \t\r");
+      if (b == std::string::npos || line[b] == '#') continue;
+      const auto e = line.find_last_not_of(" \t\r");
+      out.push_back(line.substr(b, e - b + 1));
+    }
+  };
+  for (const auto& a : args) {
+    if (a == "-") {
+      readList(std::cin);
+    } else if (!a.empty() && a[0] == '@') {
+      std::ifstream in(a.substr(1));
+      if (!in) throw IoError(a.substr(1), "cannot open input list");
+      readList(in);
+    } else {
+      out.push_back(a);
+    }
+  }
+  return out;
+}
+
+}  // namespace mapfuse::cli

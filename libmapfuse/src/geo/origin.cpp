@@ -1,0 +1,60 @@
+#include "mapfuse/geo/origin.hpp"
+
+#include <GeographicLib/Geodesic.hpp>
+#include <GeographicLib/LocalCartesian.hpp>
+#include <cmath>
+
+#include "mapfuse/core/error.hpp"
+
+namespace mapfuse::geo {
+
+bool isValid(const LatLonAlt& p) {
+  return std::isfinite(p.lat) && std::isfinite(p.lon) && std::isfinite(p.alt) &&
+         std::abs(p.lat) <= 90.0 && std::abs(p.lon) <= 180.0;
+}
+
+struct EnuConverter::Impl {
+  GeographicLib::LocalCartesian lc;
+};
+
+EnuConverter::EnuConverter(const GeoOrigin& origin) : origin_(origin), impl_(nullptr) {
+  if (!isValid(origin))
+    throw InputError("invalid ENU origin (lat " + std::to_string(origin.lat) + ", lon " +
+                     std::to_string(origin.lon) + ")");
+  try {
+    impl_ = new Impl{GeographicLib::LocalCartesian(origin.lat, origin.lon, origin.alt)};
+  } catch (const GeographicLib::GeographicErr& e) {
+    throw InputError(std::string("GeographicLib: ") + e.what());
+  }
+}
+
+EnuConverter::~EnuConverter() { delete impl_; }
+EnuConverter::EnuConverter(const EnuConverter& o) : origin_(o.origin_), impl_(new Impl(*o.impl_)) {}
+EnuConverter& EnuConverter::operator=(const EnuConverter& o) {
+  if (this != &o) {
+    delete impl_;
+    origin_ = o.origin_;
+    impl_ = new Impl(*o.impl_);
+  }
+  return *this;
+}
+
+Eigen::Vector3d EnuConverter::toEnu(const LatLonAlt& p) const {
+  double x, y, z;
+  impl_->lc.Forward(p.lat, p.lon, p.alt, x, y, z);
+  return {x, y, z};
+}
+
+LatLonAlt EnuConverter::toWgs84(const Eigen::Vector3d& enu) const {
+  LatLonAlt p;
+  impl_->lc.Reverse(enu.x(), enu.y(), enu.z(), p.lat, p.lon, p.alt);
+  return p;
+}
+
+double geodesicDistance(const LatLonAlt& a, const LatLonAlt& b) {
+  double s12 = 0.0;
+  GeographicLib::Geodesic::WGS84().Inverse(a.lat, a.lon, b.lat, b.lon, s12);
+  return s12;
+}
+
+}  // namespace mapfuse::geo

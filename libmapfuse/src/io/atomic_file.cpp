@@ -1,0 +1,52 @@
+#include "mapfuse/io/atomic_file.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "mapfuse/core/error.hpp"
+
+namespace mapfuse::io {
+
+void writeFileAtomic(const std::filesystem::path& path,
+                     const std::function<void(std::ostream&)>& write) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (path.has_parent_path()) {
+    fs::create_directories(path.parent_path(), ec);
+    if (ec) throw IoError(path.parent_path().string(), "cannot create folder: " + ec.message());
+  }
+  const fs::path tmp = path.string() + ".tmp-" + std::to_string(::getpid());
+  try {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw IoError(tmp.string(), std::string("cannot create: ") + std::strerror(errno));
+    write(out);
+    out.flush();
+    if (!out) throw IoError(tmp.string(), "write failed (disk full?)");
+    out.close();
+    fs::rename(tmp, path, ec);
+    if (ec) throw IoError(path.string(), "cannot rename temporary file: " + ec.message());
+  } catch (...) {
+    fs::remove(tmp, ec);
+    throw;
+  }
+}
+
+void writeBytesAtomic(const std::filesystem::path& path, const std::string& bytes) {
+  writeFileAtomic(path, [&](std::ostream& out) { out.write(bytes.data(), bytes.size()); });
+}
+
+std::string readBytes(const std::filesystem::path& path) {
+  if (std::filesystem::is_directory(path)) throw IoError(path.string(), "is a folder, not a file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(path.string(), std::string("cannot open: ") + std::strerror(errno));
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw IoError(path.string(), "read failed");
+  return ss.str();
+}
+
+}  // namespace mapfuse::io

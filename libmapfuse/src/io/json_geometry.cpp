@@ -1,0 +1,61 @@
+#include "mapfuse/io/json_geometry.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+namespace mapfuse::io {
+
+Json vec3ToJson(const Eigen::Vector3d& v) { return Json::array({v.x(), v.y(), v.z()}); }
+
+Json pointsToJson(const std::vector<Eigen::Vector3d>& points) {
+  Json a = Json::array();
+  for (const auto& p : points) a.push_back(vec3ToJson(p));
+  return a;
+}
+
+Json poseToJson(const Pose3& T) {
+  const Eigen::Quaterniond q(T.linear());
+  return {{"t", vec3ToJson(T.translation())}, {"q", Json::array({q.w(), q.x(), q.y(), q.z()})}};
+}
+
+Json originToJson(const geo::GeoOrigin& o) { return {{"lat", o.lat}, {"lon", o.lon}, {"alt", o.alt}}; }
+
+Json cov3ToJson(const Eigen::Matrix3d& C) {
+  return Json::array({C(0, 0), C(0, 1), C(0, 2), C(1, 1), C(1, 2), C(2, 2)});
+}
+
+std::vector<Eigen::Vector3d> readPoints(const JsonView& v) {
+  std::vector<Eigen::Vector3d> points(v.size());
+  for (std::size_t i = 0; i < points.size(); ++i) points[i] = v.at(i).vec3();
+  return points;
+}
+
+Pose3 readPose(const JsonView& v) {
+  v.onlyKeys({"t", "q"});
+  const Eigen::VectorXd q = v.at("q").vector(4);
+  if (std::abs(q.norm() - 1.0) > 1e-3)
+    v.at("q").fail("quaternion norm is " + std::to_string(q.norm()) + ", expected 1");
+  Pose3 T = Pose3::Identity();
+  T.linear() = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+  T.translation() = v.at("t").vec3();
+  return T;
+}
+
+geo::GeoOrigin readOrigin(const JsonView& v) {
+  v.onlyKeys({"lat", "lon", "alt"});
+  geo::GeoOrigin o{v.at("lat").number(), v.at("lon").number(), v.at("alt").number()};
+  if (std::abs(o.lat) > 90.0) v.at("lat").fail("latitude outside [-90, 90]");
+  if (std::abs(o.lon) > 180.0) v.at("lon").fail("longitude outside [-180, 180]");
+  return o;
+}
+
+Eigen::Matrix3d readCov3(const JsonView& v) {
+  const Eigen::VectorXd c = v.vector(6);
+  Eigen::Matrix3d C;
+  C << c[0], c[1], c[2], c[1], c[3], c[4], c[2], c[4], c[5];
+  const double min_eig = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(C).eigenvalues().minCoeff();
+  if (min_eig < -1e-9 * std::max(1.0, C.norm())) v.fail("covariance is not positive semi-definite");
+  return C;
+}
+
+}  // namespace mapfuse::io

@@ -1,0 +1,180 @@
+#include "mapfuse/io/lsm_io.hpp"
+
+#include "mapfuse/io/document.hpp"
+#include "mapfuse/io/json_geometry.hpp"
+
+namespace mapfuse::io {
+namespace {
+
+bool isDiagonal(const Matrix6d& C) {
+  return (C - Matrix6d(C.diagonal().asDiagonal())).cwiseAbs().maxCoeff() == 0.0;
+}
+
+Json keyframeToJson(const Keyframe& k) {
+  Json j = {{"id", k.id}, {"stamp", k.stamp}, {"pose", poseToJson(k.T_frame_body)}};
+  if (isDiagonal(k.covariance)) {
+    Json s = Json::array();
+    for (int i = 0; i < 6; ++i) s.push_back(std::sqrt(k.covariance(i, i)));
+    j["sigma"] = s;
+  } else {
+    Json c = Json::array();
+    for (int r = 0; r < 6; ++r)
+      for (int col = r; col < 6; ++col) c.push_back(k.covariance(r, col));
+    j["cov"] = c;
+  }
+  return j;
+}
+
+Keyframe keyframeFromJson(const JsonView& v) {
+  v.onlyKeys({"id", "stamp", "pose", "sigma", "cov"});
+  Keyframe k;
+  k.id = v.at("id").integer();
+  k.stamp = v.at("stamp").number();
+  k.T_frame_body = readPose(v.at("pose"));
+  if (auto s = v.find("sigma")) {
+    const Eigen::VectorXd sig = s->vector(6);
+    if (sig.minCoeff() < 0.0) s->fail("sigmas must not be negative");
+    k.covariance = sig.cwiseAbs2().asDiagonal();
+  } else if (auto c = v.find("cov")) {
+    const Eigen::VectorXd u = c->vector(21);
+    int idx = 0;
+    for (int r = 0; r < 6; ++r)
+      for (int col = r; col < 6; ++col) k.covariance(r, col) = k.covariance(col, r) = u[idx++];
+    if (k.covariance.diagonal().minCoeff() < 0.0) c->fail("negative variance on the diagonal");
+  } else {
+    v.at("sigma");  // throws "missing required field"
+  }
+  return k;
+}
+
+Json gpsToJson(const GpsFix& g) {
+  return {{"stamp", g.stamp},          {"lat", g.position.lat},   {"lon", g.position.lon},
+          {"alt", g.position.alt},     {"sigma_h", g.sigma_h},    {"sigma_v", g.sigma_v}};
+}
+
+GpsFix gpsFromJson(const JsonView& v) {
+  v.onlyKeys({"stamp", "lat", "lon", "alt", "sigma_h", "sigma_v"});
+  GpsFix g;
+  g.stamp = v.at("stamp").number();
+  g.position = readOrigin(JsonView(Json{{"lat", v.at("lat").raw()},
+                                         {"lon", v.at("lon").raw()},
+                                         {"alt", v.at("alt").raw()}},
+                                    v.file(), v.path()));
+  g.sigma_h = v.at("sigma_h").number();
+  g.sigma_v = v.at("sigma_v").number();
+  if (g.sigma_h <= 0.0) v.at("sigma_h").fail("must be positive");
+  if (g.sigma_v <= 0.0) v.at("sigma_v").fail("must be positive");
+  return g;
+}
+
+Json elementToJson(const Element& e) {
+  Json j = {{"id", e.id},
+            {"class", crowdClassName(e.cls)},
+            {"anchor", e.anchor},
+            {"points", pointsToJson(e.points_body)},
+            {"confidence", e.confidence},
+            {"observations", e.observations}};
+  if (e.attributes.style != LineStyle::kNone) j["style"] = lineStyleName(e.attributes.style);
+  if (e.attributes.color != LineColor::kNone) j["color"] = lineColorName(e.attributes.color);
+  Json cov = Json::array();
+  for (const auto& C : e.covariances) cov.push_back(cov3ToJson(C));
+  j["cov"] = cov;
+  if (e.height != 0.0) j["height"] = e.height;
+  if (e.truth_id >= 0) j["truth_id"] = e.truth_id;
+  return j;
+}
+
+Element elementFromJson(const JsonView& v) {
+  v.onlyKeys({"id", "class", "style", "color", "anchor", "points", "cov", "sigma", "confidence",
+              "observations", "height", "truth_id"});
+  Element e;
+  e.id = v.at("id").integer();
+  const std::string cls = v.at("class").string();
+  const auto c = crowdClassFromName(cls);
+  if (!c) v.at("class").fail("unknown class '" + cls + "'");
+  e.cls = *c;
+  if (auto s = v.find("style")) {
+    const auto st = lineStyleFromName(s->string());
+    if (!st) s->fail("unknown line style '" + s->string() + "'");
+    e.attributes.style = *st;
+  }
+  if (auto s = v.find("color")) {
+    const auto co = lineColorFromName(s->string());
+    if (!co) s->fail("unknown line colour '" + s->string() + "'");
+    e.attributes.color = *co;
+  }
+  e.anchor = v.at("anchor").integer();
+  e.points_body = readPoints(v.at("points"));
+  if (e.points_body.empty()) v.at("points").fail("an element needs at least one point");
+  if (auto cov = v.find("cov")) {
+    if (cov->size() != e.points_body.size())
+      cov->fail("expected one covariance per point (" + std::to_string(e.points_body.size()) +
+                "), found " + std::to_string(cov->size()));
+    for (std::size_t i = 0; i < cov->size(); ++i) e.covariances.push_back(readCov3(cov->at(i)));
+  } else if (auto sig = v.find("sigma")) {
+    if (sig->size() != e.points_body.size()) sig->fail("expected one sigma per point");
+    for (std::size_t i = 0; i < sig->size(); ++i) {
+      const double s = sig->at(i).number();
+      if (s < 0.0) sig->at(i).fail("sigma must not be negative");
+      e.covariances.push_back(Eigen::Matrix3d::Identity() * s * s);
+    }
+  } else {
+    v.at("cov");  // throws "missing required field"
+  }
+  e.confidence = v.at("confidence").number();
+  if (e.confidence < 0.0 || e.confidence > 1.0) v.at("confidence").fail("must be within [0, 1]");
+  e.observations = int(v.at("observations").integer());
+  if (e.observations < 1) v.at("observations").fail("must be at least 1");
+  if (auto h = v.find("height")) e.height = h->number();
+  if (auto t = v.find("truth_id")) e.truth_id = t->integer();
+  return e;
+}
+
+}  // namespace
+
+Json lsmToJson(const Lsm& lsm) {
+  Json j = {{"format", kLsmFormat}, {"version", kLsmVersion}, {"drive_id", lsm.drive_id},
+            {"vehicle_id", lsm.vehicle_id}, {"frame", lsm.frame == LsmFrame::kEnu ? "enu" : "odom"}};
+  if (lsm.origin) j["origin"] = originToJson(*lsm.origin);
+  Json kfs = Json::array(), gps = Json::array(), els = Json::array();
+  for (const auto& k : lsm.keyframes) kfs.push_back(keyframeToJson(k));
+  for (const auto& g : lsm.gps) gps.push_back(gpsToJson(g));
+  for (const auto& e : lsm.elements) els.push_back(elementToJson(e));
+  j["keyframes"] = std::move(kfs);
+  j["gps"] = std::move(gps);
+  j["elements"] = std::move(els);
+  return j;
+}
+
+Lsm lsmFromJson(const Json& doc, const std::string& file) {
+  const JsonView v(doc, file);
+  v.onlyKeys({"format", "version", "drive_id", "vehicle_id", "frame", "origin", "keyframes", "gps",
+              "elements"});
+  v.checkFormat(kLsmFormat, kLsmVersion);
+  Lsm lsm;
+  lsm.drive_id = v.at("drive_id").string();
+  if (auto vid = v.find("vehicle_id")) lsm.vehicle_id = vid->string();
+  const std::string frame = v.at("frame").string();
+  if (frame == "enu") lsm.frame = LsmFrame::kEnu;
+  else if (frame != "odom") v.at("frame").fail("expected \"odom\" or \"enu\", found \"" + frame + "\"");
+  if (auto o = v.find("origin")) lsm.origin = readOrigin(*o);
+  else if (lsm.frame == LsmFrame::kEnu) v.at("origin");  // throws: enu requires an origin
+  const JsonView kfs = v.at("keyframes");
+  for (std::size_t i = 0; i < kfs.size(); ++i) lsm.keyframes.push_back(keyframeFromJson(kfs.at(i)));
+  if (auto gps = v.find("gps"))
+    for (std::size_t i = 0; i < gps->size(); ++i) lsm.gps.push_back(gpsFromJson(gps->at(i)));
+  const JsonView els = v.at("elements");
+  for (std::size_t i = 0; i < els.size(); ++i) lsm.elements.push_back(elementFromJson(els.at(i)));
+  validateLsm(lsm, file);
+  return lsm;
+}
+
+Lsm readLsm(const std::filesystem::path& path) {
+  return lsmFromJson(readDocument(path), path.string());
+}
+
+void writeLsm(const std::filesystem::path& path, const Lsm& lsm) {
+  writeDocument(path, lsmToJson(lsm));
+}
+
+}  // namespace mapfuse::io

@@ -1,0 +1,132 @@
+#include "mapfuse/io/vector_map_io.hpp"
+
+#include <cmath>
+
+#include "mapfuse/io/document.hpp"
+#include "mapfuse/io/json_geometry.hpp"
+
+namespace mapfuse::io {
+namespace {
+
+Eigen::Vector3d quantize(const Eigen::Vector3d& p, double q) {
+  if (q <= 0.0) return p;
+  return (p / q).array().round().matrix() * q;
+}
+
+Json instanceToJson(const MapInstance& inst, const VectorMapWriteOptions& opt) {
+  Json j = {{"id", inst.id}, {"class", crowdClassName(inst.cls)}};
+  if (inst.attributes.style != LineStyle::kNone) j["style"] = lineStyleName(inst.attributes.style);
+  if (inst.attributes.color != LineColor::kNone) j["color"] = lineColorName(inst.attributes.color);
+  const bool omit_points = opt.compact && !inst.bezier.empty();
+  if (!omit_points) {
+    Json pts = Json::array();
+    for (const auto& p : inst.points) pts.push_back(vec3ToJson(quantize(p, opt.coordinate_quantum)));
+    j["points"] = std::move(pts);
+  }
+  if (!inst.bezier.empty()) {
+    Json chain = Json::array();
+    for (const auto& seg : inst.bezier) {
+      Json s = Json::array();
+      for (const auto& c : seg) s.push_back(vec3ToJson(quantize(c, opt.coordinate_quantum)));
+      chain.push_back(std::move(s));
+    }
+    j["bezier"] = std::move(chain);
+  }
+  if (inst.height != 0.0) j["height"] = inst.height;
+  j["support"] = {{"drives", inst.support.drives}, {"observations", inst.support.observations}};
+  if (!inst.source_ids.empty()) j["source_ids"] = inst.source_ids;
+  if (!inst.note.empty()) j["note"] = inst.note;
+  return j;
+}
+
+MapInstance instanceFromJson(const JsonView& v) {
+  v.onlyKeys({"id", "class", "style", "color", "points", "bezier", "height", "support",
+              "source_ids", "note"});
+  MapInstance inst;
+  inst.id = v.at("id").integer();
+  const std::string cls = v.at("class").string();
+  const auto c = crowdClassFromName(cls);
+  if (!c) v.at("class").fail("unknown class '" + cls + "'");
+  inst.cls = *c;
+  if (auto s = v.find("style")) {
+    const auto st = lineStyleFromName(s->string());
+    if (!st) s->fail("unknown line style '" + s->string() + "'");
+    inst.attributes.style = *st;
+  }
+  if (auto s = v.find("color")) {
+    const auto co = lineColorFromName(s->string());
+    if (!co) s->fail("unknown line colour '" + s->string() + "'");
+    inst.attributes.color = *co;
+  }
+  if (auto b = v.find("bezier")) {
+    for (std::size_t i = 0; i < b->size(); ++i) {
+      const JsonView seg = b->at(i);
+      if (seg.size() != 4) seg.fail("a cubic Bezier segment needs 4 control points");
+      BezierSegment s;
+      for (int k = 0; k < 4; ++k) s[k] = seg.at(k).vec3();
+      inst.bezier.push_back(s);
+    }
+  }
+  if (auto p = v.find("points")) inst.points = readPoints(*p);
+  else if (!inst.bezier.empty()) inst.points = sampleBezierChain(inst.bezier, kBezierSampleStep);
+  else v.at("points");  // throws: geometry missing
+  if (auto h = v.find("height")) inst.height = h->number();
+  if (auto s = v.find("support")) {
+    s->onlyKeys({"drives", "observations"});
+    inst.support.drives = int(s->at("drives").integer());
+    inst.support.observations = int(s->at("observations").integer());
+  }
+  if (auto ids = v.find("source_ids"))
+    for (std::size_t i = 0; i < ids->size(); ++i) inst.source_ids.push_back(ids->at(i).integer());
+  if (auto n = v.find("note")) inst.note = n->string();
+  return inst;
+}
+
+}  // namespace
+
+Eigen::Vector3d bezierPoint(const BezierSegment& b, double s) {
+  const double u = 1.0 - s;
+  return u * u * u * b[0] + 3 * u * u * s * b[1] + 3 * u * s * s * b[2] + s * s * s * b[3];
+}
+
+std::vector<Eigen::Vector3d> sampleBezierChain(const std::vector<BezierSegment>& chain,
+                                               double step) {
+  std::vector<Eigen::Vector3d> out;
+  for (const auto& seg : chain) {
+    const double chord = (seg[1] - seg[0]).norm() + (seg[2] - seg[1]).norm() + (seg[3] - seg[2]).norm();
+    const int n = std::max(1, int(std::ceil(chord / step)));
+    for (int i = out.empty() ? 0 : 1; i <= n; ++i) out.push_back(bezierPoint(seg, double(i) / n));
+  }
+  return out;
+}
+
+Json vectorMapToJson(const VectorMap& map, const VectorMapWriteOptions& options) {
+  Json inst = Json::array();
+  for (const auto& i : map.instances) inst.push_back(instanceToJson(i, options));
+  return {{"format", kVectorMapFormat}, {"version", kVectorMapVersion}, {"source", map.source},
+          {"origin", originToJson(map.origin)}, {"instances", std::move(inst)}};
+}
+
+VectorMap vectorMapFromJson(const Json& doc, const std::string& file) {
+  const JsonView v(doc, file);
+  v.onlyKeys({"format", "version", "source", "origin", "instances"});
+  v.checkFormat(kVectorMapFormat, kVectorMapVersion);
+  VectorMap map;
+  if (auto s = v.find("source")) map.source = s->string();
+  map.origin = readOrigin(v.at("origin"));
+  const JsonView inst = v.at("instances");
+  for (std::size_t i = 0; i < inst.size(); ++i) map.instances.push_back(instanceFromJson(inst.at(i)));
+  validateVectorMap(map, file);
+  return map;
+}
+
+VectorMap readVectorMap(const std::filesystem::path& path) {
+  return vectorMapFromJson(readDocument(path), path.string());
+}
+
+void writeVectorMap(const std::filesystem::path& path, const VectorMap& map,
+                    const VectorMapWriteOptions& options) {
+  writeDocument(path, vectorMapToJson(map, options));
+}
+
+}  // namespace mapfuse::io

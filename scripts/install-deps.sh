@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs mapfuse's build and test dependencies from Debian 12 packages.
+# Idempotent and non-interactive; returns quickly when everything is present.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config git
+  libeigen3-dev libceres-dev libpcl-dev
+  libopencv-dev
+  libboost-dev libgeographiclib-dev
+  libcli11-dev nlohmann-json3-dev catch2
+  libpugixml-dev
+  libopenmpi-dev
+  gdal-bin snakemake
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#PACKAGES[@]} packages present" >&2
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}" >&2
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install-deps: done" >&2

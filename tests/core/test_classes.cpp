@@ -1,0 +1,51 @@
+#include <catch2/catch.hpp>
+
+#include "mapfuse/core/classes.hpp"
+
+using namespace mapfuse;
+
+TEST_CASE("crowd class names round-trip and have the DESIGN geometry kinds", "[core][classes]") {
+  for (int i = 0; i < kNumCrowdClasses; ++i) {
+    const auto c = static_cast<CrowdClass>(i);
+    REQUIRE(crowdClassFromName(crowdClassName(c)) == c);
+  }
+  CHECK(geometryKind(CrowdClass::kLaneLine) == GeometryKind::kLine);
+  CHECK(geometryKind(CrowdClass::kStopLine) == GeometryKind::kLine);
+  CHECK(geometryKind(CrowdClass::kGroundArrow) == GeometryKind::kPlanar);
+  CHECK(geometryKind(CrowdClass::kCrosswalk) == GeometryKind::kPlanar);
+  CHECK(geometryKind(CrowdClass::kTrafficSign) == GeometryKind::kPlanar);
+  CHECK(geometryKind(CrowdClass::kPole) == GeometryKind::kPoint);
+  CHECK(geometryKind(CrowdClass::kTrafficLight) == GeometryKind::kPoint);
+  CHECK_FALSE(crowdClassFromName("lane"));
+  CHECK(lineStyleFromName("dashed") == LineStyle::kDashed);
+  CHECK(lineColorFromName("yellow") == LineColor::kYellow);
+  CHECK_FALSE(lineStyleFromName("dotted"));
+}
+
+TEST_CASE("LiDAR classes map to the SemanticKITTI ids of DESIGN.md", "[core][classes]") {
+  CHECK(semanticKittiId(LidarClass::kRoad) == 40);
+  CHECK(semanticKittiId(LidarClass::kSidewalk) == 48);
+  CHECK(semanticKittiId(LidarClass::kBuilding) == 50);
+  CHECK(semanticKittiId(LidarClass::kFence) == 51);
+  CHECK(semanticKittiId(LidarClass::kPole) == 80);
+  CHECK(semanticKittiId(LidarClass::kVegetation) == 70);
+  CHECK(semanticKittiId(LidarClass::kVehicle) == 10);
+  CHECK(lidarClassFromSemanticKitti(60) == LidarClass::kRoad);  // lane marking counts as road
+  for (int i = 0; i < kNumLidarClasses; ++i) {
+    const auto c = static_cast<LidarClass>(i);
+    CHECK(lidarClassFromSemanticKitti(semanticKittiId(c)) == c);
+    CHECK(lidarClassFromName(lidarClassName(c)) == c);
+  }
+}
+
+TEST_CASE("Cityscapes channels map onto the 8 LiDAR classes", "[core][classes]") {
+  CHECK(lidarClassFromCityscapes(1) == LidarClass::kRoad);
+  CHECK(lidarClassFromCityscapes(2) == LidarClass::kSidewalk);
+  CHECK(lidarClassFromCityscapes(4) == LidarClass::kBuilding);  // wall
+  CHECK(lidarClassFromCityscapes(8) == LidarClass::kPole);      // traffic sign
+  CHECK(lidarClassFromCityscapes(10) == LidarClass::kVegetation);  // terrain
+  CHECK(lidarClassFromCityscapes(11) == LidarClass::kUnlabeled);   // sky
+  CHECK(lidarClassFromCityscapes(14) == LidarClass::kVehicle);     // car
+  CHECK(lidarClassFromCityscapes(19) == LidarClass::kVehicle);     // bicycle
+  CHECK(lidarClassFromCityscapes(20) == LidarClass::kUnlabeled);   // out of range
+}

@@ -1,0 +1,56 @@
+#include "support/test_support.hpp"
+
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "mapfuse/core/paths.hpp"
+
+namespace mapfuse::test {
+
+std::filesystem::path requireShared(const std::string& relative) {
+  const std::filesystem::path path = sharedRoot() / relative;
+  if (!std::filesystem::exists(path)) {
+    std::cout << "SKIP: shared data absent: " << path
+              << " (set MAPFUSE_SHARED to the folder holding data/ and models/)" << std::endl;
+    std::exit(kSkipExitCode);
+  }
+  return path;
+}
+
+std::filesystem::path tempDir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("mapfuse-test-" + std::to_string(::getpid()) + "-" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::filesystem::path appPath(const std::string& tool) {
+  const char* env = std::getenv("MAPFUSE_BIN_DIR");
+  std::filesystem::path dir = env ? env : MAPFUSE_BIN_DIR;
+  return dir / tool;
+}
+
+int runCommand(const std::string& command) {
+  const int status = std::system(command.c_str());
+  if (status == -1) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+void writeText(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace mapfuse::test

@@ -1,0 +1,31 @@
+#pragma once
+/// @file Helpers shared by the Catch2 tests: shared-data lookup, temp folders, running apps.
+#include <filesystem>
+#include <string>
+
+namespace mapfuse::test {
+
+/// Exit code ctest maps to "skipped" (SKIP_RETURN_CODE in tests/CMakeLists.txt).
+constexpr int kSkipExitCode = 77;
+
+/// @brief Path of a file under the shared data folder (env MAPFUSE_SHARED, else ../shared).
+/// Prints a visible SKIP line and exits with kSkipExitCode when it is absent.
+/// @param relative path below the shared folder, e.g. "data/kitti_raw/2011_09_26".
+std::filesystem::path requireShared(const std::string& relative);
+
+/// @brief A fresh, empty temporary folder unique to this test process.
+std::filesystem::path tempDir(const std::string& name);
+
+/// @brief Path of a built executable (env MAPFUSE_BIN_DIR, else the build's bin folder).
+std::filesystem::path appPath(const std::string& tool);
+
+/// @brief Runs a shell command; returns its exit status (0-255).
+int runCommand(const std::string& command);
+
+/// @brief Writes text to a file (test fixtures).
+void writeText(const std::filesystem::path& path, const std::string& text);
+
+/// @brief Reads a whole file as bytes.
+std::string readText(const std::filesystem::path& path);
+
+}  // namespace mapfuse::test
