@@ -4,7 +4,7 @@
 set -euo pipefail
 
 PACKAGES=(
-  build-essential cmake ninja-build pkg-config git
+  build-essential cmake ninja-build ccache pkg-config git
   libeigen3-dev libceres-dev libpcl-dev
   libopencv-dev
   libboost-dev libgeographiclib-dev
