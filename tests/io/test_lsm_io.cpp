@@ -1,0 +1,182 @@
+#include <catch2/catch.hpp>
+
+#include "fixtures.hpp"
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/io/document.hpp"
+#include "mapfuse/io/lsm_io.hpp"
+#include "support/test_support.hpp"
+
+using namespace mapfuse;
+
+namespace {
+constexpr double kExact = 1e-12;  // JSON keeps doubles to round-trip precision
+
+void requireSameLsm(const Lsm& a, const Lsm& b) {
+  REQUIRE(a.drive_id == b.drive_id);
+  REQUIRE(a.vehicle_id == b.vehicle_id);
+  REQUIRE(a.frame == b.frame);
+  REQUIRE(a.origin.has_value() == b.origin.has_value());
+  CHECK(a.origin->lat == b.origin->lat);
+  REQUIRE(a.keyframes.size() == b.keyframes.size());
+  for (std::size_t i = 0; i < a.keyframes.size(); ++i) {
+    CHECK(a.keyframes[i].id == b.keyframes[i].id);
+    CHECK((a.keyframes[i].T_frame_body.matrix() - b.keyframes[i].T_frame_body.matrix()).norm() < kExact);
+    CHECK((a.keyframes[i].covariance - b.keyframes[i].covariance).norm() < kExact);
+  }
+  REQUIRE(a.gps.size() == b.gps.size());
+  CHECK(a.gps[0].position.lon == b.gps[0].position.lon);
+  CHECK(a.gps[0].sigma_v == b.gps[0].sigma_v);
+  REQUIRE(a.elements.size() == b.elements.size());
+  for (std::size_t i = 0; i < a.elements.size(); ++i) {
+    const auto &x = a.elements[i], &y = b.elements[i];
+    CHECK(x.id == y.id);
+    CHECK(x.cls == y.cls);
+    CHECK(x.attributes == y.attributes);
+    CHECK(x.anchor == y.anchor);
+    CHECK(x.confidence == y.confidence);
+    CHECK(x.observations == y.observations);
+    CHECK(x.height == y.height);
+    CHECK(x.truth_id == y.truth_id);
+    REQUIRE(x.points_body.size() == y.points_body.size());
+    for (std::size_t k = 0; k < x.points_body.size(); ++k) {
+      CHECK((x.points_body[k] - y.points_body[k]).norm() < kExact);
+      CHECK((x.covariances[k] - y.covariances[k]).norm() < kExact);
+    }
+  }
+}
+
+std::string messageOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST_CASE("LSM round-trips through JSON and CBOR", "[io][lsm]") {
+  const auto dir = test::tempDir("lsm-roundtrip");
+  const Lsm lsm = test::makeLsm();
+  for (const char* name : {"a.json", "a.cbor"}) {
+    io::writeLsm(dir / name, lsm);
+    requireSameLsm(lsm, io::readLsm(dir / name));
+  }
+  // CBOR is the compact encoding.
+  CHECK(std::filesystem::file_size(dir / "a.cbor") < std::filesystem::file_size(dir / "a.json"));
+}
+
+TEST_CASE("element points move rigidly with their anchor keyframe", "[io][lsm]") {
+  Lsm lsm = test::makeLsm();
+  const auto before = lsm.pointsInFrame(lsm.elements[0]);
+  const Pose3 delta = poseFromXyzRpy(1, 2, 0, 0, 0, 0.3);
+  lsm.keyframes[1].T_frame_body = delta * lsm.keyframes[1].T_frame_body;
+  const auto after = lsm.pointsInFrame(lsm.elements[0]);
+  for (std::size_t i = 0; i < before.size(); ++i) CHECK((after[i] - delta * before[i]).norm() < kExact);
+}
+
+TEST_CASE("malformed LSM files are refused with file, field and problem", "[io][lsm]") {
+  const auto dir = test::tempDir("lsm-malformed");
+  const auto good = io::lsmToJson(test::makeLsm());
+  auto expectParseError = [&](io::Json doc, const std::string& field, const std::string& problem) {
+    const auto path = dir / "bad.json";
+    io::writeDocument(path, doc);
+    try {
+      io::readLsm(path);
+      FAIL("accepted a malformed LSM, expected an error at " << field);
+    } catch (const ParseError& e) {
+      CHECK(e.file() == path.string());
+      CHECK(e.field() == field);
+      CHECK_THAT(e.problem(), Catch::Contains(problem));
+      CHECK(e.exitCode() == ExitCode::kBadInput);
+    }
+  };
+  SECTION("missing field") {
+    auto d = good;
+    d["elements"][0].erase("anchor");
+    expectParseError(d, "elements[0].anchor", "missing");
+  }
+  SECTION("wrong type") {
+    auto d = good;
+    d["keyframes"][1]["stamp"] = "noon";
+    expectParseError(d, "keyframes[1].stamp", "expected a number");
+  }
+  SECTION("unknown key") {
+    auto d = good;
+    d["elements"][1]["colour"] = "white";
+    expectParseError(d, "elements[1].colour", "unknown key");
+  }
+  SECTION("unknown class") {
+    auto d = good;
+    d["elements"][0]["class"] = "lane";
+    expectParseError(d, "elements[0].class", "unknown class");
+  }
+  SECTION("wrong format tag and version") {
+    auto d = good;
+    d["format"] = "mapfuse.vector_map";
+    expectParseError(d, "format", "expected \"mapfuse.lsm\"");
+    d = good;
+    d["version"] = 99;
+    expectParseError(d, "version", "unsupported version");
+  }
+  SECTION("non-unit quaternion") {
+    auto d = good;
+    d["keyframes"][0]["pose"]["q"] = {2.0, 0.0, 0.0, 0.0};
+    expectParseError(d, "keyframes[0].pose.q", "quaternion norm");
+  }
+  SECTION("covariance count differs from point count") {
+    auto d = good;
+    d["elements"][0]["cov"].erase(0);
+    expectParseError(d, "elements[0].cov", "one covariance per point");
+  }
+  SECTION("enu without origin") {
+    auto d = good;
+    d.erase("origin");
+    expectParseError(d, "origin", "missing");
+  }
+}
+
+TEST_CASE("NaN and Inf are refused", "[io][lsm]") {
+  const auto dir = test::tempDir("lsm-nan");
+  auto d = io::lsmToJson(test::makeLsm());
+  d["elements"][0]["points"][1][0] = std::numeric_limits<double>::infinity();
+  // CBOR can carry Inf/NaN (JSON text cannot): the reader must catch it.
+  io::writeDocument(dir / "inf.cbor", d);
+  try {
+    io::readLsm(dir / "inf.cbor");
+    FAIL("accepted Inf");
+  } catch (const ParseError& e) {
+    CHECK(e.field() == "elements[0].points[1][0]");
+    CHECK_THAT(e.problem(), Catch::Contains("not finite"));
+  }
+  test::writeText(dir / "nan.json", R"({"format": "mapfuse.lsm", "version": 1, "x": NaN})");
+  CHECK_THROWS_AS(io::readLsm(dir / "nan.json"), ParseError);
+}
+
+TEST_CASE("truncated and empty files are refused, not crashed on", "[io][lsm]") {
+  const auto dir = test::tempDir("lsm-truncated");
+  io::writeLsm(dir / "full.json", test::makeLsm());
+  io::writeLsm(dir / "full.cbor", test::makeLsm());
+  for (const char* name : {"full.json", "full.cbor"}) {
+    const std::string bytes = test::readText(dir / name);
+    const auto cut = dir / (std::string("cut") + std::filesystem::path(name).extension().string());
+    test::writeText(cut, bytes.substr(0, bytes.size() / 2));
+    const std::string msg = messageOf([&] { io::readLsm(cut); });
+    CHECK_THAT(msg, Catch::Contains(cut.string()));
+    CHECK_THROWS_AS(io::readLsm(cut), ParseError);
+  }
+  test::writeText(dir / "empty.json", "");
+  CHECK_THROWS_AS(io::readLsm(dir / "empty.json"), ParseError);
+  CHECK_THROWS_AS(io::readLsm(dir / "absent.json"), IoError);
+  CHECK_THROWS_AS(io::readLsm(dir / "full.txt"), IoError);  // unknown extension
+}
+
+TEST_CASE("inconsistent LSM content is refused as bad input", "[io][lsm]") {
+  const auto dir = test::tempDir("lsm-inconsistent");
+  auto d = io::lsmToJson(test::makeLsm());
+  d["elements"][0]["anchor"] = 77;
+  io::writeDocument(dir / "a.json", d);
+  const std::string msg = messageOf([&] { io::readLsm(dir / "a.json"); });
+  CHECK_THAT(msg, Catch::Contains("elements[0].anchor 77"));
+  CHECK_THROWS_AS(io::readLsm(dir / "a.json"), InputError);
+}
