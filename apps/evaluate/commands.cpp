@@ -12,7 +12,8 @@ std::vector<Command>& registeredCommands() {
 bool registerCommand(Command command) {
   auto& all = registeredCommands();
   all.push_back(std::move(command));
-  std::sort(all.begin(), all.end(), [](const Command& a, const Command& b) { return a.name < b.name; });
+  std::sort(all.begin(), all.end(),
+            [](const Command& a, const Command& b) { return a.name < b.name; });
   return true;
 }
 

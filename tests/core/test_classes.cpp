@@ -41,8 +41,8 @@ TEST_CASE("LiDAR classes map to the SemanticKITTI ids of DESIGN.md", "[core][cla
 TEST_CASE("Cityscapes channels map onto the 8 LiDAR classes", "[core][classes]") {
   CHECK(lidarClassFromCityscapes(1) == LidarClass::kRoad);
   CHECK(lidarClassFromCityscapes(2) == LidarClass::kSidewalk);
-  CHECK(lidarClassFromCityscapes(4) == LidarClass::kBuilding);  // wall
-  CHECK(lidarClassFromCityscapes(8) == LidarClass::kPole);      // traffic sign
+  CHECK(lidarClassFromCityscapes(4) == LidarClass::kBuilding);     // wall
+  CHECK(lidarClassFromCityscapes(8) == LidarClass::kPole);         // traffic sign
   CHECK(lidarClassFromCityscapes(10) == LidarClass::kVegetation);  // terrain
   CHECK(lidarClassFromCityscapes(11) == LidarClass::kUnlabeled);   // sky
   CHECK(lidarClassFromCityscapes(14) == LidarClass::kVehicle);     // car

@@ -73,7 +73,8 @@ TEST_CASE("validation names the field, the value and the rule", "[core][params]"
     p.validate();
     FAIL("invalid value accepted");
   } catch (const ConfigError& e) {
-    CHECK(std::string(e.what()) == "DemoParams::voxel_size = -1.0. Violated constraint: voxel_size > 0");
+    CHECK(std::string(e.what()) ==
+          "DemoParams::voxel_size = -1.0. Violated constraint: voxel_size > 0");
   }
 }
 
@@ -100,9 +101,9 @@ TEST_CASE("config file values become defaults and the command line overrides the
   DemoParams p;
   cli::preloadConfig(int(argv.size()), argv.data(), p);
   CHECK(runWith(args, p, [] {}) == 0);
-  CHECK(p.voxel_size == 0.5);       // from the file
-  CHECK(p.max_iterations == 12);    // command line wins
-  CHECK(p.method == "sgicp");       // untouched default
+  CHECK(p.voxel_size == 0.5);     // from the file
+  CHECK(p.max_iterations == 12);  // command line wins
+  CHECK(p.method == "sgicp");     // untouched default
 }
 
 TEST_CASE("input lists come from arguments, list files and stdin", "[core][cli]") {

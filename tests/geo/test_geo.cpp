@@ -10,9 +10,9 @@
 using namespace mapfuse;
 
 namespace {
-constexpr double kMm = 1e-3;          // ENU round-trip tolerance, m
-constexpr double kDegPerMm = 1e-8;    // lat/lon tolerance, deg (~1 mm)
-}
+constexpr double kMm = 1e-3;        // ENU round-trip tolerance, m
+constexpr double kDegPerMm = 1e-8;  // lat/lon tolerance, deg (~1 mm)
+}  // namespace
 
 namespace {
 // Independent reference: WGS84 geodetic -> ECEF -> ENU with the textbook closed forms
@@ -27,9 +27,9 @@ Eigen::Vector3d ecef(double lat_deg, double lon_deg, double h) {
 Eigen::Vector3d referenceEnu(const geo::LatLonAlt& o, const geo::LatLonAlt& p) {
   const double lat = o.lat * M_PI / 180, lon = o.lon * M_PI / 180;
   Eigen::Matrix3d R;
-  R << -std::sin(lon), std::cos(lon), 0,
-       -std::sin(lat) * std::cos(lon), -std::sin(lat) * std::sin(lon), std::cos(lat),
-       std::cos(lat) * std::cos(lon), std::cos(lat) * std::sin(lon), std::sin(lat);
+  R << -std::sin(lon), std::cos(lon), 0, -std::sin(lat) * std::cos(lon),
+      -std::sin(lat) * std::sin(lon), std::cos(lat), std::cos(lat) * std::cos(lon),
+      std::cos(lat) * std::sin(lon), std::sin(lat);
   return R * (ecef(p.lat, p.lon, p.alt) - ecef(o.lat, o.lon, o.alt));
 }
 }  // namespace
@@ -37,9 +37,9 @@ Eigen::Vector3d referenceEnu(const geo::LatLonAlt& o, const geo::LatLonAlt& p) {
 TEST_CASE("ENU <-> WGS84 matches an independent ECEF reference", "[geo]") {
   const geo::LatLonAlt origin{49.0, 8.0, 100.0};
   const geo::EnuConverter enu(origin);
-  for (const geo::LatLonAlt q : {geo::LatLonAlt{49.001, 8.002, 110.0},
-                                 geo::LatLonAlt{48.95, 8.07, 80.0},
-                                 geo::LatLonAlt{49.05, 7.93, 130.0}}) {
+  for (const geo::LatLonAlt q :
+       {geo::LatLonAlt{49.001, 8.002, 110.0}, geo::LatLonAlt{48.95, 8.07, 80.0},
+        geo::LatLonAlt{49.05, 7.93, 130.0}}) {
     const Eigen::Vector3d p = enu.toEnu(q);
     CHECK((p - referenceEnu(origin, q)).norm() < kMm);
     const geo::LatLonAlt back = enu.toWgs84(p);
@@ -51,7 +51,8 @@ TEST_CASE("ENU <-> WGS84 matches an independent ECEF reference", "[geo]") {
 
 TEST_CASE("ENU round trip over 10 km stays within a millimetre", "[geo]") {
   const geo::EnuConverter enu({49.011212804408, 8.4228850417969, 112.83492279053});
-  for (const Eigen::Vector3d p : {Eigen::Vector3d(10000, -5000, 30), Eigen::Vector3d(-7000, 9000, -20)}) {
+  for (const Eigen::Vector3d p :
+       {Eigen::Vector3d(10000, -5000, 30), Eigen::Vector3d(-7000, 9000, -20)}) {
     CHECK((enu.toEnu(enu.toWgs84(p)) - p).norm() < kMm);
   }
 }

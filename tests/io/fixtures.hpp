@@ -27,7 +27,8 @@ inline Lsm makeLsm() {
   lane.attributes = {LineStyle::kDashed, LineColor::kWhite};
   lane.anchor = 1;
   lane.points_body = {{2, 1.7, 0}, {3, 1.7, 0}, {4, 1.71, 0}};
-  for (int i = 0; i < 3; ++i) lane.covariances.push_back(Eigen::Vector3d(0.01, 0.02, 0.03).asDiagonal());
+  for (int i = 0; i < 3; ++i)
+    lane.covariances.push_back(Eigen::Vector3d(0.01, 0.02, 0.03).asDiagonal());
   lane.confidence = 0.8;
   lane.observations = 5;
   lane.truth_id = 42;

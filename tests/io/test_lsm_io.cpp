@@ -20,7 +20,8 @@ void requireSameLsm(const Lsm& a, const Lsm& b) {
   REQUIRE(a.keyframes.size() == b.keyframes.size());
   for (std::size_t i = 0; i < a.keyframes.size(); ++i) {
     CHECK(a.keyframes[i].id == b.keyframes[i].id);
-    CHECK((a.keyframes[i].T_frame_body.matrix() - b.keyframes[i].T_frame_body.matrix()).norm() < kExact);
+    CHECK((a.keyframes[i].T_frame_body.matrix() - b.keyframes[i].T_frame_body.matrix()).norm() <
+          kExact);
     CHECK((a.keyframes[i].covariance - b.keyframes[i].covariance).norm() < kExact);
   }
   REQUIRE(a.gps.size() == b.gps.size());
@@ -72,7 +73,8 @@ TEST_CASE("element points move rigidly with their anchor keyframe", "[io][lsm]")
   const Pose3 delta = poseFromXyzRpy(1, 2, 0, 0, 0, 0.3);
   lsm.keyframes[1].T_frame_body = delta * lsm.keyframes[1].T_frame_body;
   const auto after = lsm.pointsInFrame(lsm.elements[0]);
-  for (std::size_t i = 0; i < before.size(); ++i) CHECK((after[i] - delta * before[i]).norm() < kExact);
+  for (std::size_t i = 0; i < before.size(); ++i)
+    CHECK((after[i] - delta * before[i]).norm() < kExact);
 }
 
 TEST_CASE("malformed LSM files are refused with file, field and problem", "[io][lsm]") {

@@ -13,7 +13,7 @@ using namespace mapfuse;
 namespace {
 constexpr double kExact = 1e-12;
 constexpr double kGeoJsonTolerance = 0.02;  // m: 7 decimals of a degree is ~1 cm
-}
+}  // namespace
 
 TEST_CASE("vector map round-trips through JSON and CBOR", "[io][vector_map]") {
   const auto dir = test::tempDir("vm-roundtrip");
@@ -35,7 +35,8 @@ TEST_CASE("vector map round-trips through JSON and CBOR", "[io][vector_map]") {
       CHECK(a.source_ids == b.source_ids);
       CHECK(a.note == b.note);
       REQUIRE(a.points.size() == b.points.size());
-      for (std::size_t k = 0; k < a.points.size(); ++k) CHECK((a.points[k] - b.points[k]).norm() < kExact);
+      for (std::size_t k = 0; k < a.points.size(); ++k)
+        CHECK((a.points[k] - b.points[k]).norm() < kExact);
       REQUIRE(a.bezier.size() == b.bezier.size());
     }
   }
@@ -60,8 +61,8 @@ TEST_CASE("compact maps drop lane samples and readers re-sample the Bezier chain
 }
 
 TEST_CASE("Bezier evaluation matches the Bernstein form", "[io][vector_map]") {
-  const BezierSegment b{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 2, 0), Eigen::Vector3d(3, 2, 0),
-                        Eigen::Vector3d(4, 0, 0)};
+  const BezierSegment b{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 2, 0),
+                        Eigen::Vector3d(3, 2, 0), Eigen::Vector3d(4, 0, 0)};
   // B(0.5) = (P0 + 3 P1 + 3 P2 + P3) / 8
   CHECK((io::bezierPoint(b, 0.5) - Eigen::Vector3d(2.0, 1.5, 0)).norm() < kExact);
   CHECK((io::bezierPoint(b, 0.0) - b[0]).norm() < kExact);
@@ -109,7 +110,8 @@ TEST_CASE("GeoJSON export is RFC 7946: lon/lat order, 7 decimals, closed CCW rin
   const auto& pole = g["features"][2];
   CHECK(pole["geometry"]["type"] == "Point");
   const auto c = pole["geometry"]["coordinates"];
-  const Eigen::Vector3d back = enu.toEnu({c[1].get<double>(), c[0].get<double>(), c[2].get<double>()});
+  const Eigen::Vector3d back =
+      enu.toEnu({c[1].get<double>(), c[0].get<double>(), c[2].get<double>()});
   CHECK((back - map.instances[2].points[0]).norm() < kGeoJsonTolerance);
   CHECK(pole["properties"]["class"] == "pole");
   CHECK(pole["properties"]["height"] == 5.0);

@@ -59,9 +59,15 @@ constexpr std::array<LidarClass, kNumCityscapesClasses> kFromCityscapes{{
 
 }  // namespace
 
-const char* crowdClassName(CrowdClass c) { return kCrowd[static_cast<int>(c)].name; }
-GeometryKind geometryKind(CrowdClass c) { return kCrowd[static_cast<int>(c)].kind; }
-std::array<uint8_t, 3> crowdClassColor(CrowdClass c) { return kCrowd[static_cast<int>(c)].color; }
+const char* crowdClassName(CrowdClass c) {
+  return kCrowd[static_cast<int>(c)].name;
+}
+GeometryKind geometryKind(CrowdClass c) {
+  return kCrowd[static_cast<int>(c)].kind;
+}
+std::array<uint8_t, 3> crowdClassColor(CrowdClass c) {
+  return kCrowd[static_cast<int>(c)].color;
+}
 
 std::optional<CrowdClass> crowdClassFromName(const std::string& name) {
   for (int i = 0; i < kNumCrowdClasses; ++i)
@@ -94,9 +100,15 @@ std::optional<LineColor> lineColorFromName(const std::string& name) {
   return std::nullopt;
 }
 
-const char* lidarClassName(LidarClass c) { return kLidar[static_cast<int>(c)].name; }
-std::array<uint8_t, 3> lidarClassColor(LidarClass c) { return kLidar[static_cast<int>(c)].color; }
-uint16_t semanticKittiId(LidarClass c) { return kLidar[static_cast<int>(c)].kitti_id; }
+const char* lidarClassName(LidarClass c) {
+  return kLidar[static_cast<int>(c)].name;
+}
+std::array<uint8_t, 3> lidarClassColor(LidarClass c) {
+  return kLidar[static_cast<int>(c)].color;
+}
+uint16_t semanticKittiId(LidarClass c) {
+  return kLidar[static_cast<int>(c)].kitti_id;
+}
 
 std::optional<LidarClass> lidarClassFromName(const std::string& name) {
   for (int i = 0; i < kNumLidarClasses; ++i)
@@ -106,14 +118,26 @@ std::optional<LidarClass> lidarClassFromName(const std::string& name) {
 
 LidarClass lidarClassFromSemanticKitti(uint16_t id) {
   switch (id) {
-    case 40: case 60: return LidarClass::kRoad;
+    case 40:
+    case 60: return LidarClass::kRoad;
     case 48: return LidarClass::kSidewalk;
     case 50: return LidarClass::kBuilding;
     case 51: return LidarClass::kFence;
-    case 80: case 81: return LidarClass::kPole;
-    case 70: case 72: return LidarClass::kVegetation;
-    case 10: case 13: case 15: case 16: case 18: case 20:
-    case 252: case 256: case 257: case 258: case 259: return LidarClass::kVehicle;
+    case 80:
+    case 81: return LidarClass::kPole;
+    case 70:
+    case 72: return LidarClass::kVegetation;
+    case 10:
+    case 13:
+    case 15:
+    case 16:
+    case 18:
+    case 20:
+    case 252:
+    case 256:
+    case 257:
+    case 258:
+    case 259: return LidarClass::kVehicle;
     default: return LidarClass::kUnlabeled;
   }
 }

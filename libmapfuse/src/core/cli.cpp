@@ -15,9 +15,12 @@ void addCommonOptions(CLI::App& app, CommonOptions& common) {
 }
 
 void applyCommonOptions(const CommonOptions& common) {
-  if (common.quiet) setLogLevel(LogLevel::kWarn);
-  else if (common.verbosity > 0) setLogLevel(LogLevel::kDebug);
-  else setLogLevel(LogLevel::kInfo);
+  if (common.quiet)
+    setLogLevel(LogLevel::kWarn);
+  else if (common.verbosity > 0)
+    setLogLevel(LogLevel::kDebug);
+  else
+    setLogLevel(LogLevel::kInfo);
 }
 
 std::string optionName(const char* key) {

@@ -17,8 +17,12 @@ const char* levelName(LogLevel l) {
 }
 }  // namespace
 
-void setLogLevel(LogLevel level) { g_level = static_cast<int>(level); }
-LogLevel logLevel() { return static_cast<LogLevel>(g_level.load()); }
+void setLogLevel(LogLevel level) {
+  g_level = static_cast<int>(level);
+}
+LogLevel logLevel() {
+  return static_cast<LogLevel>(g_level.load());
+}
 
 void logMessage(LogLevel level, const std::string& message) {
   if (static_cast<int>(level) > g_level.load()) return;

@@ -40,7 +40,8 @@ void validateLsm(const Lsm& lsm, const std::string& source) {
     const auto& e = lsm.elements[i];
     const std::string where = "elements[" + std::to_string(i) + "]";
     if (!el_ids.insert(e.id).second) fail("duplicate element id " + std::to_string(e.id));
-    if (!kf_ids.count(e.anchor)) fail(where + ".anchor " + std::to_string(e.anchor) + " is no keyframe");
+    if (!kf_ids.count(e.anchor))
+      fail(where + ".anchor " + std::to_string(e.anchor) + " is no keyframe");
     if (e.points_body.empty()) fail(where + " has no points");
     if (e.covariances.size() != e.points_body.size())
       fail(where + " has " + std::to_string(e.covariances.size()) + " covariances for " +

@@ -13,13 +13,17 @@ constexpr double kPlainLineSeconds = 5.0;
 }  // namespace
 
 Progress::Progress(std::string label, std::size_t total)
-    : label_(std::move(label)), total_(total), start_(std::chrono::steady_clock::now()),
+    : label_(std::move(label)),
+      total_(total),
+      start_(std::chrono::steady_clock::now()),
       last_draw_(start_) {
   tty_ = ::isatty(STDERR_FILENO) != 0;
   enabled_ = logLevel() >= LogLevel::kInfo;
 }
 
-Progress::~Progress() { finish(); }
+Progress::~Progress() {
+  finish();
+}
 
 void Progress::advance(std::size_t n) {
   done_ += n;
@@ -62,8 +66,8 @@ void Progress::draw(bool final_line) {
                     label_.c_str(), done, total_, rate, final_line ? "took" : "ETA",
                     final_line ? elapsed : eta);
     else
-      std::snprintf(line, sizeof line, "mapfuse[progress] %s %zu (%.1f/s)\n", label_.c_str(),
-                    done, rate);
+      std::snprintf(line, sizeof line, "mapfuse[progress] %s %zu (%.1f/s)\n", label_.c_str(), done,
+                    rate);
     std::fputs(line, stderr);
   }
   std::fflush(stderr);

@@ -28,7 +28,9 @@ EnuConverter::EnuConverter(const GeoOrigin& origin) : origin_(origin), impl_(nul
   }
 }
 
-EnuConverter::~EnuConverter() { delete impl_; }
+EnuConverter::~EnuConverter() {
+  delete impl_;
+}
 EnuConverter::EnuConverter(const EnuConverter& o) : origin_(o.origin_), impl_(new Impl(*o.impl_)) {}
 EnuConverter& EnuConverter::operator=(const EnuConverter& o) {
   if (this != &o) {

@@ -9,10 +9,10 @@
 namespace mapfuse::geo {
 namespace {
 const char* const kFieldNames[30] = {
-    "lat", "lon", "alt", "roll", "pitch", "yaw", "vn", "ve", "vf", "vl",
-    "vu", "ax", "ay", "az", "af", "al", "au", "wx", "wy", "wz",
-    "wf", "wl", "wu", "pos_accuracy", "vel_accuracy", "navstat", "numsats", "posmode",
-    "velmode", "orimode"};
+    "lat",          "lon",     "alt",     "roll",    "pitch",   "yaw",    "vn", "ve",
+    "vf",           "vl",      "vu",      "ax",      "ay",      "az",     "af", "al",
+    "au",           "wx",      "wy",      "wz",      "wf",      "wl",     "wu", "pos_accuracy",
+    "vel_accuracy", "navstat", "numsats", "posmode", "velmode", "orimode"};
 }  // namespace
 
 OxtsRecord parseOxtsLine(const std::string& line, const std::string& file) {
@@ -43,7 +43,9 @@ OxtsRecord parseOxtsLine(const std::string& line, const std::string& file) {
   return r;
 }
 
-double mercatorScale(double lat0_deg) { return std::cos(lat0_deg * M_PI / 180.0); }
+double mercatorScale(double lat0_deg) {
+  return std::cos(lat0_deg * M_PI / 180.0);
+}
 
 Pose3 oxtsToMercatorPose(const OxtsRecord& r, double scale) {
   const double tx = scale * r.lon * M_PI * kKittiEarthRadius / 180.0;

@@ -17,13 +17,12 @@ nlohmann::json readDocument(const std::filesystem::path& path) {
   const std::string bytes = readBytes(path);
   if (bytes.empty()) throw ParseError(path.string(), "", "file is empty");
   try {
-    if (enc == Encoding::kCbor)
-      return nlohmann::json::from_cbor(bytes.begin(), bytes.end());
+    if (enc == Encoding::kCbor) return nlohmann::json::from_cbor(bytes.begin(), bytes.end());
     return nlohmann::json::parse(bytes);
   } catch (const nlohmann::json::exception& e) {
-    throw ParseError(path.string(), "",
-                     std::string(enc == Encoding::kCbor ? "invalid CBOR: " : "invalid JSON: ") +
-                         e.what());
+    throw ParseError(
+        path.string(), "",
+        std::string(enc == Encoding::kCbor ? "invalid CBOR: " : "invalid JSON: ") + e.what());
   }
 }
 

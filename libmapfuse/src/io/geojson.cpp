@@ -7,7 +7,9 @@
 namespace mapfuse::io {
 namespace {
 
-double roundTo(double v, double scale) { return std::round(v * scale) / scale; }
+double roundTo(double v, double scale) {
+  return std::round(v * scale) / scale;
+}
 
 Json position(const geo::EnuConverter& enu, const Eigen::Vector3d& p) {
   const geo::LatLonAlt g = enu.toWgs84(p);

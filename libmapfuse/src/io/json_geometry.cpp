@@ -5,7 +5,9 @@
 
 namespace mapfuse::io {
 
-Json vec3ToJson(const Eigen::Vector3d& v) { return Json::array({v.x(), v.y(), v.z()}); }
+Json vec3ToJson(const Eigen::Vector3d& v) {
+  return Json::array({v.x(), v.y(), v.z()});
+}
 
 Json pointsToJson(const std::vector<Eigen::Vector3d>& points) {
   Json a = Json::array();
@@ -18,10 +20,35 @@ Json poseToJson(const Pose3& T) {
   return {{"t", vec3ToJson(T.translation())}, {"q", Json::array({q.w(), q.x(), q.y(), q.z()})}};
 }
 
-Json originToJson(const geo::GeoOrigin& o) { return {{"lat", o.lat}, {"lon", o.lon}, {"alt", o.alt}}; }
+Json originToJson(const geo::GeoOrigin& o) {
+  return {{"lat", o.lat}, {"lon", o.lon}, {"alt", o.alt}};
+}
 
 Json cov3ToJson(const Eigen::Matrix3d& C) {
   return Json::array({C(0, 0), C(0, 1), C(0, 2), C(1, 1), C(1, 2), C(2, 2)});
+}
+
+void writeClassAndAttributes(Json& j, CrowdClass cls, const Attributes& attributes) {
+  j["class"] = crowdClassName(cls);
+  if (attributes.style != LineStyle::kNone) j["style"] = lineStyleName(attributes.style);
+  if (attributes.color != LineColor::kNone) j["color"] = lineColorName(attributes.color);
+}
+
+void readClassAndAttributes(const JsonView& v, CrowdClass& cls, Attributes& attributes) {
+  const std::string name = v.at("class").string();
+  const auto c = crowdClassFromName(name);
+  if (!c) v.at("class").fail("unknown class '" + name + "'");
+  cls = *c;
+  if (auto s = v.find("style")) {
+    const auto style = lineStyleFromName(s->string());
+    if (!style) s->fail("unknown line style '" + s->string() + "'");
+    attributes.style = *style;
+  }
+  if (auto s = v.find("color")) {
+    const auto color = lineColorFromName(s->string());
+    if (!color) s->fail("unknown line colour '" + s->string() + "'");
+    attributes.color = *color;
+  }
 }
 
 std::vector<Eigen::Vector3d> readPoints(const JsonView& v) {

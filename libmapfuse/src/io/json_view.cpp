@@ -15,7 +15,9 @@ void JsonView::fail(const std::string& problem) const {
   throw ParseError(file_, path_, problem);
 }
 
-static std::string typeName(const Json& j) { return j.type_name(); }
+static std::string typeName(const Json& j) {
+  return j.type_name();
+}
 
 void JsonView::requireObject() const {
   if (!node_->is_object()) fail("expected an object, found " + typeName(*node_));

@@ -48,18 +48,17 @@ Keyframe keyframeFromJson(const JsonView& v) {
 }
 
 Json gpsToJson(const GpsFix& g) {
-  return {{"stamp", g.stamp},          {"lat", g.position.lat},   {"lon", g.position.lon},
-          {"alt", g.position.alt},     {"sigma_h", g.sigma_h},    {"sigma_v", g.sigma_v}};
+  return {{"stamp", g.stamp},      {"lat", g.position.lat}, {"lon", g.position.lon},
+          {"alt", g.position.alt}, {"sigma_h", g.sigma_h},  {"sigma_v", g.sigma_v}};
 }
 
 GpsFix gpsFromJson(const JsonView& v) {
   v.onlyKeys({"stamp", "lat", "lon", "alt", "sigma_h", "sigma_v"});
   GpsFix g;
   g.stamp = v.at("stamp").number();
-  g.position = readOrigin(JsonView(Json{{"lat", v.at("lat").raw()},
-                                         {"lon", v.at("lon").raw()},
-                                         {"alt", v.at("alt").raw()}},
-                                    v.file(), v.path()));
+  g.position = readOrigin(JsonView(
+      Json{{"lat", v.at("lat").raw()}, {"lon", v.at("lon").raw()}, {"alt", v.at("alt").raw()}},
+      v.file(), v.path()));
   g.sigma_h = v.at("sigma_h").number();
   g.sigma_v = v.at("sigma_v").number();
   if (g.sigma_h <= 0.0) v.at("sigma_h").fail("must be positive");
@@ -69,13 +68,11 @@ GpsFix gpsFromJson(const JsonView& v) {
 
 Json elementToJson(const Element& e) {
   Json j = {{"id", e.id},
-            {"class", crowdClassName(e.cls)},
             {"anchor", e.anchor},
             {"points", pointsToJson(e.points_body)},
             {"confidence", e.confidence},
             {"observations", e.observations}};
-  if (e.attributes.style != LineStyle::kNone) j["style"] = lineStyleName(e.attributes.style);
-  if (e.attributes.color != LineColor::kNone) j["color"] = lineColorName(e.attributes.color);
+  writeClassAndAttributes(j, e.cls, e.attributes);
   Json cov = Json::array();
   for (const auto& C : e.covariances) cov.push_back(cov3ToJson(C));
   j["cov"] = cov;
@@ -89,20 +86,7 @@ Element elementFromJson(const JsonView& v) {
               "observations", "height", "truth_id"});
   Element e;
   e.id = v.at("id").integer();
-  const std::string cls = v.at("class").string();
-  const auto c = crowdClassFromName(cls);
-  if (!c) v.at("class").fail("unknown class '" + cls + "'");
-  e.cls = *c;
-  if (auto s = v.find("style")) {
-    const auto st = lineStyleFromName(s->string());
-    if (!st) s->fail("unknown line style '" + s->string() + "'");
-    e.attributes.style = *st;
-  }
-  if (auto s = v.find("color")) {
-    const auto co = lineColorFromName(s->string());
-    if (!co) s->fail("unknown line colour '" + s->string() + "'");
-    e.attributes.color = *co;
-  }
+  readClassAndAttributes(v, e.cls, e.attributes);
   e.anchor = v.at("anchor").integer();
   e.points_body = readPoints(v.at("points"));
   if (e.points_body.empty()) v.at("points").fail("an element needs at least one point");
@@ -133,8 +117,11 @@ Element elementFromJson(const JsonView& v) {
 }  // namespace
 
 Json lsmToJson(const Lsm& lsm) {
-  Json j = {{"format", kLsmFormat}, {"version", kLsmVersion}, {"drive_id", lsm.drive_id},
-            {"vehicle_id", lsm.vehicle_id}, {"frame", lsm.frame == LsmFrame::kEnu ? "enu" : "odom"}};
+  Json j = {{"format", kLsmFormat},
+            {"version", kLsmVersion},
+            {"drive_id", lsm.drive_id},
+            {"vehicle_id", lsm.vehicle_id},
+            {"frame", lsm.frame == LsmFrame::kEnu ? "enu" : "odom"}};
   if (lsm.origin) j["origin"] = originToJson(*lsm.origin);
   Json kfs = Json::array(), gps = Json::array(), els = Json::array();
   for (const auto& k : lsm.keyframes) kfs.push_back(keyframeToJson(k));
@@ -155,10 +142,14 @@ Lsm lsmFromJson(const Json& doc, const std::string& file) {
   lsm.drive_id = v.at("drive_id").string();
   if (auto vid = v.find("vehicle_id")) lsm.vehicle_id = vid->string();
   const std::string frame = v.at("frame").string();
-  if (frame == "enu") lsm.frame = LsmFrame::kEnu;
-  else if (frame != "odom") v.at("frame").fail("expected \"odom\" or \"enu\", found \"" + frame + "\"");
-  if (auto o = v.find("origin")) lsm.origin = readOrigin(*o);
-  else if (lsm.frame == LsmFrame::kEnu) v.at("origin");  // throws: enu requires an origin
+  if (frame == "enu")
+    lsm.frame = LsmFrame::kEnu;
+  else if (frame != "odom")
+    v.at("frame").fail("expected \"odom\" or \"enu\", found \"" + frame + "\"");
+  if (auto o = v.find("origin"))
+    lsm.origin = readOrigin(*o);
+  else if (lsm.frame == LsmFrame::kEnu)
+    v.at("origin");  // throws: enu requires an origin
   const JsonView kfs = v.at("keyframes");
   for (std::size_t i = 0; i < kfs.size(); ++i) lsm.keyframes.push_back(keyframeFromJson(kfs.at(i)));
   if (auto gps = v.find("gps"))

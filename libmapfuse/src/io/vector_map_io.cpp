@@ -14,13 +14,13 @@ Eigen::Vector3d quantize(const Eigen::Vector3d& p, double q) {
 }
 
 Json instanceToJson(const MapInstance& inst, const VectorMapWriteOptions& opt) {
-  Json j = {{"id", inst.id}, {"class", crowdClassName(inst.cls)}};
-  if (inst.attributes.style != LineStyle::kNone) j["style"] = lineStyleName(inst.attributes.style);
-  if (inst.attributes.color != LineColor::kNone) j["color"] = lineColorName(inst.attributes.color);
+  Json j = {{"id", inst.id}};
+  writeClassAndAttributes(j, inst.cls, inst.attributes);
   const bool omit_points = opt.compact && !inst.bezier.empty();
   if (!omit_points) {
     Json pts = Json::array();
-    for (const auto& p : inst.points) pts.push_back(vec3ToJson(quantize(p, opt.coordinate_quantum)));
+    for (const auto& p : inst.points)
+      pts.push_back(vec3ToJson(quantize(p, opt.coordinate_quantum)));
     j["points"] = std::move(pts);
   }
   if (!inst.bezier.empty()) {
@@ -44,20 +44,7 @@ MapInstance instanceFromJson(const JsonView& v) {
               "source_ids", "note"});
   MapInstance inst;
   inst.id = v.at("id").integer();
-  const std::string cls = v.at("class").string();
-  const auto c = crowdClassFromName(cls);
-  if (!c) v.at("class").fail("unknown class '" + cls + "'");
-  inst.cls = *c;
-  if (auto s = v.find("style")) {
-    const auto st = lineStyleFromName(s->string());
-    if (!st) s->fail("unknown line style '" + s->string() + "'");
-    inst.attributes.style = *st;
-  }
-  if (auto s = v.find("color")) {
-    const auto co = lineColorFromName(s->string());
-    if (!co) s->fail("unknown line colour '" + s->string() + "'");
-    inst.attributes.color = *co;
-  }
+  readClassAndAttributes(v, inst.cls, inst.attributes);
   if (auto b = v.find("bezier")) {
     for (std::size_t i = 0; i < b->size(); ++i) {
       const JsonView seg = b->at(i);
@@ -67,9 +54,12 @@ MapInstance instanceFromJson(const JsonView& v) {
       inst.bezier.push_back(s);
     }
   }
-  if (auto p = v.find("points")) inst.points = readPoints(*p);
-  else if (!inst.bezier.empty()) inst.points = sampleBezierChain(inst.bezier, kBezierSampleStep);
-  else v.at("points");  // throws: geometry missing
+  if (auto p = v.find("points"))
+    inst.points = readPoints(*p);
+  else if (!inst.bezier.empty())
+    inst.points = sampleBezierChain(inst.bezier, kBezierSampleStep);
+  else
+    v.at("points");  // throws: geometry missing
   if (auto h = v.find("height")) inst.height = h->number();
   if (auto s = v.find("support")) {
     s->onlyKeys({"drives", "observations"});
@@ -93,7 +83,8 @@ std::vector<Eigen::Vector3d> sampleBezierChain(const std::vector<BezierSegment>&
                                                double step) {
   std::vector<Eigen::Vector3d> out;
   for (const auto& seg : chain) {
-    const double chord = (seg[1] - seg[0]).norm() + (seg[2] - seg[1]).norm() + (seg[3] - seg[2]).norm();
+    const double chord =
+        (seg[1] - seg[0]).norm() + (seg[2] - seg[1]).norm() + (seg[3] - seg[2]).norm();
     const int n = std::max(1, int(std::ceil(chord / step)));
     for (int i = out.empty() ? 0 : 1; i <= n; ++i) out.push_back(bezierPoint(seg, double(i) / n));
   }
@@ -103,8 +94,11 @@ std::vector<Eigen::Vector3d> sampleBezierChain(const std::vector<BezierSegment>&
 Json vectorMapToJson(const VectorMap& map, const VectorMapWriteOptions& options) {
   Json inst = Json::array();
   for (const auto& i : map.instances) inst.push_back(instanceToJson(i, options));
-  return {{"format", kVectorMapFormat}, {"version", kVectorMapVersion}, {"source", map.source},
-          {"origin", originToJson(map.origin)}, {"instances", std::move(inst)}};
+  return {{"format", kVectorMapFormat},
+          {"version", kVectorMapVersion},
+          {"source", map.source},
+          {"origin", originToJson(map.origin)},
+          {"instances", std::move(inst)}};
 }
 
 VectorMap vectorMapFromJson(const Json& doc, const std::string& file) {
@@ -115,7 +109,8 @@ VectorMap vectorMapFromJson(const Json& doc, const std::string& file) {
   if (auto s = v.find("source")) map.source = s->string();
   map.origin = readOrigin(v.at("origin"));
   const JsonView inst = v.at("instances");
-  for (std::size_t i = 0; i < inst.size(); ++i) map.instances.push_back(instanceFromJson(inst.at(i)));
+  for (std::size_t i = 0; i < inst.size(); ++i)
+    map.instances.push_back(instanceFromJson(inst.at(i)));
   validateVectorMap(map, file);
   return map;
 }

@@ -48,8 +48,8 @@ GeometryKind geometryKind(CrowdClass c);
 /// @brief Display colour (R, G, B) for pictures.
 std::array<uint8_t, 3> crowdClassColor(CrowdClass c);
 
-const char* lineStyleName(LineStyle s);   ///< "none", "solid", "dashed"
-const char* lineColorName(LineColor c);   ///< "none", "white", "yellow"
+const char* lineStyleName(LineStyle s);  ///< "none", "solid", "dashed"
+const char* lineColorName(LineColor c);  ///< "none", "white", "yellow"
 std::optional<LineStyle> lineStyleFromName(const std::string& name);
 std::optional<LineColor> lineColorFromName(const std::string& name);
 

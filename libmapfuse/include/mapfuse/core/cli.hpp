@@ -58,8 +58,10 @@ template <class Params>
 void preloadConfig(int argc, char** argv, Params& params) {
   for (int i = 1; i < argc; ++i) {
     std::string arg = argv[i], file;
-    if (arg == "--config" && i + 1 < argc) file = argv[i + 1];
-    else if (arg.rfind("--config=", 0) == 0) file = arg.substr(9);
+    if (arg == "--config" && i + 1 < argc)
+      file = argv[i + 1];
+    else if (arg.rfind("--config=", 0) == 0)
+      file = arg.substr(9);
     if (!file.empty()) paramsFromJson(params, io::readDocument(file), file);
   }
 }

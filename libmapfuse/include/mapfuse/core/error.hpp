@@ -38,7 +38,9 @@ class ParseError : public Error {
  public:
   ParseError(const std::string& file, const std::string& field, const std::string& problem)
       : Error(file + ": " + (field.empty() ? std::string() : "field '" + field + "': ") + problem),
-        file_(file), field_(field), problem_(problem) {}
+        file_(file),
+        field_(field),
+        problem_(problem) {}
   ExitCode exitCode() const override { return ExitCode::kBadInput; }
   const std::string& file() const { return file_; }
   const std::string& field() const { return field_; }

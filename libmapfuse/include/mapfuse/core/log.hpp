@@ -16,13 +16,13 @@ void logMessage(LogLevel level, const std::string& message);
 
 }  // namespace mapfuse
 
-#define MAPFUSE_LOG(level, expr)                                                  \
-  do {                                                                            \
-    if (static_cast<int>(level) <= static_cast<int>(::mapfuse::logLevel())) {     \
-      std::ostringstream mapfuse_log_ss_;                                         \
-      mapfuse_log_ss_ << expr;                                                    \
-      ::mapfuse::logMessage(level, mapfuse_log_ss_.str());                        \
-    }                                                                             \
+#define MAPFUSE_LOG(level, expr)                                              \
+  do {                                                                        \
+    if (static_cast<int>(level) <= static_cast<int>(::mapfuse::logLevel())) { \
+      std::ostringstream mapfuse_log_ss_;                                     \
+      mapfuse_log_ss_ << expr;                                                \
+      ::mapfuse::logMessage(level, mapfuse_log_ss_.str());                    \
+    }                                                                         \
   } while (0)
 #define MAPFUSE_INFO(expr) MAPFUSE_LOG(::mapfuse::LogLevel::kInfo, expr)
 #define MAPFUSE_WARN(expr) MAPFUSE_LOG(::mapfuse::LogLevel::kWarn, expr)

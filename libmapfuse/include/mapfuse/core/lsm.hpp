@@ -21,9 +21,9 @@ enum class LsmFrame : uint8_t {
 };
 
 struct Keyframe {
-  int64_t id = 0;                        ///< unique within the LSM
-  double stamp = 0.0;                    ///< s
-  Pose3 T_frame_body = Pose3::Identity();  ///< body pose in the LSM frame (odom or enu)
+  int64_t id = 0;                                     ///< unique within the LSM
+  double stamp = 0.0;                                 ///< s
+  Pose3 T_frame_body = Pose3::Identity();             ///< body pose in the LSM frame (odom or enu)
   Matrix6d covariance = Matrix6d::Identity() * 1e-4;  ///< of T_frame_body, (rho, phi) order
 };
 
@@ -35,16 +35,16 @@ struct GpsFix {
 };
 
 struct Element {
-  int64_t id = 0;                 ///< unique within the LSM
+  int64_t id = 0;  ///< unique within the LSM
   CrowdClass cls = CrowdClass::kLaneLine;
   Attributes attributes;
-  int64_t anchor = 0;             ///< Keyframe::id of the anchor
-  std::vector<Eigen::Vector3d> points_body;     ///< in the anchor's body frame, m
-  std::vector<Eigen::Matrix3d> covariances;     ///< per point, body frame, m^2 (same size)
-  double confidence = 1.0;        ///< [0, 1]
-  int observations = 1;           ///< frames that observed it
-  double height = 0.0;            ///< m; pole / traffic light: vertical extent above the point
-  int64_t truth_id = -1;          ///< simulator only: id of the true element (-1 = unknown/false)
+  int64_t anchor = 0;                        ///< Keyframe::id of the anchor
+  std::vector<Eigen::Vector3d> points_body;  ///< in the anchor's body frame, m
+  std::vector<Eigen::Matrix3d> covariances;  ///< per point, body frame, m^2 (same size)
+  double confidence = 1.0;                   ///< [0, 1]
+  int observations = 1;                      ///< frames that observed it
+  double height = 0.0;    ///< m; pole / traffic light: vertical extent above the point
+  int64_t truth_id = -1;  ///< simulator only: id of the true element (-1 = unknown/false)
 };
 
 struct Lsm {
@@ -52,8 +52,8 @@ struct Lsm {
   std::string vehicle_id;
   LsmFrame frame = LsmFrame::kOdom;
   std::optional<geo::GeoOrigin> origin;  ///< required when frame == kEnu
-  std::vector<Keyframe> keyframes;        ///< sorted by stamp
-  std::vector<GpsFix> gps;                ///< sorted by stamp
+  std::vector<Keyframe> keyframes;       ///< sorted by stamp
+  std::vector<GpsFix> gps;               ///< sorted by stamp
   std::vector<Element> elements;
 
   /// @brief Index of the keyframe with `id`; throws InputError when absent.

@@ -32,13 +32,16 @@ struct FromJsonVisitor {
   void operator()(const char* key, T& value, const char* /*unit*/, const char* /*help*/) {
     auto field = view.find(key);
     if (!field) return;
-    if constexpr (std::is_same_v<T, bool>) value = field->boolean();
+    if constexpr (std::is_same_v<T, bool>)
+      value = field->boolean();
     else if constexpr (std::is_integral_v<T>) {
       const int64_t v = field->integer();
       if (std::is_unsigned_v<T> && v < 0) field->fail("must not be negative");
       value = static_cast<T>(v);
-    } else if constexpr (std::is_floating_point_v<T>) value = static_cast<T>(field->number());
-    else value = field->string();
+    } else if constexpr (std::is_floating_point_v<T>)
+      value = static_cast<T>(field->number());
+    else
+      value = field->string();
   }
 };
 
@@ -46,7 +49,9 @@ struct KeyCheckVisitor {
   const std::string& key;
   bool found = false;
   template <class T>
-  void operator()(const char* k, T&, const char*, const char*) { found = found || key == k; }
+  void operator()(const char* k, T&, const char*, const char*) {
+    found = found || key == k;
+  }
 };
 }  // namespace detail
 
@@ -78,8 +83,7 @@ void paramsFromJson(Params& params, const nlohmann::json& j, const std::string& 
 /// @brief Throws ConfigError "<Stage>::<field> = <value>. Violated constraint: <rule>"
 /// unless `ok` holds; used by each Params::validate().
 template <class T>
-void requireParam(bool ok, const char* stage, const char* field, const T& value,
-                  const char* rule) {
+void requireParam(bool ok, const char* stage, const char* field, const T& value, const char* rule) {
   if (ok) return;
   throw ConfigError(std::string(stage) + "::" + field + " = " + nlohmann::json(value).dump() +
                     ". Violated constraint: " + rule);

@@ -33,8 +33,8 @@ struct MapInstance {
   std::vector<BezierSegment> bezier;  ///< lane lines: the fitted chain (may be empty)
   double height = 0.0;                ///< m; poles, lights: vertical extent above the base
   Support support;
-  std::vector<int64_t> source_ids;    ///< provenance (truth ids, or ids of merged elements)
-  std::string note;                   ///< free text, e.g. "placed by simulator"
+  std::vector<int64_t> source_ids;  ///< provenance (truth ids, or ids of merged elements)
+  std::string note;                 ///< free text, e.g. "placed by simulator"
 };
 
 struct VectorMap {

@@ -12,11 +12,11 @@ namespace mapfuse::geo {
 
 /// The 30 fields of one OXTS line, in dataformat.txt order.
 struct OxtsRecord {
-  double lat, lon, alt;          ///< deg, deg, m
-  double roll, pitch, yaw;       ///< rad
-  double vn, ve, vf, vl, vu;     ///< m/s
-  double ax, ay, az, af, al, au;  ///< m/s^2
-  double wx, wy, wz, wf, wl, wu;  ///< rad/s
+  double lat, lon, alt;               ///< deg, deg, m
+  double roll, pitch, yaw;            ///< rad
+  double vn, ve, vf, vl, vu;          ///< m/s
+  double ax, ay, az, af, al, au;      ///< m/s^2
+  double wx, wy, wz, wf, wl, wu;      ///< rad/s
   double pos_accuracy, vel_accuracy;  ///< m, m/s
   int navstat, numsats, posmode, velmode, orimode;
 };

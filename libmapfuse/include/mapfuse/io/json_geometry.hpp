@@ -4,6 +4,7 @@
 /// 3x3 covariances as their 6 upper-triangular entries [xx, xy, xz, yy, yz, zz].
 #include <vector>
 
+#include "mapfuse/core/classes.hpp"
 #include "mapfuse/core/se3.hpp"
 #include "mapfuse/geo/origin.hpp"
 #include "mapfuse/io/json_view.hpp"
@@ -15,6 +16,11 @@ Json pointsToJson(const std::vector<Eigen::Vector3d>& points);
 Json poseToJson(const Pose3& T);
 Json originToJson(const geo::GeoOrigin& o);
 Json cov3ToJson(const Eigen::Matrix3d& C);
+
+/// @brief Writes "class" and, when set, "style" / "color" into the object `j`.
+void writeClassAndAttributes(Json& j, CrowdClass cls, const Attributes& attributes);
+/// @brief Reads "class" (required) and "style" / "color" (optional) of an element or instance.
+void readClassAndAttributes(const JsonView& v, CrowdClass& cls, Attributes& attributes);
 
 /// @brief Array of [x, y, z] arrays.
 std::vector<Eigen::Vector3d> readPoints(const JsonView& v);

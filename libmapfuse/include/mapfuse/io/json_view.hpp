@@ -32,11 +32,11 @@ class JsonView {
   /// @brief Number of elements; the node must be an array.
   std::size_t size() const;
 
-  double number() const;        ///< finite number
-  int64_t integer() const;      ///< integral number
+  double number() const;    ///< finite number
+  int64_t integer() const;  ///< integral number
   std::string string() const;
   bool boolean() const;
-  Eigen::Vector3d vec3() const;  ///< array of exactly 3 finite numbers
+  Eigen::Vector3d vec3() const;                             ///< array of exactly 3 finite numbers
   Eigen::VectorXd vector(std::size_t expected_size) const;  ///< 0 = any size
 
   /// @brief The node must be an object whose keys are all in `allowed`.

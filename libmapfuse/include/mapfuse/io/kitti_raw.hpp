@@ -1,0 +1,57 @@
+#pragma once
+/// @file KITTI raw drives: `<date>/<date>_drive_<name>_sync/` with image_02/data/*.png,
+/// velodyne_points/data/*.bin, oxts/data/*.txt (+ dataformat.txt) and timestamps.txt files,
+/// and the date folder's three calibration files. Frames are indexed by the Velodyne files
+/// present, so partial folders (a few frames, no OXTS, no timestamps) work.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "mapfuse/geo/oxts.hpp"
+#include "mapfuse/io/kitti_calib.hpp"
+
+namespace mapfuse::io {
+
+/// Which frames to use: indices first..last (inclusive, last < 0 = up to the end), every
+/// `stride`-th frame present.
+struct FrameRange {
+  int first = 0;
+  int last = -1;
+  int stride = 1;
+};
+
+/// One frame of a drive.
+struct KittiRawFrame {
+  int index = 0;                     ///< frame number (file name)
+  std::string name;                  ///< file stem, e.g. "0000000000"
+  std::filesystem::path velodyne;    ///< velodyne_points/data/<name>.bin (always exists)
+  std::filesystem::path image;       ///< image_02/data/<name>.png, empty when absent
+  std::filesystem::path oxts;        ///< oxts/data/<name>.txt, empty when absent
+  double timestamp = std::nan("");   ///< velodyne timestamps.txt (s since the date's midnight)
+  double scan_start = std::nan("");  ///< timestamps_start.txt (s), NaN when unknown
+  double scan_end = std::nan("");    ///< timestamps_end.txt (s), NaN when unknown
+};
+
+/// An opened drive (files listed, nothing heavy loaded).
+struct KittiRawDrive {
+  std::filesystem::path dir;       ///< the drive folder
+  std::filesystem::path date_dir;  ///< its parent, holding the calibration files
+  KittiCalibration calib;
+  std::vector<KittiRawFrame> frames;  ///< selected frames, ascending index
+  bool has_oxts = false;              ///< every selected frame has an OXTS record
+};
+
+/// @brief Lists the drive's frames and reads the calibration of its date folder.
+/// @throws IoError when the folder or velodyne_points/data is missing; InputError when no frame
+/// is selected or the range is invalid; ParseError for bad calibration or timestamp lines.
+KittiRawDrive openKittiRawDrive(const std::filesystem::path& drive_dir, const FrameRange& range);
+
+/// @brief Reads one frame's OXTS record. @throws IoError when absent, ParseError when malformed.
+geo::OxtsRecord readOxts(const KittiRawFrame& frame);
+
+/// @brief Parses a KITTI timestamp "YYYY-MM-DD HH:MM:SS.fffffffff" into seconds since the
+/// midnight of its date. @throws ParseError(file, field) when malformed.
+double parseKittiTimestamp(const std::string& text, const std::string& file,
+                           const std::string& field);
+
+}  // namespace mapfuse::io

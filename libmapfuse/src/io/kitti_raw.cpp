@@ -1,0 +1,115 @@
+#include "mapfuse/io/kitti_raw.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <sstream>
+
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/io/atomic_file.hpp"
+
+namespace mapfuse::io {
+namespace fs = std::filesystem;
+namespace {
+
+/// Frame number of a file stem made of digits only, or -1.
+long frameNumber(const std::string& stem) {
+  if (stem.empty() || stem.size() > 12) return -1;
+  for (char c : stem)
+    if (!std::isdigit(static_cast<unsigned char>(c))) return -1;
+  return std::stol(stem);
+}
+
+/// Lines of a timestamps file, parsed; empty when the file does not exist.
+std::vector<double> readTimestamps(const fs::path& path) {
+  std::vector<double> out;
+  if (!fs::exists(path)) return out;
+  std::istringstream in(readBytes(path));
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    out.push_back(parseKittiTimestamp(line, path.string(), "line " + std::to_string(++n)));
+  }
+  return out;
+}
+
+}  // namespace
+
+double parseKittiTimestamp(const std::string& text, const std::string& file,
+                           const std::string& field) {
+  int y = 0, mo = 0, d = 0, h = 0, mi = 0;
+  double s = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%d-%d-%d %d:%d:%lf%c", &y, &mo, &d, &h, &mi, &s, &tail) != 6 ||
+      h < 0 || h > 23 || mi < 0 || mi > 59 || s < 0 || s >= 61)
+    throw ParseError(file, field, "not a timestamp 'YYYY-MM-DD HH:MM:SS.f': '" + text + "'");
+  return h * 3600.0 + mi * 60.0 + s;
+}
+
+KittiRawDrive openKittiRawDrive(const fs::path& drive_dir, const FrameRange& range) {
+  if (range.stride < 1) throw InputError("frame stride must be >= 1");
+  if (range.first < 0) throw InputError("first frame must be >= 0");
+  if (range.last >= 0 && range.last < range.first)
+    throw InputError("last frame " + std::to_string(range.last) + " is before first frame " +
+                     std::to_string(range.first));
+  KittiRawDrive drive;
+  drive.dir = fs::absolute(drive_dir).lexically_normal();
+  if (!drive.dir.has_filename()) drive.dir = drive.dir.parent_path();
+  if (!fs::is_directory(drive.dir)) throw IoError(drive_dir.string(), "drive folder not found");
+  drive.date_dir = drive.dir.parent_path();
+  const fs::path velo_dir = drive.dir / "velodyne_points" / "data";
+  if (!fs::is_directory(velo_dir)) throw IoError(velo_dir.string(), "folder not found");
+
+  std::vector<std::pair<long, fs::path>> scans;
+  for (const auto& e : fs::directory_iterator(velo_dir)) {
+    if (e.path().extension() != ".bin") continue;
+    const long n = frameNumber(e.path().stem().string());
+    if (n >= 0) scans.emplace_back(n, e.path());
+  }
+  std::sort(scans.begin(), scans.end());
+  if (scans.empty()) throw InputError(velo_dir.string() + ": no Velodyne scans (*.bin)");
+
+  const auto stamps = readTimestamps(drive.dir / "velodyne_points" / "timestamps.txt");
+  const auto starts = readTimestamps(drive.dir / "velodyne_points" / "timestamps_start.txt");
+  const auto ends = readTimestamps(drive.dir / "velodyne_points" / "timestamps_end.txt");
+  auto at = [](const std::vector<double>& v, long i) {
+    return i < static_cast<long>(v.size()) ? v[static_cast<std::size_t>(i)] : std::nan("");
+  };
+
+  int counter = 0;
+  for (const auto& [n, path] : scans) {
+    if (n < range.first || (range.last >= 0 && n > range.last)) continue;
+    if (counter++ % range.stride != 0) continue;
+    KittiRawFrame f;
+    f.index = static_cast<int>(n);
+    f.name = path.stem().string();
+    f.velodyne = path;
+    const fs::path img = drive.dir / "image_02" / "data" / (f.name + ".png");
+    if (fs::exists(img)) f.image = img;
+    const fs::path ox = drive.dir / "oxts" / "data" / (f.name + ".txt");
+    if (fs::exists(ox)) f.oxts = ox;
+    f.timestamp = at(stamps, n);
+    f.scan_start = at(starts, n);
+    f.scan_end = at(ends, n);
+    drive.frames.push_back(f);
+  }
+  if (drive.frames.empty())
+    throw InputError(drive.dir.string() + ": no frame in the selected range " +
+                     std::to_string(range.first) + ".." + std::to_string(range.last));
+  drive.has_oxts = std::all_of(drive.frames.begin(), drive.frames.end(),
+                               [](const KittiRawFrame& f) { return !f.oxts.empty(); });
+  drive.calib = readKittiCalibration(drive.date_dir);
+  return drive;
+}
+
+geo::OxtsRecord readOxts(const KittiRawFrame& frame) {
+  if (frame.oxts.empty())
+    throw IoError(frame.velodyne.string(), "frame " + frame.name + " has no OXTS record");
+  std::string text = readBytes(frame.oxts);
+  const auto eol = text.find('\n');
+  if (eol != std::string::npos) text.resize(eol);
+  return geo::parseOxtsLine(text, frame.oxts.string());
+}
+
+}  // namespace mapfuse::io
