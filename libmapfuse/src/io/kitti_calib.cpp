@@ -37,9 +37,9 @@ std::vector<double> KittiCalibFile::numbers(const std::string& key, std::size_t 
   const auto it = values_.find(key);
   if (it == values_.end()) throw ParseError(file_, key, "missing");
   if (it->second.size() != count)
-    throw ParseError(file_, key,
-                     "has " + std::to_string(it->second.size()) + " values, expected " +
-                         std::to_string(count));
+    throw ParseError(
+        file_, key,
+        "has " + std::to_string(it->second.size()) + " values, expected " + std::to_string(count));
   std::vector<double> out;
   out.reserve(count);
   for (const std::string& tok : it->second) {

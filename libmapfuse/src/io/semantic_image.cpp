@@ -41,9 +41,9 @@ SemanticImage readProb(const fs::path& path) {
   const std::size_t expected = static_cast<std::size_t>(w) * h * c;
   const std::size_t have = bytes.size() - eol - 1;
   if (have != expected)
-    throw ParseError(file, "data",
-                     "has " + std::to_string(have) + " bytes, header promises " +
-                         std::to_string(expected));
+    throw ParseError(
+        file, "data",
+        "has " + std::to_string(have) + " bytes, header promises " + std::to_string(expected));
   SemanticImage img;
   img.width = static_cast<int>(w);
   img.height = static_cast<int>(h);
@@ -55,8 +55,7 @@ SemanticImage readProb(const fs::path& path) {
 SemanticImage readLabelPng(const fs::path& path) {
   const std::string bytes = readBytes(path);
   const std::string file = path.string();
-  const cv::Mat raw(1, static_cast<int>(bytes.size()), CV_8UC1,
-                    const_cast<char*>(bytes.data()));
+  const cv::Mat raw(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data()));
   const cv::Mat m = cv::imdecode(raw, cv::IMREAD_UNCHANGED);
   if (m.empty()) throw ParseError(file, "png", "not a decodable image");
   if (m.type() != CV_8UC1)
@@ -124,9 +123,9 @@ void writeSemanticImage(const fs::path& path, const SemanticImage& image) {
   const std::string ext = path.extension().string();
   if (ext == ".prob") {
     if (image.isLabels()) throw InputError(path.string() + ": .prob needs a probability image");
-    const std::string header = std::string(kProbMagic) + " 1 " + std::to_string(image.width) +
-                               " " + std::to_string(image.height) + " " +
-                               std::to_string(image.channels) + "\n";
+    const std::string header = std::string(kProbMagic) + " 1 " + std::to_string(image.width) + " " +
+                               std::to_string(image.height) + " " + std::to_string(image.channels) +
+                               "\n";
     writeFileAtomic(path, [&](std::ostream& out) {
       out.write(header.data(), static_cast<std::streamsize>(header.size()));
       out.write(reinterpret_cast<const char*>(image.data.data()),

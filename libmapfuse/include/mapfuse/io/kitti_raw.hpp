@@ -3,6 +3,7 @@
 /// velodyne_points/data/*.bin, oxts/data/*.txt (+ dataformat.txt) and timestamps.txt files,
 /// and the date folder's three calibration files. Frames are indexed by the Velodyne files
 /// present, so partial folders (a few frames, no OXTS, no timestamps) work.
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
