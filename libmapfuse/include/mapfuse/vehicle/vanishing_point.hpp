@@ -1,0 +1,61 @@
+#pragma once
+/// @file Ground-plane calibration from lane vanishing points (Song et al. 2023 §3.2.1).
+/// Parallel lane lines meet in the image at the vanishing point v; its ray d = K^-1 v is a
+/// direction lying in the road plane, so the ground normal must satisfy n^T d = 0. Rotating
+/// the nominal normal about the camera x axis until it does gives the pitch correction; a
+/// second vanishing direction (stop lines, crosswalk edges) also fixes roll: n ~ d1 x d2.
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+#include "mapfuse/vehicle/camera.hpp"
+
+namespace mapfuse::vehicle {
+
+/// Settings of the vanishing-point calibration.
+struct VanishingSettings {
+  int min_points_per_line = 8;         ///< pixels needed to fit one lane line
+  double max_line_rms = 2.0;           ///< px, lines fitting worse (curves) are rejected
+  double min_line_angle = 0.05;        ///< rad, lines must differ this much in image direction
+  double max_pitch_correction = 0.05;  ///< rad, larger corrections are rejected as outliers
+  int window = 5;                      ///< frames in the median window (1 = per frame)
+};
+
+/// A homogeneous image line l (l^T x = 0, (l0, l1) unit) with its fit RMS.
+struct ImageLine {
+  Eigen::Vector3d l;
+  double rms = 0.0;  ///< px
+};
+
+/// @brief Total-least-squares line through pixels; nullopt with fewer than 2 points.
+std::optional<ImageLine> fitImageLine(const std::vector<Eigen::Vector2d>& pixels);
+
+/// @brief Least-squares intersection of >= 2 lines: the unit v minimising sum (l_i^T v)^2.
+/// @return homogeneous vanishing point (may be at infinity), nullopt when the lines are
+/// (nearly) parallel in the image or fewer than 2.
+std::optional<Eigen::Vector3d> vanishingPoint(const std::vector<ImageLine>& lines,
+                                              double min_line_angle);
+
+/// @brief Pitch (rad, about the camera x axis, tiltNormal convention) that makes the normal
+/// perpendicular to the vanishing direction d; nullopt when impossible.
+std::optional<double> pitchFromVanishingDirection(const Eigen::Vector3d& normal_cam,
+                                                  const Eigen::Vector3d& direction_cam);
+
+/// @brief One frame: fits the lane polylines (pixels), intersects them and returns the pitch
+/// correction of the nominal plane; nullopt when fewer than two usable straight lines.
+std::optional<double> estimatePitchCorrection(
+    const std::vector<std::vector<Eigen::Vector2d>>& lane_pixels, const Eigen::Matrix3d& K,
+    const GroundPlane& nominal, const VanishingSettings& settings);
+
+/// @brief Ground normal from two vanishing directions in the road plane (pitch and roll):
+/// n ~ d1 x d2, oriented like `nominal`; nullopt when the directions are nearly parallel.
+std::optional<Eigen::Vector3d> normalFromTwoDirections(const Eigen::Vector3d& d1,
+                                                       const Eigen::Vector3d& d2,
+                                                       const Eigen::Vector3d& nominal);
+
+/// @brief Median of the per-frame corrections over a centred window of `window` frames;
+/// frames without an estimate borrow their neighbours' (0 when none in the window).
+std::vector<double> smoothCorrections(const std::vector<std::optional<double>>& per_frame,
+                                      int window);
+
+}  // namespace mapfuse::vehicle

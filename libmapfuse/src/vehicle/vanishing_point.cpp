@@ -1,0 +1,117 @@
+#include "mapfuse/vehicle/vanishing_point.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+
+namespace mapfuse::vehicle {
+
+std::optional<ImageLine> fitImageLine(const std::vector<Eigen::Vector2d>& pixels) {
+  if (pixels.size() < 2) return std::nullopt;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& p : pixels) mean += p;
+  mean /= double(pixels.size());
+  Eigen::Matrix2d S = Eigen::Matrix2d::Zero();
+  for (const auto& p : pixels) S += (p - mean) * (p - mean).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(S);
+  const Eigen::Vector2d normal = es.eigenvectors().col(0);  // smallest eigenvalue
+  ImageLine line;
+  line.l = Eigen::Vector3d(normal.x(), normal.y(), -normal.dot(mean));
+  line.rms = std::sqrt(std::max(0.0, es.eigenvalues()(0)) / double(pixels.size()));
+  return line;
+}
+
+std::optional<Eigen::Vector3d> vanishingPoint(const std::vector<ImageLine>& lines,
+                                              double min_line_angle) {
+  if (lines.size() < 2) return std::nullopt;
+  // Require at least one pair of lines with distinct image directions.
+  double max_angle = 0.0;
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    for (std::size_t j = i + 1; j < lines.size(); ++j) {
+      const double c = std::abs(lines[i].l.head<2>().dot(lines[j].l.head<2>()));
+      max_angle = std::max(max_angle, std::acos(std::min(1.0, c)));
+    }
+  if (max_angle < min_line_angle) return std::nullopt;
+  Eigen::MatrixXd A(lines.size(), 3);
+  for (std::size_t i = 0; i < lines.size(); ++i) A.row(i) = lines[i].l.transpose();
+  // Condition the problem: scale pixel coordinates so that the third column is comparable.
+  const double s = 1000.0;
+  A.col(2) /= s;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
+  Eigen::Vector3d v = svd.matrixV().col(2);
+  v.z() /= s;
+  return v;
+}
+
+std::optional<double> pitchFromVanishingDirection(const Eigen::Vector3d& n,
+                                                  const Eigen::Vector3d& d) {
+  // (R_x(t) n)^T d = C + A cos t + B sin t = 0.
+  const double A = d.y() * n.y() + d.z() * n.z();
+  const double B = d.z() * n.y() - d.y() * n.z();
+  const double C = n.x() * d.x();
+  const double R = std::hypot(A, B);
+  if (R < 1e-12 || std::abs(C) > R) return std::nullopt;
+  const double phi = std::atan2(B, A);
+  const double delta = std::acos(-C / R);
+  auto wrap = [](double a) { return std::atan2(std::sin(a), std::cos(a)); };
+  const double t1 = wrap(phi + delta), t2 = wrap(phi - delta);
+  return std::abs(t1) < std::abs(t2) ? t1 : t2;
+}
+
+std::optional<double> estimatePitchCorrection(
+    const std::vector<std::vector<Eigen::Vector2d>>& lane_pixels, const Eigen::Matrix3d& K,
+    const GroundPlane& nominal, const VanishingSettings& s) {
+  std::vector<ImageLine> lines;
+  for (const auto& poly : lane_pixels) {
+    if (int(poly.size()) < s.min_points_per_line) continue;
+    const auto line = fitImageLine(poly);
+    if (line && line->rms <= s.max_line_rms) lines.push_back(*line);
+  }
+  const auto v = vanishingPoint(lines, s.min_line_angle);
+  if (!v) return std::nullopt;
+  Eigen::Vector3d d = K.inverse() * *v;
+  if (d.norm() < 1e-12) return std::nullopt;
+  d.normalize();
+  if (d.z() < 0.0) d = -d;  // lanes recede in front of the camera
+  const auto pitch = pitchFromVanishingDirection(nominal.normal_cam, d);
+  if (!pitch || std::abs(*pitch) > s.max_pitch_correction) return std::nullopt;
+  return pitch;
+}
+
+std::optional<Eigen::Vector3d> normalFromTwoDirections(const Eigen::Vector3d& d1,
+                                                       const Eigen::Vector3d& d2,
+                                                       const Eigen::Vector3d& nominal) {
+  Eigen::Vector3d n = d1.normalized().cross(d2.normalized());
+  if (n.norm() < 0.2) return std::nullopt;  // < ~11.5 degrees apart
+  n.normalize();
+  if (n.dot(nominal) < 0.0) n = -n;
+  return n;
+}
+
+std::vector<double> smoothCorrections(const std::vector<std::optional<double>>& per_frame,
+                                      int window) {
+  const int n = int(per_frame.size());
+  const int half = std::max(0, window / 2);
+  std::vector<double> out(n, 0.0);
+  std::vector<double> buf;
+  for (int i = 0; i < n; ++i) {
+    buf.clear();
+    for (int j = std::max(0, i - half); j <= std::min(n - 1, i + half); ++j)
+      if (per_frame[j]) buf.push_back(*per_frame[j]);
+    if (buf.empty()) {
+      // Widen until something is found (frames without lanes keep the nearest estimate).
+      for (int r = half + 1; r < n && buf.empty(); ++r) {
+        if (i - r >= 0 && per_frame[i - r]) buf.push_back(*per_frame[i - r]);
+        if (i + r < n && per_frame[i + r]) buf.push_back(*per_frame[i + r]);
+      }
+    }
+    if (buf.empty()) continue;
+    std::nth_element(buf.begin(), buf.begin() + buf.size() / 2, buf.end());
+    out[i] = buf[buf.size() / 2];
+  }
+  return out;
+}
+
+}  // namespace mapfuse::vehicle
