@@ -1,0 +1,75 @@
+#pragma once
+/// @file Lanelet2 OSM reader (docs/simulate.md "Lanelet2 maps"), with pugixml. Reads nodes
+/// (lat/lon, optional `ele`), ways (line strings typed by `type` / `subtype`) and relations
+/// (lanelets with `left` / `right` bounds, regulatory elements). Negative ids and missing
+/// optional tags are normal; unknown way / relation types are kept as geometry but counted as
+/// skipped. Structural faults (XML syntax, truncation, a reference to a missing node or way, a
+/// bad coordinate, a lanelet without a bound) are ParseErrors naming the file and the element.
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mapfuse/geo/origin.hpp"
+
+namespace mapfuse::io {
+
+/// One OSM way of a Lanelet2 map (a Lanelet2 "line string").
+struct Lanelet2LineString {
+  int64_t id = 0;
+  std::string type;     ///< `type` tag ("" when absent)
+  std::string subtype;  ///< `subtype` tag ("" when absent)
+  std::map<std::string, std::string> tags;
+  std::vector<int64_t> node_ids;
+  std::vector<geo::LatLonAlt> points;  ///< WGS84; alt = `ele` of the node, else 0
+  bool known_type = false;             ///< type is one the simulator interprets
+};
+
+/// One lanelet relation.
+struct Lanelet2Lanelet {
+  int64_t id = 0;
+  int64_t left = 0;     ///< way id of the left bound
+  int64_t right = 0;    ///< way id of the right bound
+  std::string subtype;  ///< "road", "crosswalk", ... ("" when absent)
+  bool one_way = true;  ///< tag one_way (default yes, as Lanelet2's traffic rules)
+  std::vector<int64_t> regulatory_elements;  ///< relation ids
+};
+
+/// A regulatory element relation (traffic light, traffic sign, right of way...).
+struct Lanelet2Regulatory {
+  int64_t id = 0;
+  std::string subtype;
+  std::vector<int64_t> refers;     ///< way ids (role "refers")
+  std::vector<int64_t> ref_lines;  ///< way ids (role "ref_line", e.g. stop lines)
+};
+
+struct Lanelet2Map {
+  std::string file;
+  std::optional<geo::LatLonAlt> first_node;  ///< first node in file order (default origin)
+  std::size_t node_count = 0;
+  std::vector<Lanelet2LineString> linestrings;  ///< every way, file order
+  std::vector<Lanelet2Lanelet> lanelets;
+  std::vector<Lanelet2Regulatory> regulatory_elements;
+  std::map<std::string, int> skipped_way_types;       ///< unknown way type -> count
+  std::map<std::string, int> skipped_relation_types;  ///< unknown relation type -> count
+  std::map<int64_t, std::size_t> way_index;           ///< way id -> index in linestrings
+
+  /// @brief Number of line strings of a type (and subtype when not empty).
+  int countWays(const std::string& type, const std::string& subtype = "") const;
+  /// @brief The way with `id`; nullptr when absent.
+  const Lanelet2LineString* way(int64_t id) const;
+};
+
+/// Way types the simulator interprets (others are skipped and counted).
+bool isKnownLanelet2WayType(const std::string& type);
+
+/// @brief Parses a Lanelet2 OSM file.
+/// @throws IoError when unreadable; ParseError(file, element, problem) when malformed.
+Lanelet2Map readLanelet2Osm(const std::filesystem::path& path);
+
+/// @brief Parses OSM XML held in memory; `file` names the source in errors.
+Lanelet2Map parseLanelet2Osm(const std::string& xml, const std::string& file);
+
+}  // namespace mapfuse::io

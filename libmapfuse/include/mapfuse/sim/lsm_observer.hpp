@@ -1,0 +1,76 @@
+#pragma once
+/// @file What a vehicle would upload (docs/simulate.md "LSM level"): keyframes of the drifting
+/// odometry every few metres; per keyframe the true elements in camera range and field of view
+/// of its stretch of road, in the keyframe's body frame, with range-dependent noise and
+/// per-point covariance, missed detections and false positives (truth_id -1); dashed lines one
+/// element per dash; GPS fixes.
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "mapfuse/core/lsm.hpp"
+#include "mapfuse/sim/drive.hpp"
+#include "mapfuse/sim/sim_camera.hpp"
+#include "mapfuse/sim/world.hpp"
+
+namespace mapfuse::sim {
+
+struct ObservationParams {
+  double keyframe_spacing = 8.0;          ///< m of odometry between keyframes
+  double point_spacing = 0.75;            ///< m between lane-line points
+  double lateral_range = 12.0;            ///< m, |y| limit of observed elements (body)
+  double aerial_window_offset = 6.0;      ///< m, aerial elements are assigned further ahead
+  double ground_sigma_base = 0.03;        ///< m, ground point noise floor
+  double ground_sigma_range_quad = 3e-4;  ///< 1/m, along-ray sigma grows as k r^2 (eq. 1)
+  double ground_sigma_angular = 0.002;    ///< rad, across-ray sigma grows as k r
+  double aerial_sigma_base = 0.10;        ///< m, triangulated point noise floor
+  double aerial_sigma_range_quad = 5e-4;  ///< 1/m, depth sigma grows as k r^2
+  double correlated_fraction = 0.5;       ///< share of the noise variance common to an element
+  double miss_probability = 0.05;         ///< per element and keyframe
+  double false_positives_per_km = 5.0;    ///< spurious elements per km driven
+};
+
+/// The true elements cut into observable pieces, with a grid index.
+class PieceIndex {
+ public:
+  PieceIndex(const World& world, double point_spacing);
+  struct Piece {
+    std::size_t instance;  ///< index into World::truth.instances
+    Polyline points;       ///< ENU
+    Eigen::Vector3d centroid;
+  };
+  const std::vector<Piece>& pieces() const { return pieces_; }
+  /// @brief Indices of pieces with a point within about `radius` m of `center` (xy).
+  std::vector<int> near(const Eigen::Vector3d& center, double radius) const;
+
+ private:
+  static int64_t key(int64_t ix, int64_t iy) { return (ix << 32) ^ (iy & 0xffffffff); }
+  double cell_ = 10.0;
+  std::vector<Piece> pieces_;
+  std::unordered_map<int64_t, std::vector<int>> grid_;
+};
+
+/// Counts of one observed traversal.
+struct ObservationStats {
+  int elements = 0;  ///< true observations written
+  int false_positives = 0;
+  int missed = 0;
+};
+
+struct ObservedDrive {
+  Lsm lsm;
+  std::vector<std::size_t> keyframe_samples;  ///< Drive sample index of each keyframe
+  ObservationStats stats;
+};
+
+/// @brief Keyframe samples: camera instants at least `spacing` m of odometry apart (first and
+/// last included).
+std::vector<std::size_t> selectKeyframeSamples(const Drive& drive, double camera_rate,
+                                               double imu_rate, double spacing);
+
+/// @brief Builds the LSM of one drive. @param seed this drive's observation seed.
+ObservedDrive observeLsm(const World& world, const PieceIndex& index, const Drive& drive,
+                         const SimCamera& camera, const ObservationParams& params,
+                         const DriveParams& drive_params, uint64_t seed);
+
+}  // namespace mapfuse::sim

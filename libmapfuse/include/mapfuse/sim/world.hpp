@@ -1,0 +1,50 @@
+#pragma once
+/// @file The simulator's world (docs/simulate.md "Worlds"): a directed lane graph to drive on
+/// and the true map elements (a VectorMap in ENU with stable ids). Both the Lanelet2 reader and
+/// the procedural generator produce one.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "mapfuse/core/vector_map.hpp"
+#include "mapfuse/sim/polyline.hpp"
+
+namespace mapfuse::sim {
+
+/// One drivable lane in its driving direction.
+struct Lane {
+  int64_t id = 0;                       ///< unique; Lanelet2 lanelet id (negated twin for reverse)
+  Polyline centerline;                  ///< ENU, in driving direction, m
+  double width = 3.5;                   ///< m
+  std::vector<std::size_t> successors;  ///< indices into World::lanes
+};
+
+/// Dashed lane line pattern (German urban "Leitlinie" 3 m dash / 6 m gap by default).
+struct DashPattern {
+  double dash = 3.0;  ///< m
+  double gap = 6.0;   ///< m
+};
+
+struct World {
+  std::string name;  ///< "procedural" or the map file
+  std::vector<Lane> lanes;
+  VectorMap truth;  ///< true elements, ENU of truth.origin
+  DashPattern dashes;
+  std::map<std::string, double> stats;  ///< counts reported in the summary
+
+  /// @brief Total centreline length of the lanes, m.
+  double laneLength() const;
+};
+
+/// @brief Connects lane a -> b when the end of a is within `tolerance` m of the start of b and
+/// the directions agree within 60 degrees. Replaces existing successors.
+void connectLanesByEndpoints(World& world, double tolerance);
+
+/// @brief Observable pieces of a true instance: a solid line as one piece; a dashed line as one
+/// piece per dash (DashPattern, phase 0 at the line start); every other element as itself.
+/// Line pieces are resampled every `step` m.
+std::vector<Polyline> observablePieces(const MapInstance& instance, const DashPattern& dashes,
+                                       double step);
+
+}  // namespace mapfuse::sim

@@ -1,0 +1,206 @@
+#include "mapfuse/io/lanelet2_osm.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <pugixml.hpp>
+#include <unordered_map>
+
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/io/atomic_file.hpp"
+
+namespace mapfuse::io {
+
+namespace {
+
+const char* const kKnownWayTypes[] = {
+    "line_thin",     "line_thick",         "stop_line",    "curbstone",     "road_border",
+    "zebra_marking", "pedestrian_marking", "traffic_sign", "traffic_light", "virtual"};
+
+std::string elementName(const char* kind, int64_t id) {
+  return std::string(kind) + " " + std::to_string(id);
+}
+
+int64_t parseId(const pugi::xml_node& n, const char* attr, const std::string& file,
+                const std::string& where) {
+  const pugi::xml_attribute a = n.attribute(attr);
+  if (!a) throw ParseError(file, where, std::string("missing attribute '") + attr + "'");
+  const char* s = a.value();
+  char* end = nullptr;
+  errno = 0;
+  const long long v = std::strtoll(s, &end, 10);
+  if (errno != 0 || end == s || *end != '\0')
+    throw ParseError(file, where,
+                     std::string("attribute '") + attr + "' = '" + s + "' is not an integer id");
+  return v;
+}
+
+double parseCoordinate(const pugi::xml_node& n, const char* attr, double limit,
+                       const std::string& file, const std::string& where) {
+  const pugi::xml_attribute a = n.attribute(attr);
+  if (!a) throw ParseError(file, where + " " + attr, "missing");
+  const char* s = a.value();
+  char* end = nullptr;
+  const double v = std::strtod(s, &end);
+  if (end == s || *end != '\0' || !std::isfinite(v))
+    throw ParseError(file, where + " " + attr, std::string("'") + s + "' is not a number");
+  if (std::abs(v) > limit)
+    throw ParseError(file, where + " " + attr,
+                     std::string("'") + s + "' is out of range [-" +
+                         std::to_string(static_cast<int>(limit)) + ", " +
+                         std::to_string(static_cast<int>(limit)) + "]");
+  return v;
+}
+
+std::map<std::string, std::string> readTags(const pugi::xml_node& n) {
+  std::map<std::string, std::string> tags;
+  for (const pugi::xml_node t : n.children("tag"))
+    tags[t.attribute("k").value()] = t.attribute("v").value();
+  return tags;
+}
+
+std::string tagOr(const std::map<std::string, std::string>& tags, const std::string& key,
+                  const std::string& fallback) {
+  const auto it = tags.find(key);
+  return it == tags.end() ? fallback : it->second;
+}
+
+}  // namespace
+
+bool isKnownLanelet2WayType(const std::string& type) {
+  for (const char* k : kKnownWayTypes)
+    if (type == k) return true;
+  return false;
+}
+
+int Lanelet2Map::countWays(const std::string& type, const std::string& subtype) const {
+  int n = 0;
+  for (const auto& w : linestrings)
+    if (w.type == type && (subtype.empty() || w.subtype == subtype)) ++n;
+  return n;
+}
+
+const Lanelet2LineString* Lanelet2Map::way(int64_t id) const {
+  const auto it = way_index.find(id);
+  return it == way_index.end() ? nullptr : &linestrings[it->second];
+}
+
+Lanelet2Map parseLanelet2Osm(const std::string& xml, const std::string& file) {
+  pugi::xml_document doc;
+  const pugi::xml_parse_result ok = doc.load_buffer(xml.data(), xml.size());
+  if (!ok)
+    throw ParseError(
+        file, "",
+        std::string("XML: ") + ok.description() + " at byte offset " + std::to_string(ok.offset));
+  const pugi::xml_node osm = doc.child("osm");
+  if (!osm) throw ParseError(file, "osm", "no <osm> root element");
+
+  Lanelet2Map map;
+  map.file = file;
+  // Nodes.
+  std::unordered_map<int64_t, geo::LatLonAlt> nodes;
+  for (const pugi::xml_node n : osm.children("node")) {
+    const int64_t id = parseId(n, "id", file, "node");
+    const std::string where = elementName("node", id);
+    if (std::string(n.attribute("action").value()) == "delete") continue;
+    geo::LatLonAlt p;
+    p.lat = parseCoordinate(n, "lat", 90.0, file, where);
+    p.lon = parseCoordinate(n, "lon", 180.0, file, where);
+    const auto tags = readTags(n);
+    const auto ele = tags.find("ele");
+    if (ele != tags.end()) {
+      char* end = nullptr;
+      p.alt = std::strtod(ele->second.c_str(), &end);
+      if (end == ele->second.c_str() || *end != '\0' || !std::isfinite(p.alt))
+        throw ParseError(file, where + " ele", "'" + ele->second + "' is not a number");
+    }
+    if (!nodes.emplace(id, p).second) throw ParseError(file, where, "duplicate node id");
+    if (!map.first_node) map.first_node = p;
+  }
+  map.node_count = nodes.size();
+  // Ways.
+  for (const pugi::xml_node w : osm.children("way")) {
+    Lanelet2LineString ls;
+    ls.id = parseId(w, "id", file, "way");
+    const std::string where = elementName("way", ls.id);
+    if (std::string(w.attribute("action").value()) == "delete") continue;
+    for (const pugi::xml_node nd : w.children("nd")) {
+      const int64_t ref = parseId(nd, "ref", file, where + " nd");
+      const auto it = nodes.find(ref);
+      if (it == nodes.end())
+        throw ParseError(file, where, "node ref " + std::to_string(ref) + " does not exist");
+      ls.node_ids.push_back(ref);
+      ls.points.push_back(it->second);
+    }
+    if (ls.points.empty()) throw ParseError(file, where, "way has no nodes");
+    ls.tags = readTags(w);
+    ls.type = tagOr(ls.tags, "type", "");
+    ls.subtype = tagOr(ls.tags, "subtype", "");
+    ls.known_type = isKnownLanelet2WayType(ls.type);
+    if (!ls.known_type) ++map.skipped_way_types[ls.type.empty() ? "(none)" : ls.type];
+    if (!map.way_index.emplace(ls.id, map.linestrings.size()).second)
+      throw ParseError(file, where, "duplicate way id");
+    map.linestrings.push_back(std::move(ls));
+  }
+  // Relations.
+  for (const pugi::xml_node r : osm.children("relation")) {
+    const int64_t id = parseId(r, "id", file, "relation");
+    const std::string where = elementName("relation", id);
+    if (std::string(r.attribute("action").value()) == "delete") continue;
+    const auto tags = readTags(r);
+    const std::string type = tagOr(tags, "type", "");
+    if (type == "lanelet") {
+      Lanelet2Lanelet ll;
+      ll.id = id;
+      ll.subtype = tagOr(tags, "subtype", "");
+      const std::string one_way = tagOr(tags, "one_way", "yes");
+      ll.one_way = !(one_way == "no" || one_way == "false");
+      bool has_left = false, has_right = false;
+      for (const pugi::xml_node m : r.children("member")) {
+        const std::string role = m.attribute("role").value();
+        const std::string mtype = m.attribute("type").value();
+        const int64_t ref = parseId(m, "ref", file, where + " member");
+        if (role == "regulatory_element") {
+          ll.regulatory_elements.push_back(ref);
+          continue;
+        }
+        if (role != "left" && role != "right") continue;
+        if (mtype != "way")
+          throw ParseError(file, where + " " + role, "bound must be a way, got '" + mtype + "'");
+        if (!map.way(ref))
+          throw ParseError(file, where + " " + role,
+                           "way ref " + std::to_string(ref) + " does not exist");
+        if (map.way(ref)->points.size() < 2)
+          throw ParseError(file, where + " " + role, "bound way has fewer than 2 nodes");
+        (role == "left" ? ll.left : ll.right) = ref;
+        (role == "left" ? has_left : has_right) = true;
+      }
+      if (!has_left || !has_right)
+        throw ParseError(
+            file, where,
+            std::string("lanelet lacks its ") + (has_left ? "right" : "left") + " bound");
+      map.lanelets.push_back(ll);
+    } else if (type == "regulatory_element") {
+      Lanelet2Regulatory re;
+      re.id = id;
+      re.subtype = tagOr(tags, "subtype", "");
+      for (const pugi::xml_node m : r.children("member")) {
+        const std::string role = m.attribute("role").value();
+        if (std::string(m.attribute("type").value()) != "way") continue;
+        const int64_t ref = parseId(m, "ref", file, where + " member");
+        if (role == "refers") re.refers.push_back(ref);
+        if (role == "ref_line") re.ref_lines.push_back(ref);
+      }
+      map.regulatory_elements.push_back(re);
+    } else {
+      ++map.skipped_relation_types[type.empty() ? "(none)" : type];
+    }
+  }
+  return map;
+}
+
+Lanelet2Map readLanelet2Osm(const std::filesystem::path& path) {
+  return parseLanelet2Osm(readBytes(path), path.string());
+}
+
+}  // namespace mapfuse::io

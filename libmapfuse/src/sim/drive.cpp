@@ -1,0 +1,176 @@
+#include "mapfuse/sim/drive.hpp"
+
+#include <cmath>
+#include <random>
+
+namespace mapfuse::sim {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kGravity = 9.80665;  // m/s^2
+constexpr double kPathStep = 0.5;     // m, route resampling
+constexpr int kSmoothHalfWindow = 4;  // samples (2 m) of the path smoothing
+constexpr int kSmoothPasses = 3;
+constexpr int kRouteAttempts = 20;
+}  // namespace
+
+uint64_t deriveSeed(uint64_t base, uint64_t index) {
+  uint64_t z = base + 0x9E3779B97F4A7C15ull * (index + 1);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+std::vector<Polyline> planRoutes(const World& world, int count, double length, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::vector<Polyline> routes;
+  if (world.lanes.empty()) return routes;
+  std::uniform_int_distribution<std::size_t> pick(0, world.lanes.size() - 1);
+  for (int r = 0; r < count; ++r) {
+    Polyline best;
+    double best_len = -1.0;
+    for (int attempt = 0; attempt < kRouteAttempts; ++attempt) {
+      std::size_t lane = pick(rng);
+      Polyline route;
+      std::vector<int> visits(world.lanes.size(), 0);
+      while (true) {
+        const auto& c = world.lanes[lane].centerline;
+        route.insert(route.end(), c.begin() + (route.empty() ? 0 : 1), c.end());
+        ++visits[lane];
+        if (polylineLength(route) >= length) break;
+        // Prefer lanes not yet driven on this route.
+        std::vector<std::size_t> next;
+        for (std::size_t s : world.lanes[lane].successors)
+          if (visits[s] == 0) next.push_back(s);
+        if (next.empty()) next = world.lanes[lane].successors;
+        if (next.empty()) break;
+        lane = next[std::uniform_int_distribution<std::size_t>(0, next.size() - 1)(rng)];
+        if (visits[lane] > 1) break;
+      }
+      const double len = polylineLength(route);
+      if (len > best_len) best = route, best_len = len;
+      if (len >= 0.5 * length) break;
+    }
+    routes.push_back(best);
+  }
+  return routes;
+}
+
+Drive simulateDrive(const Polyline& route, const DriveParams& P, const geo::EnuConverter& enu,
+                    uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> N01(0.0, 1.0);
+  auto U = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  Drive d;
+  // Path: resampled, smoothed, with headings at the vertices (unwrapped).
+  const Polyline path = smooth(resample(route, kPathStep), kSmoothHalfWindow, kSmoothPasses);
+  const auto cum = arcLengths(path);
+  const double L = cum.back();
+  std::vector<double> heading(path.size());
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const Eigen::Vector3d t = path[std::min(path.size() - 1, i + 1)] - path[i > 0 ? i - 1 : 0];
+    heading[i] = std::atan2(t.y(), t.x());
+    if (i > 0) heading[i] = heading[i - 1] + std::remainder(heading[i] - heading[i - 1], 2 * kPi);
+  }
+  auto headingAt = [&](double s) {
+    const auto it = std::upper_bound(cum.begin(), cum.end(), s);
+    const std::size_t i = std::clamp<std::size_t>(it - cum.begin(), 1, cum.size() - 1);
+    const double seg = cum[i] - cum[i - 1];
+    const double a = seg > 0 ? std::clamp((s - cum[i - 1]) / seg, 0.0, 1.0) : 0.0;
+    return heading[i - 1] + a * (heading[i] - heading[i - 1]);
+  };
+  // Per-traversal truth and error draws.
+  d.speed = U(P.speed_min, P.speed_max);
+  const double lateral = P.lateral_offset_sigma * N01(rng);
+  const double phase_p = U(0, 2 * kPi), phase_r = U(0, 2 * kPi);
+  d.wheel_scale_error = P.wheel_scale_sigma * N01(rng);
+  d.gyro_bias = P.gyro_bias_sigma * Eigen::Vector3d(N01(rng), N01(rng), N01(rng));
+  const double bias_mag = U(P.gps_bias_min, P.gps_bias_max), bias_dir = U(0, 2 * kPi);
+  d.gps_bias0 = bias_mag * Eigen::Vector2d(std::cos(bias_dir), std::sin(bias_dir));
+
+  // True trajectory at the IMU rate.
+  const double dt = 1.0 / P.imu_rate;
+  const int n = static_cast<int>(std::floor(L / d.speed * P.imu_rate)) + 1;
+  d.stamps.resize(n);
+  d.truth.resize(n);
+  d.distance.resize(n);
+  for (int k = 0; k < n; ++k) {
+    const double t = k * dt, s = std::min(L, d.speed * t);
+    const double yaw = headingAt(s);
+    const Eigen::Vector3d p =
+        pointAt(path, cum, s) + lateral * Eigen::Vector3d(-std::sin(yaw), std::cos(yaw), 0.0);
+    const double pitch = P.pitch_amplitude * std::sin(2 * kPi * P.pitch_frequency * t + phase_p);
+    const double roll = P.roll_amplitude * std::sin(2 * kPi * P.roll_frequency * t + phase_r);
+    d.stamps[k] = t;
+    d.truth[k] = poseFromXyzRpy(p.x(), p.y(), p.z(), roll, pitch, yaw);
+    d.distance[k] = k == 0 ? 0.0
+                           : d.distance[k - 1] +
+                                 (d.truth[k].translation() - d.truth[k - 1].translation()).norm();
+  }
+  // IMU: gyro from consecutive rotations, accel from second differences (specific force).
+  d.imu.resize(n);
+  const double gyro_sigma = P.gyro_noise_density * std::sqrt(P.imu_rate);
+  for (int k = 0; k < n; ++k) {
+    const int k1 = std::min(n - 1, k + 1), k0 = std::max(0, k - 1);
+    Eigen::Vector3d omega = Eigen::Vector3d::Zero();
+    if (k1 > k) {
+      const Eigen::AngleAxisd aa(d.truth[k].linear().transpose() * d.truth[k1].linear());
+      omega = aa.angle() * aa.axis() / dt;
+    }
+    Eigen::Vector3d acc = Eigen::Vector3d::Zero();
+    if (k1 > k && k0 < k)
+      acc = (d.truth[k1].translation() - 2 * d.truth[k].translation() + d.truth[k0].translation()) /
+            (dt * dt);
+    d.imu[k].stamp = d.stamps[k];
+    d.imu[k].gyro =
+        omega + d.gyro_bias + gyro_sigma * Eigen::Vector3d(N01(rng), N01(rng), N01(rng));
+    d.imu[k].accel = d.truth[k].linear().transpose() * (acc + Eigen::Vector3d(0, 0, kGravity)) +
+                     P.accel_noise * Eigen::Vector3d(N01(rng), N01(rng), N01(rng));
+  }
+  // Wheel speed at the wheel rate.
+  const int wheel_every = std::max(1, static_cast<int>(std::lround(P.imu_rate / P.wheel_rate)));
+  for (int k = 0; k < n; k += wheel_every)
+    d.wheel.push_back(
+        {d.stamps[k], (1.0 + d.wheel_scale_error) * d.speed + P.wheel_speed_noise * N01(rng)});
+  // Dead reckoning: yaw from the gyro, levelled roll/pitch, position from the wheel speed.
+  d.odom.resize(n);
+  const Eigen::Vector3d rpy0 = rpyFromRotation(d.truth[0].linear());
+  double yaw_o = 0.0;
+  Eigen::Vector3d p_o = Eigen::Vector3d::Zero();
+  std::size_t w = 0;
+  for (int k = 0; k < n; ++k) {
+    if (k > 0) {
+      yaw_o += d.imu[k - 1].gyro.z() * dt;
+      while (w + 1 < d.wheel.size() && d.wheel[w + 1].stamp <= d.stamps[k - 1] + 1e-9) ++w;
+      p_o += d.odom[k - 1].linear() * Eigen::Vector3d(d.wheel[w].speed * dt, 0, 0);
+    }
+    const Eigen::Vector3d rpy = rpyFromRotation(d.truth[k].linear());
+    (void)rpy0;
+    d.odom[k] = poseFromXyzRpy(p_o.x(), p_o.y(), p_o.z(), rpy.x() + P.attitude_noise * N01(rng),
+                               rpy.y() + P.attitude_noise * N01(rng), yaw_o);
+  }
+  // GPS at the GPS rate: bias random walk + white noise + multipath outliers.
+  Eigen::Vector2d bias = d.gps_bias0;
+  const double gps_dt = 1.0 / P.gps_rate;
+  for (double t = 0.0; t <= d.stamps.back() + 1e-9; t += gps_dt) {
+    const int k = std::min(n - 1, static_cast<int>(std::lround(t * P.imu_rate)));
+    if (t > 0.0) bias += P.gps_bias_walk * std::sqrt(gps_dt) * Eigen::Vector2d(N01(rng), N01(rng));
+    GpsRecord g;
+    g.error_enu =
+        Eigen::Vector3d(bias.x() + P.gps_white_sigma * N01(rng),
+                        bias.y() + P.gps_white_sigma * N01(rng), P.gps_vertical_sigma * N01(rng));
+    if (U(0, 1) < P.gps_outlier_probability) {
+      const double m = U(P.gps_outlier_min, P.gps_outlier_max), a = U(0, 2 * kPi);
+      g.error_enu += Eigen::Vector3d(m * std::cos(a), m * std::sin(a), 0.0);
+      g.outlier = true;
+    }
+    g.fix.stamp = d.stamps[k];
+    g.fix.position = enu.toWgs84(d.truth[k].translation() + g.error_enu);
+    g.fix.sigma_h = P.gps_reported_sigma_h;
+    g.fix.sigma_v = P.gps_reported_sigma_v;
+    d.gps.push_back(g);
+  }
+  return d;
+}
+
+}  // namespace mapfuse::sim

@@ -1,0 +1,278 @@
+#include "mapfuse/sim/frames_writer.hpp"
+
+#include <cmath>
+#include <map>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <random>
+#include <sstream>
+
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/document.hpp"
+#include "mapfuse/io/json_geometry.hpp"
+
+namespace mapfuse::sim {
+
+namespace {
+constexpr double kSampleStep = 0.5;      // m, ground polyline sampling
+constexpr double kMinDepth = 1.0;        // m in front of the camera
+constexpr double kLaneLineWidth = 0.15;  // m, painted width in masks
+constexpr double kStopLineWidth = 0.30;  // m
+constexpr double kPoleRadius = 0.1;      // m, for 2D boxes
+constexpr double kLightHalfWidth = 0.2;  // m
+constexpr int kShift = 4;                // sub-pixel bits of cv::fillPoly
+constexpr double kPixelQuantum = 1e-3;   // px, rounding of written pixels
+
+double roundPx(double v) {
+  return std::round(v / kPixelQuantum) * kPixelQuantum;
+}
+
+std::string csvLine(std::initializer_list<double> values, int precision) {
+  std::ostringstream os;
+  os.setf(std::ios::fixed);
+  os.precision(precision);
+  bool first = true;
+  for (double v : values) {
+    if (!first) os << ',';
+    os << v;
+    first = false;
+  }
+  os << '\n';
+  return os.str();
+}
+
+}  // namespace
+
+FramesStats writeFramesDrive(const std::filesystem::path& dir, const World& world,
+                             const PieceIndex& index, const Drive& d, const SimCamera& camera,
+                             const DriveParams& DP, const FramesParams& FP, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> N01(0.0, 1.0);
+  const auto& C = camera.params();
+  FramesStats stats;
+  const std::size_t every = std::max<std::size_t>(1, std::lround(DP.imu_rate / DP.camera_rate));
+  const int frame_count = static_cast<int>((d.stamps.size() + every - 1) / every);
+
+  // Calibration and manifest.
+  nlohmann::json calib;
+  calib["format"] = "mapfuse.camera_calibration";
+  calib["version"] = 1;
+  const Eigen::Matrix3d& K = camera.K();
+  calib["K"] = {K(0, 0), K(0, 1), K(0, 2), K(1, 0), K(1, 1), K(1, 2), K(2, 0), K(2, 1), K(2, 2)};
+  calib["width"] = C.width;
+  calib["height"] = C.height;
+  calib["distortion"] = nlohmann::json::array();
+  calib["T_body_cam"] = io::poseToJson(camera.T_body_cam());
+  calib["camera_height"] = C.z;
+  calib["ground_normal_cam"] = io::vec3ToJson(camera.groundNormalCam());
+  io::writeDocument(dir / "calibration.json", calib, 2);
+  nlohmann::json manifest = {{"format", "mapfuse.frames"},
+                             {"version", 1},
+                             {"drive_id", d.drive_id},
+                             {"vehicle_id", d.vehicle_id},
+                             {"origin", io::originToJson(world.truth.origin)},
+                             {"calibration", "calibration.json"},
+                             {"imu", "imu.csv"},
+                             {"wheel", "wheel.csv"},
+                             {"gps", "gps.csv"},
+                             {"frames", "frames.csv"},
+                             {"observations", "observations.jsonl"},
+                             {"truth_poses", "truth/poses.csv"},
+                             {"frame_count", frame_count},
+                             {"camera_rate", DP.camera_rate},
+                             {"imu_rate", DP.imu_rate},
+                             {"wheel_rate", DP.wheel_rate},
+                             {"gps_rate", DP.gps_rate},
+                             {"mask_classes",
+                              {{"0", "background"},
+                               {"1", "lane_line"},
+                               {"2", "stop_line"},
+                               {"3", "ground_arrow"},
+                               {"4", "crosswalk"}}}};
+  io::writeDocument(dir / "frames.json", manifest, 2);
+  nlohmann::json errors = {{"format", "mapfuse.sensor_errors"},
+                           {"version", 1},
+                           {"drive_id", d.drive_id},
+                           {"wheel_scale_error", d.wheel_scale_error},
+                           {"gyro_bias", {d.gyro_bias.x(), d.gyro_bias.y(), d.gyro_bias.z()}},
+                           {"gps_initial_bias_enu", {d.gps_bias0.x(), d.gps_bias0.y()}}};
+  io::writeDocument(dir / "truth" / "sensor_errors.json", errors, 2);
+
+  // Streams.
+  std::string imu = "stamp,gyro_x,gyro_y,gyro_z,accel_x,accel_y,accel_z\n";
+  for (const auto& s : d.imu)
+    imu += csvLine(
+        {s.stamp, s.gyro.x(), s.gyro.y(), s.gyro.z(), s.accel.x(), s.accel.y(), s.accel.z()}, 9);
+  io::writeBytesAtomic(dir / "imu.csv", imu);
+  std::string wheel = "stamp,speed\n";
+  for (const auto& s : d.wheel) wheel += csvLine({s.stamp, s.speed}, 6);
+  io::writeBytesAtomic(dir / "wheel.csv", wheel);
+  std::string gps = "stamp,lat,lon,alt,sigma_h,sigma_v\n";
+  for (const auto& g : d.gps)
+    gps += csvLine({g.fix.stamp, g.fix.position.lat, g.fix.position.lon, g.fix.position.alt,
+                    g.fix.sigma_h, g.fix.sigma_v},
+                   9);
+  io::writeBytesAtomic(dir / "gps.csv", gps);
+
+  // Frames.
+  std::string frames_csv = "index,stamp,mask\n", poses_csv = "index,stamp,tx,ty,tz,qw,qx,qy,qz\n";
+  std::string jsonl;
+  std::map<int, std::pair<int, int>> tracks;  // piece -> (track id, last frame)
+  int next_track = 0;
+  const auto& inst = world.truth.instances;
+  const Pose3& T_body_cam = camera.T_body_cam();
+  for (int f = 0; f < frame_count; ++f) {
+    const std::size_t k = static_cast<std::size_t>(f) * every;
+    const Pose3 T_enu_cam = d.truth[k] * T_body_cam;
+    const Pose3 T_cam_enu = T_enu_cam.inverse();
+    char name[32];
+    std::snprintf(name, sizeof name, "masks/%06d.png", f);
+    frames_csv += std::to_string(f) + "," + csvLine({d.stamps[k]}, 4);
+    if (!FP.masks)
+      frames_csv.replace(frames_csv.size() - 1, 1, ",\n");
+    else
+      frames_csv.insert(frames_csv.size() - 1, std::string(",") + name);
+    const Eigen::Quaterniond q(d.truth[k].linear());
+    const Eigen::Vector3d t = d.truth[k].translation();
+    poses_csv += std::to_string(f) + "," +
+                 csvLine({d.stamps[k], t.x(), t.y(), t.z(), q.w(), q.x(), q.y(), q.z()}, 9);
+    cv::Mat mask = cv::Mat::zeros(C.height, C.width, CV_8UC1);
+    nlohmann::json ground = nlohmann::json::array(), aerial = nlohmann::json::array();
+    auto trackOf = [&](int piece) {
+      auto it = tracks.find(piece);
+      if (it == tracks.end() || it->second.second != f - 1)
+        it = tracks.insert_or_assign(piece, std::make_pair(next_track++, f)).first;
+      it->second.second = f;
+      return it->second.first;
+    };
+    auto pixel = [&](const Eigen::Vector3d& p_enu) {
+      return camera.project(T_cam_enu * p_enu, kMinDepth);
+    };
+    auto inImage = [&](const Eigen::Vector2d& uv) {
+      return uv.x() >= -0.5 && uv.y() >= -0.5 && uv.x() <= C.width - 0.5 &&
+             uv.y() <= C.height - 0.5;
+    };
+    auto noisyPx = [&](const Eigen::Vector2d& uv) {
+      const Eigen::Vector2d n =
+          FP.pixel_sigma > 0 ? Eigen::Vector2d(FP.pixel_sigma * N01(rng), FP.pixel_sigma * N01(rng))
+                             : Eigen::Vector2d::Zero();
+      return nlohmann::json::array({roundPx(uv.x() + n.x()), roundPx(uv.y() + n.y())});
+    };
+    auto toCv = [](const Eigen::Vector2d& uv) {
+      return cv::Point(static_cast<int>(std::lround((uv.x()) * (1 << kShift))),
+                       static_cast<int>(std::lround((uv.y()) * (1 << kShift))));
+    };
+    const Eigen::Vector3d centre = d.truth[k] * Eigen::Vector3d(C.max_range / 2, 0, 0);
+    for (int pi : index.near(centre, C.max_range / 2 + 15.0)) {
+      const auto& piece = index.pieces()[pi];
+      const MapInstance& m = inst[piece.instance];
+      const GeometryKind kind = geometryKind(m.cls);
+      const bool is_ground = m.cls == CrowdClass::kLaneLine || m.cls == CrowdClass::kStopLine ||
+                             m.cls == CrowdClass::kGroundArrow || m.cls == CrowdClass::kCrosswalk;
+      if (is_ground && kind == GeometryKind::kLine) {
+        const Polyline pts = resample(piece.points, kSampleStep);
+        const double half = (m.cls == CrowdClass::kStopLine ? kStopLineWidth : kLaneLineWidth) / 2;
+        nlohmann::json px = nlohmann::json::array();
+        for (std::size_t i = 0; i < pts.size(); ++i) {
+          const Eigen::Vector3d pc = T_cam_enu * pts[i];
+          const auto uv = camera.project(pc, kMinDepth);
+          if (uv && inImage(*uv) && pc.norm() <= C.max_range) px.push_back(noisyPx(*uv));
+          if (i + 1 < pts.size()) {  // painted strip segment
+            const Eigen::Vector3d dir = (pts[i + 1] - pts[i]).normalized();
+            const Eigen::Vector3d n(-dir.y() * half, dir.x() * half, 0.0);
+            const auto a = pixel(pts[i] + n), b = pixel(pts[i + 1] + n), c = pixel(pts[i + 1] - n),
+                       e = pixel(pts[i] - n);
+            if (a && b && c && e && (T_cam_enu * pts[i]).norm() <= C.max_range + 5.0) {
+              const cv::Point quad[4] = {toCv(*a), toCv(*b), toCv(*c), toCv(*e)};
+              cv::fillConvexPoly(mask, quad, 4, cv::Scalar(static_cast<int>(m.cls) + 1), cv::LINE_8,
+                                 kShift);
+            }
+          }
+        }
+        if (px.size() < 2) continue;
+        nlohmann::json o = {
+            {"instance", ground.size()}, {"track_id", trackOf(pi)}, {"truth_id", m.id}};
+        io::writeClassAndAttributes(o, m.cls, m.attributes);
+        o["pixels"] = px;
+        ground.push_back(o);
+      } else if (is_ground) {  // polygon: every corner in front of the camera, one in the image
+        std::vector<cv::Point> poly;
+        nlohmann::json px = nlohmann::json::array();
+        bool ok = true, any_inside = false;
+        for (const auto& p : piece.points) {
+          const Eigen::Vector3d pc = T_cam_enu * p;
+          const auto uv = camera.project(pc, kMinDepth);
+          if (!uv || pc.norm() > C.max_range) {
+            ok = false;
+            break;
+          }
+          any_inside = any_inside || inImage(*uv);
+          poly.push_back(toCv(*uv));
+          px.push_back(noisyPx(*uv));
+        }
+        if (!ok || !any_inside) continue;
+        cv::fillPoly(mask, std::vector<std::vector<cv::Point>>{poly},
+                     cv::Scalar(static_cast<int>(m.cls) + 1), cv::LINE_8, kShift);
+        nlohmann::json o = {
+            {"instance", ground.size()}, {"track_id", trackOf(pi)}, {"truth_id", m.id}};
+        io::writeClassAndAttributes(o, m.cls, m.attributes);
+        o["pixels"] = px;
+        ground.push_back(o);
+      } else {  // aerial: key points and a 2D box
+        Polyline keys = piece.points;
+        double half_width = 0.0;
+        if (kind == GeometryKind::kPoint) {
+          keys.push_back(keys[0] + Eigen::Vector3d(0, 0, m.height));
+          half_width = m.cls == CrowdClass::kPole ? kPoleRadius : kLightHalfWidth;
+        }
+        std::vector<Eigen::Vector2d> uvs;
+        bool ok = true;
+        double umin = 1e300, vmin = 1e300, umax = -1e300, vmax = -1e300;
+        for (const auto& p : keys) {
+          const Eigen::Vector3d pc = T_cam_enu * p;
+          const auto uv = camera.project(pc, kMinDepth);
+          if (!uv || pc.norm() > C.max_range) {
+            ok = false;
+            break;
+          }
+          const double du = C.fx * half_width / pc.z();
+          umin = std::min(umin, uv->x() - du), umax = std::max(umax, uv->x() + du);
+          vmin = std::min(vmin, uv->y()), vmax = std::max(vmax, uv->y());
+          uvs.push_back(*uv);
+        }
+        if (!ok) continue;
+        umin = std::max(umin, -0.5), vmin = std::max(vmin, -0.5);
+        umax = std::min(umax, C.width - 0.5), vmax = std::min(vmax, C.height - 0.5);
+        if (umax - umin < 1.0 || vmax - vmin < 1.0) continue;
+        nlohmann::json o = {
+            {"track_id", trackOf(pi)}, {"truth_id", m.id}, {"class", crowdClassName(m.cls)}};
+        o["box"] = {roundPx(umin), roundPx(vmin), roundPx(umax), roundPx(vmax)};
+        nlohmann::json px = nlohmann::json::array();
+        for (const auto& uv : uvs) px.push_back(noisyPx(uv));
+        o["points"] = px;
+        aerial.push_back(o);
+      }
+    }
+    stats.ground_observations += static_cast<int>(ground.size());
+    stats.aerial_observations += static_cast<int>(aerial.size());
+    jsonl += nlohmann::json(
+                 {{"frame", f}, {"stamp", d.stamps[k]}, {"ground", ground}, {"aerial", aerial}})
+                 .dump() +
+             "\n";
+    if (FP.masks) {
+      std::vector<uchar> png;
+      if (!cv::imencode(".png", mask, png))
+        throw IoError((dir / name).string(), "PNG encoding failed");
+      io::writeBytesAtomic(dir / name, std::string(png.begin(), png.end()));
+    }
+    ++stats.frames;
+  }
+  io::writeBytesAtomic(dir / "frames.csv", frames_csv);
+  io::writeBytesAtomic(dir / "truth" / "poses.csv", poses_csv);
+  io::writeBytesAtomic(dir / "observations.jsonl", jsonl);
+  return stats;
+}
+
+}  // namespace mapfuse::sim

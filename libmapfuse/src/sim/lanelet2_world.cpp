@@ -1,0 +1,203 @@
+#include "mapfuse/sim/lanelet2_world.hpp"
+
+#include <set>
+
+namespace mapfuse::sim {
+
+namespace {
+
+constexpr double kCenterlineStep = 0.5;       // m
+constexpr double kSuccessorTolerance = 0.1;   // m, shared bound end points
+constexpr double kArrowStopDistance = 2.0;    // m, lane end to stop line for an arrow
+constexpr double kMinArrowLaneLength = 15.0;  // m
+
+bool isDrivable(const std::string& subtype) {
+  return subtype.empty() || subtype == "road" || subtype == "highway" || subtype == "exit" ||
+         subtype == "bus_lane" || subtype == "play_street";
+}
+
+/// Resamples a line into exactly n points by arc-length fraction.
+Polyline fractionSample(const Polyline& line, int n) {
+  const auto cum = arcLengths(line);
+  Polyline out;
+  for (int k = 0; k < n; ++k) out.push_back(pointAt(line, cum, cum.back() * k / (n - 1)));
+  return out;
+}
+
+struct IdAllocator {
+  std::set<int64_t> used;
+  int64_t next = 1;
+  int64_t take(int64_t wanted) {
+    if (used.insert(wanted).second) return wanted;
+    return fresh();
+  }
+  int64_t fresh() {
+    while (used.count(next)) ++next;
+    used.insert(next);
+    return next;
+  }
+};
+
+}  // namespace
+
+World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin,
+                        const Lanelet2Assumptions& A) {
+  World world;
+  world.name = map.file;
+  world.truth.origin = origin;
+  world.truth.source = "simulate ground truth (Lanelet2 " + map.file + ")";
+  const geo::EnuConverter enu(origin);
+  std::vector<Polyline> ways(map.linestrings.size());
+  for (std::size_t i = 0; i < ways.size(); ++i)
+    for (const auto& p : map.linestrings[i].points) ways[i].push_back(enu.toEnu(p));
+  auto wayLine = [&](int64_t id) -> const Polyline& { return ways[map.way_index.at(id)]; };
+
+  IdAllocator ids;
+  int64_t max_id = 0;
+  for (const auto& w : map.linestrings) max_id = std::max(max_id, std::abs(w.id));
+  for (const auto& l : map.lanelets) max_id = std::max(max_id, std::abs(l.id));
+  ids.next = max_id + 1;  // ids of placed elements follow every map id
+  auto add = [&](int64_t wanted, CrowdClass cls, Polyline pts,
+                 const std::string& note) -> MapInstance& {
+    MapInstance m;
+    m.id = ids.take(wanted);
+    m.cls = cls;
+    m.points = std::move(pts);
+    m.note = note;
+    m.source_ids = {wanted};
+    world.truth.instances.push_back(std::move(m));
+    return world.truth.instances.back();
+  };
+
+  // Lanes and crosswalks from lanelets.
+  int drivable = 0;
+  for (const auto& ll : map.lanelets) {
+    Polyline left = wayLine(ll.left), right = wayLine(ll.right);
+    if ((left.front() - right.front()).norm() + (left.back() - right.back()).norm() >
+        (left.front() - right.back()).norm() + (left.back() - right.front()).norm())
+      right = reversed(right);
+    if (ll.subtype == "crosswalk") {
+      Polyline ring = left;
+      for (auto it = right.rbegin(); it != right.rend(); ++it) ring.push_back(*it);
+      add(ll.id, CrowdClass::kCrosswalk, ring, "");
+      continue;
+    }
+    if (!isDrivable(ll.subtype)) continue;
+    ++drivable;
+    const int n = std::max(
+        2, static_cast<int>(
+               std::ceil(std::max(polylineLength(left), polylineLength(right)) / kCenterlineStep)) +
+               1);
+    const Polyline L = fractionSample(left, n), R = fractionSample(right, n);
+    Lane lane;
+    lane.id = ll.id;
+    double width = 0.0;
+    for (int k = 0; k < n; ++k) {
+      lane.centerline.push_back(0.5 * (L[k] + R[k]));
+      width += (L[k] - R[k]).norm() / n;
+    }
+    lane.width = width;
+    // The left bound must lie left of the driving direction.
+    const int m = n / 2;
+    const Eigen::Vector3d dir =
+        lane.centerline[std::min(n - 1, m + 1)] - lane.centerline[std::max(0, m - 1)];
+    const Eigen::Vector3d lr = L[m] - R[m];
+    if (dir.x() * lr.y() - dir.y() * lr.x() < 0.0) lane.centerline = reversed(lane.centerline);
+    world.lanes.push_back(lane);
+    if (!ll.one_way) {
+      lane.centerline = reversed(lane.centerline);
+      world.lanes.push_back(lane);
+    }
+  }
+  connectLanesByEndpoints(world, kSuccessorTolerance);
+
+  // Line strings.
+  int lines = 0, stops = 0, signs = 0, lights = 0, boundaries = 0, crossing_lines = 0;
+  for (std::size_t i = 0; i < map.linestrings.size(); ++i) {
+    const auto& w = map.linestrings[i];
+    const Polyline& pts = ways[i];
+    if ((w.type == "line_thin" || w.type == "line_thick") && pts.size() >= 2) {
+      auto& m = add(w.id, CrowdClass::kLaneLine, pts,
+                    w.subtype == "solid_dashed" || w.subtype == "dashed_solid"
+                        ? "double line " + w.subtype + " mapped to solid"
+                        : "");
+      m.attributes.style = w.subtype == "dashed" ? LineStyle::kDashed : LineStyle::kSolid;
+      const auto c = w.tags.find("color");
+      m.attributes.color =
+          c != w.tags.end() && c->second == "yellow" ? LineColor::kYellow : LineColor::kWhite;
+      ++lines;
+    } else if (w.type == "stop_line" && pts.size() >= 2) {
+      add(w.id, CrowdClass::kStopLine, {pts.front(), pts.back()}, "");
+      ++stops;
+    } else if (w.type == "traffic_sign") {
+      const Eigen::Vector3d a = pts.front(), b = pts.back(), up(0, 0, 1);
+      add(w.id, CrowdClass::kTrafficSign,
+          {a + A.sign_bottom * up, b + A.sign_bottom * up, b + (A.sign_bottom + A.sign_size) * up,
+           a + (A.sign_bottom + A.sign_size) * up},
+          "mounting height assumed by simulator");
+      add(ids.fresh(), CrowdClass::kPole, {0.5 * (a + b)}, "placed by simulator under a sign")
+          .height = A.sign_bottom + A.sign_size;
+      ++signs;
+    } else if (w.type == "traffic_light") {
+      const Eigen::Vector3d c = 0.5 * (pts.front() + pts.back());
+      add(w.id, CrowdClass::kTrafficLight, {c + Eigen::Vector3d(0, 0, A.light_bottom)},
+          "mounting height assumed by simulator")
+          .height = A.light_height;
+      add(ids.fresh(), CrowdClass::kPole, {c}, "placed by simulator under a traffic light").height =
+          A.light_bottom;
+      ++lights;
+    } else if (w.type == "curbstone" || w.type == "road_border") {
+      ++boundaries;
+    } else if (w.type == "zebra_marking" || w.type == "pedestrian_marking") {
+      ++crossing_lines;
+    }
+  }
+  // Arrows before stop lines, one per lane ending at a stop line.
+  int arrows = 0;
+  const std::size_t n_instances = world.truth.instances.size();
+  for (std::size_t i = 0; i < n_instances; ++i) {
+    if (world.truth.instances[i].cls != CrowdClass::kStopLine) continue;
+    const Polyline stop = world.truth.instances[i].points;
+    for (const auto& lane : world.lanes) {
+      if (distanceToPolyline(stop, lane.centerline.back()) > kArrowStopDistance) continue;
+      const double len = polylineLength(lane.centerline);
+      if (len < kMinArrowLaneLength) continue;
+      const auto cum = arcLengths(lane.centerline);
+      const Eigen::Vector3d c = pointAt(lane.centerline, cum, len - A.arrow_before_stop);
+      const Eigen::Vector3d t = (pointAt(lane.centerline, cum, len - A.arrow_before_stop + 0.5) -
+                                 pointAt(lane.centerline, cum, len - A.arrow_before_stop - 0.5))
+                                    .normalized();
+      const Eigen::Vector3d n(-t.y(), t.x(), 0.0);
+      Polyline ring;
+      for (const auto& q : std::vector<Eigen::Vector2d>{{-2.5, -0.15},
+                                                        {1.0, -0.15},
+                                                        {1.0, -0.6},
+                                                        {2.5, 0.0},
+                                                        {1.0, 0.6},
+                                                        {1.0, 0.15},
+                                                        {-2.5, 0.15}})
+        ring.push_back(c + q.x() * t + q.y() * n);
+      add(ids.fresh(), CrowdClass::kGroundArrow, ring, "placed by simulator before a stop line");
+      ++arrows;
+    }
+  }
+  world.stats["lanelets"] = static_cast<double>(map.lanelets.size());
+  world.stats["drivable_lanelets"] = drivable;
+  world.stats["lane_lines"] = lines;
+  world.stats["stop_lines"] = stops;
+  world.stats["traffic_signs"] = signs;
+  world.stats["traffic_lights"] = lights;
+  world.stats["boundaries_ignored"] = boundaries;
+  world.stats["crossing_lines_ignored"] = crossing_lines;
+  world.stats["arrows_placed"] = arrows;
+  world.stats["poles_placed"] = signs + lights;
+  int skipped = 0;
+  for (const auto& kv : map.skipped_way_types) skipped += kv.second;
+  world.stats["skipped_ways"] = skipped;
+  skipped = 0;
+  for (const auto& kv : map.skipped_relation_types) skipped += kv.second;
+  world.stats["skipped_relations"] = skipped;
+  return world;
+}
+
+}  // namespace mapfuse::sim

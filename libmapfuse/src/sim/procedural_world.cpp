@@ -1,0 +1,263 @@
+#include "mapfuse/sim/procedural_world.hpp"
+
+#include <cmath>
+#include <random>
+
+#include "mapfuse/core/error.hpp"
+
+namespace mapfuse::sim {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kSampleStep = 1.0;        // m, spacing of generated polylines
+constexpr double kSignBottom = 2.0;        // m, sign lower edge above the road
+constexpr double kSignSize = 0.6;          // m, square sign edge
+constexpr double kLightBottom = 2.8;       // m, traffic-light housing lower edge
+constexpr double kLightHeight = 0.9;       // m, housing height (red/yellow/green)
+constexpr double kLampHeight = 8.0;        // m, street lamp pole height
+constexpr double kArrowBeforeStop = 12.0;  // m, arrow centre before the stop line
+
+struct Builder {
+  World world;
+  int64_t next_lane = 1;
+  int64_t next_instance = 1;
+  std::mt19937_64 rng;
+
+  explicit Builder(uint64_t seed) : rng(seed) {}
+  double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
+
+  void addLane(Polyline centerline, double width) {
+    Lane lane;
+    lane.id = next_lane++;
+    lane.centerline = std::move(centerline);
+    lane.width = width;
+    world.lanes.push_back(std::move(lane));
+  }
+  MapInstance& addInstance(CrowdClass cls, Polyline points, const std::string& note = "") {
+    MapInstance m;
+    m.id = next_instance++;
+    m.cls = cls;
+    m.points = std::move(points);
+    m.note = note;
+    m.source_ids = {m.id};
+    if (cls == CrowdClass::kLaneLine) m.attributes.color = LineColor::kWhite;
+    world.truth.instances.push_back(std::move(m));
+    return world.truth.instances.back();
+  }
+  void addLine(const Polyline& line, LineStyle style) {
+    addInstance(CrowdClass::kLaneLine, line).attributes.style = style;
+  }
+  /// Rectangle/polygon in the road frame at arc position (p, tangent t, left n).
+  Polyline local(const Eigen::Vector3d& p, const Eigen::Vector3d& t, const Eigen::Vector3d& n,
+                 const std::vector<Eigen::Vector2d>& xy, double z = 0.0) {
+    Polyline ring;
+    for (const auto& q : xy) ring.push_back(p + q.x() * t + q.y() * n + Eigen::Vector3d(0, 0, z));
+    return ring;
+  }
+};
+
+struct Frame {
+  Eigen::Vector3d p, t, n;  // point, unit tangent, unit left normal
+};
+
+Frame frameAt(const Polyline& line, double s) {
+  const auto cum = arcLengths(line);
+  Frame f;
+  f.p = pointAt(line, cum, s);
+  const Eigen::Vector3d a = pointAt(line, cum, s - 0.5), b = pointAt(line, cum, s + 0.5);
+  f.t = (b - a).normalized();
+  f.n = Eigen::Vector3d(-f.t.y(), f.t.x(), 0.0);
+  return f;
+}
+
+Polyline bezier(const Eigen::Vector3d& p0, const Eigen::Vector3d& t0, const Eigen::Vector3d& p3,
+                const Eigen::Vector3d& t3) {
+  const double d = (p3 - p0).norm();
+  const Eigen::Vector3d p1 = p0 + t0 * d / 3.0, p2 = p3 - t3 * d / 3.0;
+  const int n = std::max(2, static_cast<int>(std::ceil(d / kSampleStep)));
+  Polyline out;
+  for (int k = 0; k <= n; ++k) {
+    const double s = static_cast<double>(k) / n, u = 1.0 - s;
+    out.push_back(u * u * u * p0 + 3 * u * u * s * p1 + 3 * u * s * s * p2 + s * s * s * p3);
+  }
+  return out;
+}
+
+/// End of a road at an intersection: the lanes arriving and leaving there.
+struct Arm {
+  std::vector<std::size_t> in_lanes, out_lanes;  // lane indices, inner lane first
+};
+
+double smoothstep(double x) {
+  x = std::clamp(x, 0.0, 1.0);
+  return x * x * (3.0 - 2.0 * x);
+}
+
+}  // namespace
+
+World buildProceduralWorld(const ProceduralParams& P, const geo::GeoOrigin& origin, uint64_t seed) {
+  if (P.block_length < 2.0 * P.intersection_radius + 40.0)
+    throw ConfigError(
+        "procedural world: world_block_length must exceed 2 * "
+        "world_intersection_radius + 40 m");
+  Builder B(seed);
+  B.world.name = "procedural";
+  B.world.truth.origin = origin;
+  B.world.truth.source = "simulate ground truth (procedural world)";
+  const int G = P.grid_size;
+  const double w = P.lane_width;
+  // Intersection centres.
+  std::vector<Eigen::Vector3d> centre(G * G);
+  for (int i = 0; i < G; ++i)
+    for (int j = 0; j < G; ++j)
+      centre[i * G + j] = Eigen::Vector3d(
+          (i - (G - 1) / 2.0) * P.block_length + B.uniform(-P.jitter, P.jitter),
+          (j - (G - 1) / 2.0) * P.block_length + B.uniform(-P.jitter, P.jitter), 0.0);
+  std::vector<std::vector<Arm>> arms(G * G);
+  std::vector<bool> has_lights(G * G);
+  for (int k = 0; k < G * G; ++k) has_lights[k] = B.uniform(0, 1) < P.traffic_light_fraction;
+  bool fork_done = false;
+
+  // Roads between grid neighbours.
+  for (int i = 0; i < G; ++i)
+    for (int j = 0; j < G; ++j)
+      for (int dir = 0; dir < 2; ++dir) {
+        const int i2 = i + (dir == 0), j2 = j + (dir == 1);
+        if (i2 >= G || j2 >= G) continue;
+        const int a = i * G + j, b = i2 * G + j2;
+        const Eigen::Vector3d u = (centre[b] - centre[a]).normalized();
+        const Eigen::Vector3d nrm(-u.y(), u.x(), 0.0);
+        const Eigen::Vector3d p0 = centre[a] + P.intersection_radius * u;
+        const Eigen::Vector3d p1 = centre[b] - P.intersection_radius * u;
+        const double amp = B.uniform(-P.curve_amplitude, P.curve_amplitude);
+        const int lanes = 1 + static_cast<int>(B.uniform(0, P.max_lanes_per_direction - 1e-9));
+        const double len0 = (p1 - p0).norm();
+        const int n = static_cast<int>(std::ceil(len0 / kSampleStep));
+        Polyline ref;
+        for (int k = 0; k <= n; ++k) {
+          const double s = static_cast<double>(k) / n;
+          ref.push_back(p0 + s * (p1 - p0) + amp * std::pow(std::sin(kPi * s), 2) * nrm);
+        }
+        const double L = polylineLength(ref);
+        // Lanes: forward (a->b) on the right, backward on the left; inner lane first.
+        Arm& arm_a = arms[a].emplace_back();
+        Arm& arm_b = arms[b].emplace_back();
+        for (int k = 0; k < lanes; ++k) {
+          const Polyline fwd = offsetLine(ref, -(k + 0.5) * w);
+          const bool fork_here = !fork_done && k == lanes - 1 && L > 150.0;
+          if (fork_here) {
+            // Bypass lane: forks off the outer forward lane and merges back (a fork + a merge).
+            fork_done = true;
+            const double s1 = 0.25 * L, s2 = 0.75 * L, ramp = 0.2 * L, D = 3.0 * w;
+            const auto cum = arcLengths(fwd);
+            Polyline branch, right_edge, left_edge;
+            for (double s = s1; s <= s2 + 1e-9; s += kSampleStep) {
+              const Frame f = frameAt(fwd, s);
+              const double d = D * (smoothstep((s - s1) / ramp) * smoothstep((s2 - s) / ramp));
+              branch.push_back(f.p - d * f.n);
+              right_edge.push_back(f.p - (d + w / 2) * f.n);
+              if (d >= w) left_edge.push_back(f.p - (d - w / 2) * f.n);
+            }
+            B.addLane(subLine(fwd, 0, s1, kSampleStep), w);
+            arm_a.out_lanes.push_back(B.world.lanes.size() - 1);
+            B.addLane(subLine(fwd, s1, s2, kSampleStep), w);
+            B.addLane(branch, w);
+            B.addLane(subLine(fwd, s2, L, kSampleStep), w);
+            arm_b.in_lanes.push_back(B.world.lanes.size() - 1);
+            B.addLine(right_edge, LineStyle::kSolid);
+            if (left_edge.size() >= 2) B.addLine(left_edge, LineStyle::kSolid);
+            (void)cum;
+          } else {
+            B.addLane(fwd, w);
+            arm_a.out_lanes.push_back(B.world.lanes.size() - 1);
+            arm_b.in_lanes.push_back(B.world.lanes.size() - 1);
+          }
+          B.addLane(reversed(offsetLine(ref, (k + 0.5) * w)), w);
+          arm_b.out_lanes.push_back(B.world.lanes.size() - 1);
+          arm_a.in_lanes.push_back(B.world.lanes.size() - 1);
+        }
+        // Lane lines.
+        B.addLine(ref, LineStyle::kSolid);
+        for (int k = 1; k < lanes; ++k) {
+          B.addLine(offsetLine(ref, -k * w), LineStyle::kDashed);
+          B.addLine(reversed(offsetLine(ref, k * w)), LineStyle::kDashed);
+        }
+        B.addLine(offsetLine(ref, -lanes * w), LineStyle::kSolid);
+        B.addLine(reversed(offsetLine(ref, lanes * w)), LineStyle::kSolid);
+        // Street lamps, alternating sides.
+        int side = 1;
+        for (double s = P.pole_spacing / 2; s < L - 20.0; s += P.pole_spacing, side = -side) {
+          const Frame f = frameAt(ref, s);
+          B.addInstance(CrowdClass::kPole, {f.p + side * (lanes * w + 2.0) * f.n}).height =
+              kLampHeight;
+        }
+        // Per road end: stop line, arrows, sign + pole, light + pole, crosswalk.
+        for (int end = 0; end < 2; ++end) {
+          const int node = end == 0 ? b : a;
+          const Polyline dirline = end == 0 ? ref : reversed(ref);  // arriving at `node`
+          const Frame f = frameAt(dirline, L);
+          const Eigen::Vector3d inner = f.p, outer = f.p - lanes * w * f.n;
+          B.addInstance(CrowdClass::kStopLine, {inner, outer});
+          if (L > 3 * kArrowBeforeStop)
+            for (int k = 0; k < lanes; ++k) {
+              const Frame g = frameAt(dirline, L - kArrowBeforeStop);
+              const Eigen::Vector3d c = g.p - (k + 0.5) * w * g.n;
+              B.addInstance(CrowdClass::kGroundArrow, B.local(c, g.t, g.n,
+                                                              {{-2.5, -0.15},
+                                                               {1.0, -0.15},
+                                                               {1.0, -0.6},
+                                                               {2.5, 0.0},
+                                                               {1.0, 0.6},
+                                                               {1.0, 0.15},
+                                                               {-2.5, 0.15}}));
+            }
+          const Frame g = frameAt(dirline, L - 5.0);
+          const Eigen::Vector3d sc = g.p - (lanes * w + 1.5) * g.n;
+          const double h = kSignSize / 2;
+          B.addInstance(CrowdClass::kTrafficSign,
+                        B.local(sc, g.t, g.n, {{0, h}, {0, -h}, {0, -h}, {0, h}}, 0.0));
+          auto& sign = B.world.truth.instances.back();
+          sign.points[0].z() = sign.points[1].z() = kSignBottom;
+          sign.points[2].z() = sign.points[3].z() = kSignBottom + kSignSize;
+          B.addInstance(CrowdClass::kPole, {sc}, "pole under a sign").height =
+              kSignBottom + kSignSize;
+          const Eigen::Vector3d cw0 = f.p + 1.0 * f.t;
+          if (has_lights[node]) {
+            const Eigen::Vector3d lc = f.p + 0.5 * f.t - (lanes * w + 1.0) * f.n;
+            B.addInstance(CrowdClass::kTrafficLight, {lc + Eigen::Vector3d(0, 0, kLightBottom)})
+                .height = kLightHeight;
+            B.addInstance(CrowdClass::kPole, {lc}, "pole under a traffic light").height =
+                kLightBottom;
+          }
+          if (has_lights[node] || B.uniform(0, 1) < P.crosswalk_probability) {
+            const double left = lanes * w, depth = 4.0;
+            B.addInstance(
+                CrowdClass::kCrosswalk,
+                B.local(cw0, f.t, f.n, {{0, -left}, {depth, -left}, {depth, left}, {0, left}}));
+          }
+        }
+      }
+  // Intersection connectors: every arriving lane to every leaving arm (no U-turns).
+  for (int k = 0; k < G * G; ++k)
+    for (std::size_t ai = 0; ai < arms[k].size(); ++ai)
+      for (std::size_t bi = 0; bi < arms[k].size(); ++bi) {
+        if (ai == bi) continue;
+        const Arm &in = arms[k][ai], &out = arms[k][bi];
+        for (std::size_t li = 0; li < in.in_lanes.size(); ++li) {
+          const std::size_t lo = std::min(li, out.out_lanes.size() - 1);
+          const Polyline& c_in = B.world.lanes[in.in_lanes[li]].centerline;
+          const Polyline& c_out = B.world.lanes[out.out_lanes[lo]].centerline;
+          const Eigen::Vector3d t0 = (c_in.back() - c_in[c_in.size() - 2]).normalized();
+          const Eigen::Vector3d t3 = (c_out[1] - c_out.front()).normalized();
+          B.addLane(bezier(c_in.back(), t0, c_out.front(), t3), w);
+        }
+      }
+  connectLanesByEndpoints(B.world, 0.05);
+  World& W = B.world;
+  W.stats["intersections"] = G * G;
+  W.stats["roads"] = 2.0 * G * (G - 1);
+  return std::move(B.world);
+}
+
+}  // namespace mapfuse::sim

@@ -1,0 +1,50 @@
+#include "mapfuse/sim/world.hpp"
+
+#include <cmath>
+
+namespace mapfuse::sim {
+
+double World::laneLength() const {
+  double total = 0.0;
+  for (const auto& l : lanes) total += polylineLength(l.centerline);
+  return total;
+}
+
+namespace {
+Eigen::Vector3d direction(const Polyline& line, bool at_end) {
+  const std::size_t n = line.size();
+  const Eigen::Vector3d d = at_end ? line[n - 1] - line[n - 2] : line[1] - line[0];
+  return d.normalized();
+}
+}  // namespace
+
+void connectLanesByEndpoints(World& world, double tolerance) {
+  for (auto& a : world.lanes) {
+    a.successors.clear();
+    for (std::size_t j = 0; j < world.lanes.size(); ++j) {
+      const auto& b = world.lanes[j];
+      if (&a == &b) continue;
+      if ((a.centerline.back() - b.centerline.front()).norm() > tolerance) continue;
+      if (direction(a.centerline, true).dot(direction(b.centerline, false)) < 0.5) continue;
+      a.successors.push_back(j);
+    }
+  }
+}
+
+std::vector<Polyline> observablePieces(const MapInstance& instance, const DashPattern& dashes,
+                                       double step) {
+  if (geometryKind(instance.cls) != GeometryKind::kLine) return {instance.points};
+  if (instance.attributes.style != LineStyle::kDashed || instance.cls != CrowdClass::kLaneLine)
+    return {resample(instance.points, step)};
+  std::vector<Polyline> pieces;
+  const double length = polylineLength(instance.points);
+  const double period = dashes.dash + dashes.gap;
+  for (double s = 0.0; s < length - 0.3; s += period) {
+    const double e = std::min(length, s + dashes.dash);
+    if (e - s < 0.3) break;
+    pieces.push_back(subLine(instance.points, s, e, step));
+  }
+  return pieces;
+}
+
+}  // namespace mapfuse::sim
