@@ -75,25 +75,45 @@ const VoxelIndex::Slot* VoxelIndex::find(uint64_t key) const {
   }
 }
 
+namespace {
+// Squared distance from q to the 27 cells around its own, home cell first (offset 0,0,0), so
+// that cells farther than the current best can be skipped.
+struct CellVisit {
+  int dx, dy, dz;
+};
+constexpr CellVisit kCellOrder[27] = {
+    {0, 0, 0},   {-1, 0, 0},  {1, 0, 0},   {0, -1, 0}, {0, 1, 0},   {0, 0, -1},   {0, 0, 1},
+    {-1, -1, 0}, {-1, 1, 0},  {1, -1, 0},  {1, 1, 0},  {-1, 0, -1}, {-1, 0, 1},   {1, 0, -1},
+    {1, 0, 1},   {0, -1, -1}, {0, -1, 1},  {0, 1, -1}, {0, 1, 1},   {-1, -1, -1}, {-1, -1, 1},
+    {-1, 1, -1}, {-1, 1, 1},  {1, -1, -1}, {1, -1, 1}, {1, 1, -1},  {1, 1, 1}};
+
+inline double axisGap(int d, double local, double size) {
+  return d < 0 ? local : (d > 0 ? size - local : 0.0);
+}
+}  // namespace
+
 int VoxelIndex::nearest(const Eigen::Vector3d& q, double max_dist_sq, double* dist_sq) const {
-  const int64_t cx = static_cast<int64_t>(std::floor(q.x() * inv_cell_size_));
-  const int64_t cy = static_cast<int64_t>(std::floor(q.y() * inv_cell_size_));
-  const int64_t cz = static_cast<int64_t>(std::floor(q.z() * inv_cell_size_));
+  const double fx = std::floor(q.x() * inv_cell_size_), fy = std::floor(q.y() * inv_cell_size_),
+               fz = std::floor(q.z() * inv_cell_size_);
+  const int64_t cx = int64_t(fx), cy = int64_t(fy), cz = int64_t(fz);
+  const double lx = q.x() - fx * cell_size_, ly = q.y() - fy * cell_size_,
+               lz = q.z() - fz * cell_size_;
   int best = -1;
   double best_d = max_dist_sq;
-  for (int dx = -1; dx <= 1; ++dx)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dz = -1; dz <= 1; ++dz) {
-        const Slot* s = find(packVoxelKey(cx + dx, cy + dy, cz + dz));
-        if (!s) continue;
-        for (uint32_t i = s->begin; i < s->end; ++i) {
-          const double d = (points_[i] - q).squaredNorm();
-          if (d < best_d) {
-            best_d = d;
-            best = int(i);
-          }
-        }
+  for (const CellVisit& c : kCellOrder) {
+    const double gx = axisGap(c.dx, lx, cell_size_), gy = axisGap(c.dy, ly, cell_size_),
+                 gz = axisGap(c.dz, lz, cell_size_);
+    if (gx * gx + gy * gy + gz * gz >= best_d) continue;
+    const Slot* s = find(packVoxelKey(cx + c.dx, cy + c.dy, cz + c.dz));
+    if (!s) continue;
+    for (uint32_t i = s->begin; i < s->end; ++i) {
+      const double d = (points_[i] - q).squaredNorm();
+      if (d < best_d) {
+        best_d = d;
+        best = int(i);
       }
+    }
+  }
   if (best < 0) return -1;
   if (dist_sq) *dist_sq = best_d;
   return original_[best];
@@ -103,26 +123,29 @@ int VoxelIndex::knn(const Eigen::Vector3d& q, int k, int* idx, double* dist_sq) 
   const int64_t cx = static_cast<int64_t>(std::floor(q.x() * inv_cell_size_));
   const int64_t cy = static_cast<int64_t>(std::floor(q.y() * inv_cell_size_));
   const int64_t cz = static_cast<int64_t>(std::floor(q.z() * inv_cell_size_));
+  const double lx = q.x() - double(cx) * cell_size_, ly = q.y() - double(cy) * cell_size_,
+               lz = q.z() - double(cz) * cell_size_;
   int found = 0;
-  for (int dx = -1; dx <= 1; ++dx)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dz = -1; dz <= 1; ++dz) {
-        const Slot* s = find(packVoxelKey(cx + dx, cy + dy, cz + dz));
-        if (!s) continue;
-        for (uint32_t i = s->begin; i < s->end; ++i) {
-          const double d = (points_[i] - q).squaredNorm();
-          if (found == k && d >= dist_sq[k - 1]) continue;
-          // insertion into the sorted k-list
-          int pos = found < k ? found++ : k - 1;
-          while (pos > 0 && dist_sq[pos - 1] > d) {
-            dist_sq[pos] = dist_sq[pos - 1];
-            idx[pos] = idx[pos - 1];
-            --pos;
-          }
-          dist_sq[pos] = d;
-          idx[pos] = int(i);
-        }
+  for (const CellVisit& c : kCellOrder) {
+    const double gx = axisGap(c.dx, lx, cell_size_), gy = axisGap(c.dy, ly, cell_size_),
+                 gz = axisGap(c.dz, lz, cell_size_);
+    if (found == k && gx * gx + gy * gy + gz * gz >= dist_sq[k - 1]) continue;
+    const Slot* s = find(packVoxelKey(cx + c.dx, cy + c.dy, cz + c.dz));
+    if (!s) continue;
+    for (uint32_t i = s->begin; i < s->end; ++i) {
+      const double d = (points_[i] - q).squaredNorm();
+      if (found == k && d >= dist_sq[k - 1]) continue;
+      // insertion into the sorted k-list
+      int pos = found < k ? found++ : k - 1;
+      while (pos > 0 && dist_sq[pos - 1] > d) {
+        dist_sq[pos] = dist_sq[pos - 1];
+        idx[pos] = idx[pos - 1];
+        --pos;
       }
+      dist_sq[pos] = d;
+      idx[pos] = int(i);
+    }
+  }
   for (int i = 0; i < found; ++i) idx[i] = original_[idx[i]];
   return found;
 }
