@@ -52,7 +52,7 @@ TEST_CASE("mask components thin to row centroids and dashes stay separate") {
   REQUIRE(solid.size() == 1);
   for (const auto& p : solid[0].pixels) {
     if (p.y() < 5 || p.y() > 195) continue;  // line caps
-    const double x_true = 100.0 + 50.0 * (199.0 - (p.y() - 0.5)) / 199.0 + 0.5;
+    const double x_true = 100.0 + 50.0 * (199.0 - p.y()) / 199.0;
     CHECK(std::abs(p.x() - x_true) < kCentreTol);
   }
   CHECK(solid[0].pixels.front().y() > solid[0].pixels.back().y());  // near first

@@ -30,14 +30,14 @@ std::vector<MaskComponent> extractComponents(const cv::Mat& mask, int class_id, 
       cv::convexHull(pts, hull);
       for (const auto& p : hull) comp.pixels.emplace_back(p.x, p.y);
     } else if (mode == ThinMode::kRows) {
-      // Bottom (near) to top (far); pixel centres at +0.5.
+      // Bottom (near) to top (far); pixel centres at integer coordinates.
       for (int y = b.y + b.height - 1; y >= b.y; y -= step) {
         const int* row = labels.ptr<int>(y);
         double sum = 0.0;
         int cnt = 0;
         for (int x = b.x; x < b.x + b.width; ++x)
           if (row[x] == c) sum += x, ++cnt;
-        if (cnt) comp.pixels.emplace_back(sum / cnt + 0.5, y + 0.5);
+        if (cnt) comp.pixels.emplace_back(sum / cnt, y);
       }
     } else {
       for (int x = b.x; x < b.x + b.width; x += step) {
@@ -45,7 +45,7 @@ std::vector<MaskComponent> extractComponents(const cv::Mat& mask, int class_id, 
         int cnt = 0;
         for (int y = b.y; y < b.y + b.height; ++y)
           if (labels.at<int>(y, x) == c) sum += y, ++cnt;
-        if (cnt) comp.pixels.emplace_back(x + 0.5, sum / cnt + 0.5);
+        if (cnt) comp.pixels.emplace_back(x, sum / cnt);
       }
     }
     if (!comp.pixels.empty()) out.push_back(std::move(comp));

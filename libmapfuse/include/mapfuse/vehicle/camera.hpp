@@ -22,6 +22,9 @@ struct CameraCalib {
   int height = 0;                                   ///< px
   Pose3 T_body_cam = Pose3::Identity();             ///< camera pose in the body frame
   GroundPlane ground;                               ///< nominal ground plane
+  /// Camera of a poses file (KITTI: rectified camera 0) in this camera frame; identity when
+  /// the poses file describes this camera itself.
+  Pose3 T_cam_posecam = Pose3::Identity();
 };
 
 /// @brief Rotation taking camera axes (x right, y down, z forward) to body axes

@@ -1,0 +1,60 @@
+#pragma once
+/// @file The raw drive folder that lsm-build reads (docs/formats-frames.md): manifest,
+/// calibration, IMU / wheel / GPS streams, frame list, masks, observations and (optional)
+/// truth poses; plus KITTI odometry poses files (12 numbers per line, T_world_cam0 row-major).
+#include <filesystem>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mapfuse/core/lsm.hpp"
+#include "mapfuse/vehicle/camera.hpp"
+#include "mapfuse/vehicle/dead_reckoning.hpp"
+#include "mapfuse/vehicle/observations.hpp"
+
+namespace mapfuse::io {
+
+constexpr const char* kFramesFormat = "mapfuse.frames";
+
+/// One camera frame of frames.csv.
+struct FrameEntry {
+  int index = 0;
+  double stamp = 0.0;          ///< s
+  std::filesystem::path mask;  ///< absolute path of the mask PNG (may be empty)
+};
+
+/// A drive folder, loaded except for the mask images (read one by one with readMask).
+struct DriveFrames {
+  std::filesystem::path dir;
+  std::string drive_id;
+  std::string vehicle_id;
+  std::optional<geo::GeoOrigin> origin;  ///< of the truth poses only
+  vehicle::CameraCalib calib;
+  std::vector<vehicle::ImuSample> imu;
+  std::vector<vehicle::WheelSample> wheel;
+  std::vector<GpsFix> gps;
+  std::vector<FrameEntry> frames;
+  std::vector<vehicle::FrameObservations> observations;  ///< empty when the file is absent
+  std::vector<Pose3> truth_T_enu_body;                   ///< per frame, empty when absent
+};
+
+/// @brief Reads a drive folder (frames.json and everything it names).
+/// @throws IoError for missing files; ParseError (file, field/line, problem) for malformed
+/// ones; InputError when counts disagree (frame_count vs frames.csv vs observations.jsonl).
+DriveFrames readDriveFrames(const std::filesystem::path& dir);
+
+/// @brief Reads one mask PNG (8-bit, one class id per pixel) and checks its size.
+/// @throws IoError when missing, ParseError when not a decodable 8-bit single-channel PNG of
+/// the expected size.
+cv::Mat readMask(const std::filesystem::path& path, int width, int height);
+
+/// @brief Ground observations of a mask: one per connected component of the classes 1-4
+/// (CrowdClass + 1), lane lines thinned to centre lines, stop lines column-wise, planar hulls.
+std::vector<vehicle::GroundObservation> observationsFromMask(const cv::Mat& mask, int min_area);
+
+/// @brief KITTI odometry poses: one line per frame, 12 numbers = row-major [R|t] of
+/// T_world_cam0. @throws IoError, ParseError(file, "line N") when malformed.
+std::vector<Pose3> readKittiPoses(const std::filesystem::path& path);
+
+}  // namespace mapfuse::io

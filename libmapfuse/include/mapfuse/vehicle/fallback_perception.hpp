@@ -1,0 +1,65 @@
+#pragma once
+/// @file Built-in fallback perception for users without a lane network (issue 6, item 6):
+/// the road area from a Cityscapes segmentation network (ENet through OpenCV DNN), then lane
+/// markings inside it by white top-hat (bright-ridge) filtering in a bird's-eye view (BEV) of
+/// the nominal ground plane, thinned to centre lines and projected back to image pixels so the
+/// rest of lsm-build (vanishing-point calibration, eq. 1) treats them like any lane input.
+#include <filesystem>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "mapfuse/vehicle/camera.hpp"
+#include "mapfuse/vehicle/observations.hpp"
+
+namespace mapfuse::vehicle {
+
+/// @brief Reads a colour image. @throws IoError when missing, ParseError when undecodable.
+cv::Mat readColorImage(const std::filesystem::path& path);
+
+/// ENet (Torch7) road segmentation through cv::dnn.
+class RoadSegmenter {
+ public:
+  /// @throws IoError when the model file is missing or cannot be loaded.
+  explicit RoadSegmenter(const std::filesystem::path& model);
+  ~RoadSegmenter();
+  /// @brief Cityscapes class id per pixel (CV_8U, image size): RGB/255 input at native scale,
+  /// reflect-padded to a multiple of 16.
+  cv::Mat classify(const cv::Mat& bgr);
+  /// @brief 255 where the class is road (Cityscapes train id 1 in enet-classes.txt order).
+  cv::Mat roadMask(const cv::Mat& bgr);
+
+ private:
+  struct Impl;  // keeps opencv2/dnn out of this header
+  std::unique_ptr<Impl> impl_;
+};
+
+struct LaneDetectSettings {
+  double bev_min_x = 4.0;        ///< m, nearest BEV row (forward)
+  double bev_max_x = 30.0;       ///< m, farthest BEV row
+  double bev_half_width = 10.0;  ///< m, lateral half extent
+  double bev_resolution = 0.05;  ///< m per BEV pixel
+  double tophat_width = 0.6;     ///< m, structuring element (wider than a marking)
+  double min_contrast = 12.0;    ///< grey levels, minimal top-hat response
+  double contrast_sigmas = 3.0;  ///< threshold = max(min_contrast, mean + k sigma) on the road
+  double road_margin = 0.4;      ///< m, road mask dilation (markings on the road edge)
+  double min_length = 1.5;       ///< m, shorter blobs are not markings
+  double max_width = 0.45;       ///< m, wider blobs are not markings (mean width)
+  double sample_step = 0.25;     ///< m, spacing of the centre-line samples
+};
+
+/// Result of the lane detector for one frame.
+struct LaneDetection {
+  std::vector<GroundObservation> lanes;  ///< lane_line centre lines in image pixels
+  cv::Mat bev_gray;                      ///< BEV of the image (row 0 = far, col 0 = left)
+  cv::Mat bev_road;                      ///< BEV of the road mask
+  cv::Mat bev_markings;                  ///< BEV binary marking mask (after filtering)
+  std::vector<std::vector<Eigen::Vector2d>> lanes_ground;  ///< (forward, left) m on the plane
+};
+
+/// @brief Lane markings inside `road_mask` (CV_8U, 255 = road) of `bgr`, in the BEV of the
+/// calibration's nominal ground plane.
+LaneDetection detectLanes(const cv::Mat& bgr, const cv::Mat& road_mask, const CameraCalib& calib,
+                          const LaneDetectSettings& settings);
+
+}  // namespace mapfuse::vehicle

@@ -1,0 +1,59 @@
+#pragma once
+/// @file LSM assembly (Song et al. 2023 §3.3): ranged ground markings from consecutive frames
+/// are merged per instance (by track id, or spatially when ids are absent), resampled along the
+/// line, split into pieces anchored to the nearest keyframe (points in its body frame), and
+/// written with per-point covariances; triangulated aerial elements are anchored likewise.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "mapfuse/core/lsm.hpp"
+
+namespace mapfuse::vehicle {
+
+/// One frame's ranged ground marking, already in the odom frame.
+struct RangedMarking {
+  CrowdClass cls = CrowdClass::kLaneLine;
+  Attributes attributes;
+  int64_t track_id = -1;
+  int64_t truth_id = -1;
+  int frame = 0;                             ///< index into the frame poses
+  std::vector<Eigen::Vector3d> points;       ///< odom, m (ordered for lines, ring for planar)
+  std::vector<Eigen::Matrix3d> covariances;  ///< odom, m^2
+};
+
+/// A triangulated aerial element in the odom frame.
+struct AerialElement {
+  CrowdClass cls = CrowdClass::kTrafficSign;
+  int64_t truth_id = -1;
+  std::vector<Eigen::Vector3d> points;       ///< odom: sign corners, or [base] for pole/light
+  std::vector<Eigen::Matrix3d> covariances;  ///< odom, m^2
+  double height = 0.0;                       ///< m, pole / light
+  int observations = 1;
+};
+
+struct AssemblySettings {
+  double association_radius = 0.6;           ///< m, spatial association of id-less markings
+  double point_spacing = 0.5;                ///< m, resampling step along merged lines
+  double max_element_length = 30.0;          ///< m, longer lines are split into anchored pieces
+  double gap_split = 2.0;                    ///< m, a gap this long along a line starts a new piece
+  int min_observations = 2;                  ///< frames needed to keep a ground instance
+  double keyframe_sigma_translation = 0.05;  ///< m, keyframe pose 1-sigma written to the LSM
+  double keyframe_sigma_rotation = 0.002;    ///< rad
+};
+
+struct AssemblyStats {
+  int ground_instances = 0;  ///< merged instances before splitting
+  int ground_dropped = 0;    ///< instances seen in too few frames
+  int elements = 0;          ///< elements written
+};
+
+/// @brief Builds the LSM. `frame_poses` are T_odom_body per frame, `keyframes` indices into
+/// them, `stamps` per frame.
+Lsm assembleLsm(const std::vector<Pose3>& frame_poses, const std::vector<double>& stamps,
+                const std::vector<std::size_t>& keyframes,
+                const std::vector<RangedMarking>& markings,
+                const std::vector<AerialElement>& aerial, const AssemblySettings& settings,
+                AssemblyStats* stats = nullptr);
+
+}  // namespace mapfuse::vehicle

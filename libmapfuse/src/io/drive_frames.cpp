@@ -1,0 +1,345 @@
+#include "mapfuse/io/drive_frames.hpp"
+
+#include <Eigen/SVD>
+#include <cmath>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/camera_calib.hpp"
+#include "mapfuse/io/document.hpp"
+#include "mapfuse/io/json_geometry.hpp"
+#include "mapfuse/vehicle/centerline.hpp"
+
+namespace mapfuse::io {
+namespace fs = std::filesystem;
+namespace {
+
+/// A CSV with one header line; rows of numbers (or text in `text_columns`).
+struct Csv {
+  std::string file;
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  std::vector<int> line_numbers;
+
+  double number(std::size_t row, std::size_t col) const {
+    const std::string& s = rows[row][col];
+    const std::string field = "line " + std::to_string(line_numbers[row]) + " " + header[col];
+    try {
+      std::size_t used = 0;
+      const double v = std::stod(s, &used);
+      if (used != s.size() || !std::isfinite(v)) throw std::invalid_argument("bad");
+      return v;
+    } catch (const std::exception&) {
+      throw ParseError(file, field, "'" + s + "' is not a finite number");
+    }
+  }
+};
+
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) {
+    while (!cell.empty() && (cell.back() == '\r' || cell.back() == ' ')) cell.pop_back();
+    while (!cell.empty() && cell.front() == ' ') cell.erase(cell.begin());
+    out.push_back(cell);
+  }
+  return out;
+}
+
+Csv readCsv(const fs::path& path, const std::vector<std::string>& expected_header) {
+  const std::string text = readBytes(path);
+  Csv csv;
+  csv.file = path.string();
+  std::stringstream ss(text);
+  std::string line;
+  int n = 0;
+  while (std::getline(ss, line)) {
+    ++n;
+    if (line.empty() || line == "\r") continue;
+    auto cells = splitCsv(line);
+    if (csv.header.empty()) {
+      if (cells != expected_header) {
+        std::string want;
+        for (const auto& h : expected_header) want += (want.empty() ? "" : ",") + h;
+        throw ParseError(csv.file, "header", "expected '" + want + "'");
+      }
+      csv.header = cells;
+      continue;
+    }
+    if (cells.size() != csv.header.size())
+      throw ParseError(csv.file, "line " + std::to_string(n),
+                       "has " + std::to_string(cells.size()) + " columns, expected " +
+                           std::to_string(csv.header.size()));
+    csv.rows.push_back(std::move(cells));
+    csv.line_numbers.push_back(n);
+  }
+  if (csv.header.empty()) throw ParseError(csv.file, "header", "file is empty");
+  return csv;
+}
+
+void requireSorted(const Csv& csv, const std::vector<double>& stamps) {
+  for (std::size_t i = 1; i < stamps.size(); ++i)
+    if (stamps[i] < stamps[i - 1])
+      throw ParseError(csv.file, "line " + std::to_string(csv.line_numbers[i]) + " stamp",
+                       "stamps go backwards");
+}
+
+std::vector<Eigen::Vector2d> readPixels(const JsonView& v) {
+  std::vector<Eigen::Vector2d> out;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Eigen::VectorXd p = v.at(i).vector(2);
+    out.emplace_back(p(0), p(1));
+  }
+  return out;
+}
+
+vehicle::FrameObservations parseObservation(const JsonView& v) {
+  v.onlyKeys({"frame", "stamp", "ground", "aerial"});
+  vehicle::FrameObservations f;
+  f.index = int(v.at("frame").integer());
+  f.stamp = v.at("stamp").number();
+  if (auto g = v.find("ground"))
+    for (std::size_t i = 0; i < g->size(); ++i) {
+      const JsonView e = g->at(i);
+      e.onlyKeys({"instance", "track_id", "truth_id", "class", "style", "color", "pixels"});
+      vehicle::GroundObservation o;
+      readClassAndAttributes(e, o.cls, o.attributes);
+      if (geometryKind(o.cls) == GeometryKind::kPoint || o.cls == CrowdClass::kTrafficSign)
+        e.at("class").fail("is not a ground marking class");
+      if (auto t = e.find("track_id")) o.track_id = t->integer();
+      if (auto t = e.find("truth_id")) o.truth_id = t->integer();
+      o.pixels = readPixels(e.at("pixels"));
+      f.ground.push_back(std::move(o));
+    }
+  if (auto a = v.find("aerial"))
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const JsonView e = a->at(i);
+      e.onlyKeys({"track_id", "truth_id", "class", "box", "points"});
+      vehicle::AerialObservation o;
+      Attributes unused;
+      readClassAndAttributes(e, o.cls, unused);
+      if (o.cls != CrowdClass::kTrafficSign && o.cls != CrowdClass::kTrafficLight &&
+          o.cls != CrowdClass::kPole)
+        e.at("class").fail("is not an aerial class (traffic_sign, traffic_light, pole)");
+      if (auto t = e.find("track_id")) o.track_id = t->integer();
+      if (auto t = e.find("truth_id")) o.truth_id = t->integer();
+      o.box = e.at("box").vector(4);
+      if (o.box(2) < o.box(0) || o.box(3) < o.box(1)) e.at("box").fail("max is below min");
+      if (auto p = e.find("points")) o.points = readPixels(*p);
+      f.aerial.push_back(std::move(o));
+    }
+  return f;
+}
+
+std::vector<vehicle::FrameObservations> readObservations(const fs::path& path) {
+  const std::string text = readBytes(path);
+  std::vector<vehicle::FrameObservations> out;
+  std::stringstream ss(text);
+  std::string line;
+  int n = 0;
+  while (std::getline(ss, line)) {
+    ++n;
+    if (line.empty() || line == "\r") continue;
+    Json j;
+    try {
+      j = Json::parse(line);
+    } catch (const std::exception& e) {
+      throw ParseError(path.string(), "line " + std::to_string(n), "invalid JSON");
+    }
+    out.push_back(parseObservation(JsonView(j, path.string(), "line " + std::to_string(n))));
+  }
+  return out;
+}
+
+}  // namespace
+
+DriveFrames readDriveFrames(const fs::path& dir) {
+  const fs::path manifest = dir / "frames.json";
+  if (!fs::exists(manifest)) throw IoError(manifest.string(), "no such file (not a drive folder)");
+  const Json doc = readDocument(manifest);
+  const JsonView v(doc, manifest.string());
+  v.checkFormat(kFramesFormat, 1);
+  DriveFrames d;
+  d.dir = dir;
+  d.drive_id = v.at("drive_id").string();
+  if (auto s = v.find("vehicle_id")) d.vehicle_id = s->string();
+  if (auto o = v.find("origin")) d.origin = readOrigin(*o);
+  auto file = [&](const char* key) -> fs::path {
+    const auto f = v.find(key);
+    if (!f) v.at(key);  // throws "missing"
+    return dir / f->string();
+  };
+
+  const fs::path calib_path = file("calibration");
+  if (!fs::exists(calib_path)) throw IoError(calib_path.string(), "camera calibration missing");
+  d.calib = readCameraCalib(calib_path);
+
+  {
+    const Csv c = readCsv(file("imu"),
+                          {"stamp", "gyro_x", "gyro_y", "gyro_z", "accel_x", "accel_y", "accel_z"});
+    std::vector<double> stamps;
+    for (std::size_t r = 0; r < c.rows.size(); ++r) {
+      vehicle::ImuSample s;
+      s.stamp = c.number(r, 0);
+      s.gyro = {c.number(r, 1), c.number(r, 2), c.number(r, 3)};
+      s.accel = {c.number(r, 4), c.number(r, 5), c.number(r, 6)};
+      d.imu.push_back(s);
+      stamps.push_back(s.stamp);
+    }
+    requireSorted(c, stamps);
+  }
+  {
+    const Csv c = readCsv(file("wheel"), {"stamp", "speed"});
+    std::vector<double> stamps;
+    for (std::size_t r = 0; r < c.rows.size(); ++r) {
+      d.wheel.push_back({c.number(r, 0), c.number(r, 1)});
+      stamps.push_back(c.number(r, 0));
+    }
+    requireSorted(c, stamps);
+  }
+  if (v.has("gps")) {
+    const Csv c = readCsv(file("gps"), {"stamp", "lat", "lon", "alt", "sigma_h", "sigma_v"});
+    for (std::size_t r = 0; r < c.rows.size(); ++r) {
+      GpsFix g;
+      g.stamp = c.number(r, 0);
+      g.position = {c.number(r, 1), c.number(r, 2), c.number(r, 3)};
+      g.sigma_h = c.number(r, 4);
+      g.sigma_v = c.number(r, 5);
+      if (!geo::isValid(g.position) || g.sigma_h <= 0.0 || g.sigma_v <= 0.0)
+        throw ParseError(c.file, "line " + std::to_string(c.line_numbers[r]),
+                         "invalid fix (lat/lon out of range or sigma not positive)");
+      d.gps.push_back(g);
+    }
+  }
+  {
+    const Csv c = readCsv(file("frames"), {"index", "stamp", "mask"});
+    for (std::size_t r = 0; r < c.rows.size(); ++r) {
+      FrameEntry f;
+      f.index = int(c.number(r, 0));
+      f.stamp = c.number(r, 1);
+      if (f.index != int(r))
+        throw ParseError(c.file, "line " + std::to_string(c.line_numbers[r]) + " index",
+                         "expected frame " + std::to_string(r));
+      if (!c.rows[r][2].empty()) f.mask = dir / c.rows[r][2];
+      d.frames.push_back(f);
+    }
+  }
+  if (d.frames.empty()) throw InputError(manifest.string() + ": the drive has no frames");
+  if (auto fc = v.find("frame_count"))
+    if (fc->integer() != int64_t(d.frames.size()))
+      throw InputError(manifest.string() + ": frame_count is " + std::to_string(fc->integer()) +
+                       " but " + file("frames").string() + " lists " +
+                       std::to_string(d.frames.size()) + " frames");
+  if (v.has("observations") && fs::exists(file("observations"))) {
+    d.observations = readObservations(file("observations"));
+    if (d.observations.size() != d.frames.size())
+      throw InputError(file("observations").string() + " has " +
+                       std::to_string(d.observations.size()) + " frames but frames.csv lists " +
+                       std::to_string(d.frames.size()));
+    for (std::size_t i = 0; i < d.frames.size(); ++i)
+      if (d.observations[i].index != d.frames[i].index)
+        throw ParseError(file("observations").string(), "line " + std::to_string(i + 1) + " frame",
+                         "expected frame " + std::to_string(d.frames[i].index));
+  }
+  if (v.has("truth_poses") && fs::exists(file("truth_poses"))) {
+    const Csv c =
+        readCsv(file("truth_poses"), {"index", "stamp", "tx", "ty", "tz", "qw", "qx", "qy", "qz"});
+    for (std::size_t r = 0; r < c.rows.size(); ++r) {
+      Pose3 T = Pose3::Identity();
+      T.translation() = Eigen::Vector3d(c.number(r, 2), c.number(r, 3), c.number(r, 4));
+      T.linear() =
+          Eigen::Quaterniond(c.number(r, 5), c.number(r, 6), c.number(r, 7), c.number(r, 8))
+              .normalized()
+              .toRotationMatrix();
+      d.truth_T_enu_body.push_back(T);
+    }
+  }
+  return d;
+}
+
+cv::Mat readMask(const fs::path& path, int width, int height) {
+  if (!fs::exists(path)) throw IoError(path.string(), "mask image missing");
+  const std::string bytes = readBytes(path);
+  cv::Mat img;
+  try {
+    img = cv::imdecode(cv::Mat(1, int(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data())),
+                       cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception&) {
+    img = cv::Mat();
+  }
+  if (img.empty()) throw ParseError(path.string(), "", "not a decodable image (corrupt PNG?)");
+  if (img.type() != CV_8UC1)
+    throw ParseError(path.string(), "", "mask must be an 8-bit single-channel image");
+  if (img.cols != width || img.rows != height)
+    throw ParseError(path.string(), "",
+                     "mask is " + std::to_string(img.cols) + "x" + std::to_string(img.rows) +
+                         ", calibration says " + std::to_string(width) + "x" +
+                         std::to_string(height));
+  return img;
+}
+
+std::vector<vehicle::GroundObservation> observationsFromMask(const cv::Mat& mask, int min_area) {
+  std::vector<vehicle::GroundObservation> out;
+  for (int id = 1; id <= 4; ++id) {
+    const CrowdClass cls = CrowdClass(id - 1);
+    const vehicle::ThinMode mode = cls == CrowdClass::kLaneLine   ? vehicle::ThinMode::kRows
+                                   : cls == CrowdClass::kStopLine ? vehicle::ThinMode::kColumns
+                                                                  : vehicle::ThinMode::kHull;
+    for (auto& comp : vehicle::extractComponents(mask, id, mode, min_area)) {
+      vehicle::GroundObservation o;
+      o.cls = cls;
+      o.pixels = std::move(comp.pixels);
+      out.push_back(std::move(o));
+    }
+  }
+  return out;
+}
+
+std::vector<Pose3> readKittiPoses(const fs::path& path) {
+  const std::string text = readBytes(path);
+  std::stringstream ss(text);
+  std::string line;
+  std::vector<Pose3> out;
+  int n = 0;
+  while (std::getline(ss, line)) {
+    ++n;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    std::stringstream ls(line);
+    double m[12];
+    int k = 0;
+    std::string tok;
+    while (ls >> tok) {
+      if (k >= 12)
+        throw ParseError(path.string(), "line " + std::to_string(n), "more than 12 numbers");
+      try {
+        std::size_t used = 0;
+        m[k] = std::stod(tok, &used);
+        if (used != tok.size() || !std::isfinite(m[k])) throw std::invalid_argument("x");
+      } catch (const std::exception&) {
+        throw ParseError(path.string(), "line " + std::to_string(n),
+                         "'" + tok + "' is not a finite number");
+      }
+      ++k;
+    }
+    if (k != 12)
+      throw ParseError(path.string(), "line " + std::to_string(n),
+                       "expected 12 numbers, got " + std::to_string(k));
+    Pose3 T = Pose3::Identity();
+    Eigen::Matrix3d R;
+    R << m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10];
+    if ((R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-3)
+      throw ParseError(path.string(), "line " + std::to_string(n), "R is not a rotation");
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    T.linear() = svd.matrixU() * svd.matrixV().transpose();
+    T.translation() = Eigen::Vector3d(m[3], m[7], m[11]);
+    out.push_back(T);
+  }
+  if (out.empty()) throw ParseError(path.string(), "", "no poses");
+  return out;
+}
+
+}  // namespace mapfuse::io

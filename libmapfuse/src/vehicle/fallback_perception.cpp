@@ -1,0 +1,149 @@
+#include "mapfuse/vehicle/fallback_perception.hpp"
+
+#include <opencv2/dnn.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/vehicle/centerline.hpp"
+
+namespace mapfuse::vehicle {
+
+cv::Mat readColorImage(const std::filesystem::path& path) {
+  if (!std::filesystem::exists(path)) throw IoError(path.string(), "image missing");
+  const std::string bytes = io::readBytes(path);
+  cv::Mat img;
+  try {
+    img = cv::imdecode(cv::Mat(1, int(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data())),
+                       cv::IMREAD_COLOR);
+  } catch (const cv::Exception&) {
+    img = cv::Mat();
+  }
+  if (img.empty()) throw ParseError(path.string(), "", "not a decodable image (corrupt PNG?)");
+  return img;
+}
+
+struct RoadSegmenter::Impl {
+  cv::dnn::Net net;
+};
+
+RoadSegmenter::RoadSegmenter(const std::filesystem::path& model) : impl_(new Impl) {
+  if (!std::filesystem::exists(model))
+    throw IoError(model.string(), "segmentation model missing (see docs/lsm-build.md)");
+  try {
+    impl_->net = cv::dnn::readNetFromTorch(model.string());
+  } catch (const cv::Exception& e) {
+    throw IoError(model.string(), std::string("cannot load the Torch model: ") + e.what());
+  }
+  if (impl_->net.empty()) throw IoError(model.string(), "cannot load the Torch model");
+}
+
+RoadSegmenter::~RoadSegmenter() = default;
+
+cv::Mat RoadSegmenter::classify(const cv::Mat& bgr) {
+  // Native scale, reflect padding to a multiple of 16 (data/README.md).
+  const int pw = (16 - bgr.cols % 16) % 16, ph = (16 - bgr.rows % 16) % 16;
+  cv::Mat padded;
+  cv::copyMakeBorder(bgr, padded, 0, ph, 0, pw, cv::BORDER_REFLECT_101);
+  const cv::Mat blob = cv::dnn::blobFromImage(padded, 1.0 / 255.0, padded.size(), cv::Scalar(),
+                                              /*swapRB=*/true, /*crop=*/false);
+  impl_->net.setInput(blob);
+  const cv::Mat out = impl_->net.forward();  // 1 x C x H x W
+  const int C = out.size[1], H = out.size[2], W = out.size[3];
+  cv::Mat cls(H, W, CV_8UC1, cv::Scalar(0));
+  cv::Mat best(H, W, CV_32F, cv::Scalar(-1e30f));
+  for (int c = 0; c < C; ++c) {
+    const cv::Mat score(H, W, CV_32F, const_cast<float*>(out.ptr<float>(0, c)));
+    const cv::Mat better = score > best;
+    score.copyTo(best, better);
+    cls.setTo(c, better);
+  }
+  if (H != padded.rows || W != padded.cols)
+    cv::resize(cls, cls, padded.size(), 0, 0, cv::INTER_NEAREST);
+  return cls(cv::Rect(0, 0, bgr.cols, bgr.rows)).clone();
+}
+
+cv::Mat RoadSegmenter::roadMask(const cv::Mat& bgr) {
+  return (classify(bgr) == 1);
+}
+
+namespace {
+
+/// Point on the ground plane `forward` m ahead and `left` m to the left, camera frame.
+struct PlaneBasis {
+  Eigen::Vector3d foot, fwd, left;
+  explicit PlaneBasis(const GroundPlane& g) {
+    const Eigen::Vector3d n = g.normal_cam.normalized();
+    foot = -g.height * n;
+    fwd = (Eigen::Vector3d::UnitZ() - n.z() * n).normalized();
+    left = n.cross(fwd);
+  }
+  Eigen::Vector3d at(double f, double l) const { return foot + f * fwd + l * left; }
+};
+
+}  // namespace
+
+LaneDetection detectLanes(const cv::Mat& bgr, const cv::Mat& road_mask, const CameraCalib& calib,
+                          const LaneDetectSettings& s) {
+  LaneDetection det;
+  const PlaneBasis basis(calib.ground);
+  const int rows = int(std::round((s.bev_max_x - s.bev_min_x) / s.bev_resolution));
+  const int cols = int(std::round(2.0 * s.bev_half_width / s.bev_resolution));
+  auto cellToGround = [&](double r, double c) {
+    return Eigen::Vector2d(s.bev_max_x - r * s.bev_resolution,
+                           s.bev_half_width - c * s.bev_resolution);
+  };
+  cv::Mat map_x(rows, cols, CV_32F), map_y(rows, cols, CV_32F);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      const Eigen::Vector2d g = cellToGround(r, c);
+      const auto px = projectPoint(calib.K, basis.at(g.x(), g.y()));
+      map_x.at<float>(r, c) = px ? float(px->x()) : -1.f;
+      map_y.at<float>(r, c) = px ? float(px->y()) : -1.f;
+    }
+  cv::Mat gray;
+  cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
+  cv::remap(gray, det.bev_gray, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_CONSTANT, 0);
+  cv::remap(road_mask, det.bev_road, map_x, map_y, cv::INTER_NEAREST, cv::BORDER_CONSTANT, 0);
+
+  // White top-hat with a horizontal element: bright ridges narrower than tophat_width.
+  const int k = std::max(3, int(std::round(s.tophat_width / s.bev_resolution)) | 1);
+  cv::Mat tophat;
+  cv::morphologyEx(det.bev_gray, tophat, cv::MORPH_TOPHAT,
+                   cv::getStructuringElement(cv::MORPH_RECT, {k, 1}));
+  cv::Mat road;
+  const int m = std::max(1, int(std::round(s.road_margin / s.bev_resolution)));
+  cv::dilate(det.bev_road, road, cv::getStructuringElement(cv::MORPH_RECT, {2 * m + 1, 1}));
+  cv::Scalar mean, stddev;
+  cv::meanStdDev(tophat, mean, stddev, road);
+  const double thr = std::max(s.min_contrast, mean[0] + s.contrast_sigmas * stddev[0]);
+  det.bev_markings = (tophat > thr) & (road > 0);
+  // Close small breaks along the driving direction, then drop speckles.
+  cv::morphologyEx(det.bev_markings, det.bev_markings, cv::MORPH_CLOSE,
+                   cv::getStructuringElement(cv::MORPH_RECT, {1, 5}));
+  cv::morphologyEx(det.bev_markings, det.bev_markings, cv::MORPH_OPEN,
+                   cv::getStructuringElement(cv::MORPH_RECT, {1, 5}));
+
+  const int step = std::max(1, int(std::round(s.sample_step / s.bev_resolution)));
+  cv::Mat ids = det.bev_markings / 255;
+  for (auto& comp : extractComponents(ids, 1, ThinMode::kRows, 10, step)) {
+    const double length = comp.box.height * s.bev_resolution;
+    const double width = comp.area * s.bev_resolution / std::max(1, comp.box.height);
+    if (length < s.min_length || width > s.max_width || comp.pixels.size() < 2) continue;
+    GroundObservation obs;
+    obs.cls = CrowdClass::kLaneLine;
+    std::vector<Eigen::Vector2d> ground;
+    for (const auto& p : comp.pixels) {
+      const Eigen::Vector2d g = cellToGround(p.y(), p.x());
+      ground.push_back(g);
+      if (auto px = projectPoint(calib.K, basis.at(g.x(), g.y()))) obs.pixels.push_back(*px);
+    }
+    if (obs.pixels.size() < 2) continue;
+    det.lanes.push_back(std::move(obs));
+    det.lanes_ground.push_back(std::move(ground));
+  }
+  return det;
+}
+
+}  // namespace mapfuse::vehicle

@@ -1,0 +1,268 @@
+#include "mapfuse/vehicle/lsm_assembly.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <opencv2/imgproc.hpp>
+#include <set>
+#include <unordered_map>
+
+namespace mapfuse::vehicle {
+namespace {
+
+/// Markings of one physical instance, accumulated over frames.
+struct Instance {
+  CrowdClass cls;
+  Attributes attributes;
+  std::vector<const RangedMarking*> parts;
+};
+
+/// Spatial hash of instance points (per class) for id-less association.
+struct PointGrid {
+  double cell;
+  std::unordered_map<int64_t, std::vector<std::pair<Eigen::Vector3d, int>>> cells;
+  int64_t key(int64_t x, int64_t y) const { return (x + (1 << 20)) * (int64_t(1) << 21) + y; }
+  void add(const Eigen::Vector3d& p, int inst) {
+    cells[key(int64_t(std::floor(p.x() / cell)), int64_t(std::floor(p.y() / cell)))].push_back(
+        {p, inst});
+  }
+  int nearest(const Eigen::Vector3d& p, double radius) const {
+    const int64_t cx = int64_t(std::floor(p.x() / cell)), cy = int64_t(std::floor(p.y() / cell));
+    int best = -1;
+    double best_d = radius * radius;
+    for (int64_t dx = -1; dx <= 1; ++dx)
+      for (int64_t dy = -1; dy <= 1; ++dy) {
+        auto it = cells.find(key(cx + dx, cy + dy));
+        if (it == cells.end()) continue;
+        for (const auto& [q, inst] : it->second) {
+          const double d = (q - p).head<2>().squaredNorm();
+          if (d < best_d) best_d = d, best = inst;
+        }
+      }
+    return best;
+  }
+};
+
+std::vector<Instance> groupInstances(const std::vector<RangedMarking>& markings, double radius) {
+  std::vector<Instance> out;
+  std::map<std::pair<int, int64_t>, int> by_track;
+  std::map<int, PointGrid> grids;
+  for (const auto& m : markings) {
+    if (m.points.empty()) continue;
+    int inst = -1;
+    if (m.track_id >= 0) {
+      auto it = by_track.find({int(m.cls), m.track_id});
+      if (it != by_track.end()) inst = it->second;
+    } else {
+      // Vote: the instance owning most of this marking's points within `radius`.
+      auto& grid =
+          grids.try_emplace(int(m.cls), PointGrid{std::max(radius, 0.1), {}}).first->second;
+      std::map<int, int> votes;
+      for (const auto& p : m.points)
+        if (int k = grid.nearest(p, radius); k >= 0) ++votes[k];
+      int best = 0;
+      for (const auto& [k, n] : votes)
+        if (n > best) best = n, inst = k;
+      if (best * 3 < int(m.points.size())) inst = -1;
+    }
+    if (inst < 0) {
+      inst = int(out.size());
+      out.push_back({m.cls, m.attributes, {}});
+      if (m.track_id >= 0) by_track[{int(m.cls), m.track_id}] = inst;
+    }
+    out[inst].parts.push_back(&m);
+    if (m.track_id < 0) {
+      auto& grid =
+          grids.try_emplace(int(m.cls), PointGrid{std::max(radius, 0.1), {}}).first->second;
+      for (const auto& p : m.points) grid.add(p, inst);
+    }
+  }
+  return out;
+}
+
+int64_t majorityTruth(const Instance& inst) {
+  std::map<int64_t, int> votes;
+  for (const auto* p : inst.parts) ++votes[p->truth_id];
+  int64_t best = -1;
+  int n = 0;
+  for (const auto& [id, c] : votes)
+    if (c > n) n = c, best = id;
+  return best;
+}
+
+/// A resampled point with its covariance and supporting frames.
+struct Sample {
+  Eigen::Vector3d p;
+  Eigen::Matrix3d cov;
+  double s;
+};
+
+/// Lines: points projected on the instance's principal axis (short lines) or ordered along the
+/// trajectory (long lines), averaged in bins of `spacing`.
+std::vector<Sample> resampleLine(const Instance& inst, const std::vector<double>& path_s,
+                                 const std::vector<Pose3>& poses, double spacing) {
+  struct Raw {
+    double s;
+    Eigen::Vector3d p;
+    Eigen::Matrix3d C;
+    int frame;
+  };
+  std::vector<Raw> raw;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto* m : inst.parts)
+    for (std::size_t i = 0; i < m->points.size(); ++i) {
+      raw.push_back({0.0, m->points[i], m->covariances[i], m->frame});
+      mean += m->points[i].head<2>();
+    }
+  mean /= double(raw.size());
+  Eigen::Matrix2d S = Eigen::Matrix2d::Zero();
+  for (const auto& r : raw) S += (r.p.head<2>() - mean) * (r.p.head<2>() - mean).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(S);
+  const Eigen::Vector2d axis = es.eigenvectors().col(1);
+  const double extent = 2.0 * std::sqrt(es.eigenvalues()(1) / double(raw.size())) * 1.732;
+  const bool along_track = inst.cls == CrowdClass::kLaneLine && extent > 15.0;
+  for (auto& r : raw) {
+    if (along_track) {
+      // Arc length of the observing frame plus the forward offset in its body frame.
+      const Eigen::Vector3d pb = poses[r.frame].inverse() * r.p;
+      r.s = path_s[r.frame] + pb.x();
+    } else {
+      r.s = (r.p.head<2>() - mean).dot(axis);
+    }
+  }
+  std::sort(raw.begin(), raw.end(), [](const Raw& a, const Raw& b) { return a.s < b.s; });
+  std::vector<Sample> out;
+  std::size_t i = 0;
+  while (i < raw.size()) {
+    const double bin = std::floor(raw[i].s / spacing);
+    Eigen::Vector3d p = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+    double s = 0.0;
+    std::set<int> frames;
+    std::size_t n = 0;
+    for (; i < raw.size() && std::floor(raw[i].s / spacing) == bin; ++i, ++n) {
+      p += raw[i].p;
+      C += raw[i].C;
+      s += raw[i].s;
+      frames.insert(raw[i].frame);
+    }
+    // Averaging over independent frames shrinks the covariance (same-frame points are
+    // correlated through the attitude error, so they count once).
+    out.push_back({p / double(n), C / double(n) / double(frames.size()), s / double(n)});
+  }
+  return out;
+}
+
+}  // namespace
+
+Lsm assembleLsm(const std::vector<Pose3>& poses, const std::vector<double>& stamps,
+                const std::vector<std::size_t>& keyframes,
+                const std::vector<RangedMarking>& markings,
+                const std::vector<AerialElement>& aerial, const AssemblySettings& s,
+                AssemblyStats* stats) {
+  Lsm lsm;
+  AssemblyStats st;
+  for (std::size_t k = 0; k < keyframes.size(); ++k) {
+    Keyframe kf;
+    kf.id = int64_t(k);
+    kf.stamp = stamps[keyframes[k]];
+    kf.T_frame_body = poses[keyframes[k]];
+    kf.covariance = diagonalCovariance(s.keyframe_sigma_translation, s.keyframe_sigma_rotation);
+    lsm.keyframes.push_back(kf);
+  }
+  std::vector<double> path_s(poses.size(), 0.0);
+  for (std::size_t i = 1; i < poses.size(); ++i)
+    path_s[i] = path_s[i - 1] + (poses[i].translation() - poses[i - 1].translation()).norm();
+
+  auto nearestKeyframe = [&](const Eigen::Vector3d& p) {
+    std::size_t best = 0;
+    double bd = 1e300;
+    for (std::size_t k = 0; k < keyframes.size(); ++k) {
+      const double d = (poses[keyframes[k]].translation() - p).head<2>().squaredNorm();
+      if (d < bd) bd = d, best = k;
+    }
+    return best;
+  };
+  auto addElement = [&](CrowdClass cls, const Attributes& attr,
+                        const std::vector<Eigen::Vector3d>& pts,
+                        const std::vector<Eigen::Matrix3d>& covs, int observations, int64_t truth,
+                        double height) {
+    Eigen::Vector3d mid = Eigen::Vector3d::Zero();
+    for (const auto& p : pts) mid += p;
+    mid /= double(pts.size());
+    const std::size_t k = nearestKeyframe(mid);
+    const Pose3 T_body_odom = poses[keyframes[k]].inverse();
+    Element e;
+    e.id = int64_t(lsm.elements.size());
+    e.cls = cls;
+    e.attributes = attr;
+    e.anchor = int64_t(k);
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      e.points_body.push_back(T_body_odom * pts[i]);
+      e.covariances.push_back(rotateCovariance(T_body_odom.linear(), covs[i]));
+    }
+    e.observations = std::max(1, observations);
+    e.confidence = std::min(1.0, double(e.observations) / 5.0);
+    e.truth_id = truth;
+    e.height = height;
+    lsm.elements.push_back(std::move(e));
+  };
+
+  for (const auto& inst : groupInstances(markings, s.association_radius)) {
+    ++st.ground_instances;
+    std::set<int> frames;
+    for (const auto* m : inst.parts) frames.insert(m->frame);
+    if (int(frames.size()) < s.min_observations) {
+      ++st.ground_dropped;
+      continue;
+    }
+    const int64_t truth = majorityTruth(inst);
+    if (geometryKind(inst.cls) == GeometryKind::kPlanar) {
+      // Oriented rectangle of all observed corners; z = mean.
+      std::vector<cv::Point2f> xy;
+      double z = 0.0;
+      Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+      std::size_t n = 0;
+      for (const auto* m : inst.parts)
+        for (std::size_t i = 0; i < m->points.size(); ++i, ++n) {
+          xy.emplace_back(float(m->points[i].x()), float(m->points[i].y()));
+          z += m->points[i].z();
+          C += m->covariances[i];
+        }
+      const cv::RotatedRect rect = cv::minAreaRect(xy);
+      cv::Point2f corners[4];
+      rect.points(corners);
+      std::vector<Eigen::Vector3d> pts;
+      for (const auto& c : corners) pts.emplace_back(c.x, c.y, z / double(n));
+      addElement(inst.cls, inst.attributes, pts,
+                 std::vector<Eigen::Matrix3d>(4, C / double(n) / double(frames.size())),
+                 int(frames.size()), truth, 0.0);
+      continue;
+    }
+    const auto samples = resampleLine(inst, path_s, poses, s.point_spacing);
+    // Split at gaps and at the maximum length.
+    std::size_t begin = 0;
+    for (std::size_t i = 1; i <= samples.size(); ++i) {
+      const bool end = i == samples.size() || samples[i].s - samples[i - 1].s > s.gap_split ||
+                       samples[i].s - samples[begin].s > s.max_element_length;
+      if (!end) continue;
+      if (i - begin >= 2) {
+        std::vector<Eigen::Vector3d> pts;
+        std::vector<Eigen::Matrix3d> covs;
+        for (std::size_t j = begin; j < i; ++j)
+          pts.push_back(samples[j].p), covs.push_back(samples[j].cov);
+        addElement(inst.cls, inst.attributes, pts, covs, int(frames.size()), truth, 0.0);
+      }
+      // Consecutive pieces share their joint point unless split at a gap.
+      begin = (i < samples.size() && samples[i].s - samples[i - 1].s <= s.gap_split) ? i - 1 : i;
+    }
+  }
+  for (const auto& a : aerial)
+    addElement(a.cls, Attributes{}, a.points, a.covariances, a.observations, a.truth_id, a.height);
+  st.elements = int(lsm.elements.size());
+  if (stats) *stats = st;
+  return lsm;
+}
+
+}  // namespace mapfuse::vehicle
