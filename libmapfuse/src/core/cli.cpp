@@ -30,9 +30,22 @@ std::string optionName(const char* key) {
   return name;
 }
 
+namespace {
+std::exception_ptr g_deferred;
+}  // namespace
+
+void deferError(std::exception_ptr error) {
+  if (!g_deferred) g_deferred = error;
+}
+
 int run(CLI::App& app, int argc, char** argv, const std::function<void()>& body) {
   const std::string tool = app.get_name();
   try {
+    if (g_deferred) {
+      const std::exception_ptr e = g_deferred;
+      g_deferred = nullptr;
+      std::rethrow_exception(e);
+    }
     try {
       app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

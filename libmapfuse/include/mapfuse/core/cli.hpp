@@ -3,6 +3,7 @@
 /// one --option per Params field with its default and unit in --help, -v / --quiet, and
 /// the mapping of errors to exit codes (0 ok, 1 internal, 2 usage/config, 3 bad input, 4 I/O).
 #include <CLI/CLI.hpp>
+#include <exception>
 #include <functional>
 #include <string>
 
@@ -51,18 +52,26 @@ void addParamOptions(CLI::App& app, Params& params, const char* group = "Paramet
   params.visit(v);
 }
 
+/// @brief Remembers an error met before run() (e.g. a bad --config file) so that run() reports
+/// it with its exit code instead of the process aborting.
+void deferError(std::exception_ptr error);
+
 /// @brief Finds "--config FILE" / "--config=FILE" in argv before CLI11 parses, so that the
-/// file's values become the defaults and command-line options override them.
-/// @throws ConfigError for a bad file (unknown key, wrong type), IoError when unreadable.
+/// file's values become the defaults and command-line options override them. A bad file
+/// (unknown key, wrong type: ConfigError; unreadable: IoError) is reported by run().
 template <class Params>
 void preloadConfig(int argc, char** argv, Params& params) {
-  for (int i = 1; i < argc; ++i) {
-    std::string arg = argv[i], file;
-    if (arg == "--config" && i + 1 < argc)
-      file = argv[i + 1];
-    else if (arg.rfind("--config=", 0) == 0)
-      file = arg.substr(9);
-    if (!file.empty()) paramsFromJson(params, io::readDocument(file), file);
+  try {
+    for (int i = 1; i < argc; ++i) {
+      std::string arg = argv[i], file;
+      if (arg == "--config" && i + 1 < argc)
+        file = argv[i + 1];
+      else if (arg.rfind("--config=", 0) == 0)
+        file = arg.substr(9);
+      if (!file.empty()) paramsFromJson(params, io::readDocument(file), file);
+    }
+  } catch (...) {
+    deferError(std::current_exception());
   }
 }
 
@@ -70,10 +79,12 @@ void preloadConfig(int argc, char** argv, Params& params) {
 /// ("<tool>: error: ...") and the documented exit code. --help exits 0.
 int run(CLI::App& app, int argc, char** argv, const std::function<void()>& body);
 
-/// @brief Like run(), but also pre-loads --config into `params` and validates them.
+/// @brief Like run(), but first loads --config into `params` (config values become defaults,
+/// command-line options override them) and validates the parameters before `body`.
 template <class Params>
 int runStage(CLI::App& app, int argc, char** argv, Params& params,
              const std::function<void()>& body) {
+  preloadConfig(argc, argv, params);
   return run(app, argc, argv, [&] {
     params.validate();
     body();

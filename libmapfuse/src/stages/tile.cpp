@@ -1,0 +1,69 @@
+#include "mapfuse/stages/tile.hpp"
+
+#include <chrono>
+
+#include "mapfuse/core/log.hpp"
+#include "mapfuse/io/document.hpp"
+#include "mapfuse/io/json_geometry.hpp"
+#include "mapfuse/io/lsm_io.hpp"
+#include "mapfuse/io/stage_report.hpp"
+#include "mapfuse/tiling/split.hpp"
+
+namespace mapfuse::stages {
+
+void TileParams::validate() const {
+  requireParam(tile_size > 0.0, "TileParams", "tile_size", tile_size, "tile_size > 0");
+  requireParam(margin >= 0.0 && margin < tile_size / 2, "TileParams", "margin", margin,
+               "0 <= margin < tile_size / 2");
+  requireParam(min_keyframes >= 2, "TileParams", "min_keyframes", min_keyframes, ">= 2");
+  requireParam(format == "cbor" || format == "json", "TileParams", "format", format,
+               "cbor or json");
+}
+
+nlohmann::json runTile(const std::vector<std::string>& lsm_files, const std::filesystem::path& out,
+                       const TileParams& params) {
+  params.validate();
+  const auto t0 = std::chrono::steady_clock::now();
+  if (lsm_files.empty()) throw InputError("tile: no input LSM given");
+  std::vector<Lsm> lsms;
+  for (const auto& f : lsm_files) lsms.push_back(io::readLsm(f));
+  const tiling::TileGrid grid(params.tile_size, params.margin);
+  const auto tiles = tiling::splitIntoTiles(lsms, grid, params.min_keyframes);
+
+  nlohmann::json manifest = {{"format", "mapfuse.tiles"},
+                             {"version", 1},
+                             {"tile_size", params.tile_size},
+                             {"margin", params.margin},
+                             {"origin", io::originToJson(*lsms.front().origin)},
+                             {"tiles", nlohmann::json::array()}};
+  std::size_t files = 0;
+  for (const auto& [key, runs] : tiles) {
+    const tiling::Rect core = grid.core(key);
+    nlohmann::json entry = {{"name", key.name()},
+                            {"ix", key.ix},
+                            {"iy", key.iy},
+                            {"core", {core.min_x, core.min_y, core.max_x, core.max_y}},
+                            {"lsms", nlohmann::json::array()}};
+    for (const auto& run : runs) {
+      const std::string name = key.name() + "/" + run.drive_id + "." + params.format;
+      io::writeLsm(out / name, run);
+      entry["lsms"].push_back(name);
+      ++files;
+    }
+    manifest["tiles"].push_back(entry);
+  }
+  io::writeDocument(out / "tiles.json", manifest, 1);
+  io::writeResolvedConfig(out, "tile", paramsToJson(params));
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  io::writeSummary(out, "tile",
+                   {{"inputs", lsm_files.size()},
+                    {"tiles", tiles.size()},
+                    {"tile_lsms", files},
+                    {"seconds", seconds}});
+  MAPFUSE_INFO("tile: " << lsm_files.size() << " LSMs -> " << tiles.size() << " tiles, " << files
+                        << " tile LSMs in " << out.string());
+  return manifest;
+}
+
+}  // namespace mapfuse::stages
