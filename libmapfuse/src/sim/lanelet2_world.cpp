@@ -8,8 +8,8 @@ namespace {
 
 constexpr double kCenterlineStep = 0.5;       // m
 constexpr double kSuccessorTolerance = 0.1;   // m, shared bound end points
-constexpr double kArrowStopDistance = 2.0;    // m, lane end to stop line for an arrow
-constexpr double kMinArrowLaneLength = 15.0;  // m
+constexpr double kArrowStopDistance = 1.0;  // m, centreline vertex to stop line: a crossing
+constexpr double kMinArrowLaneRoom = 2.5;   // m, the arrow must fit into the lane
 
 bool isDrivable(const std::string& subtype) {
   return subtype.empty() || subtype == "road" || subtype == "highway" || subtype == "exit" ||
@@ -159,13 +159,18 @@ World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin
     if (world.truth.instances[i].cls != CrowdClass::kStopLine) continue;
     const Polyline stop = world.truth.instances[i].points;
     for (const auto& lane : world.lanes) {
-      if (distanceToPolyline(stop, lane.centerline.back()) > kArrowStopDistance) continue;
-      const double len = polylineLength(lane.centerline);
-      if (len < kMinArrowLaneLength) continue;
+      // Where the lane centreline crosses the stop line (closest vertex within tolerance).
       const auto cum = arcLengths(lane.centerline);
-      const Eigen::Vector3d c = pointAt(lane.centerline, cum, len - A.arrow_before_stop);
-      const Eigen::Vector3d t = (pointAt(lane.centerline, cum, len - A.arrow_before_stop + 0.5) -
-                                 pointAt(lane.centerline, cum, len - A.arrow_before_stop - 0.5))
+      double s_stop = -1.0, best = kArrowStopDistance;
+      for (std::size_t v = 0; v < lane.centerline.size(); ++v) {
+        const double dist = distanceToPolyline(stop, lane.centerline[v]);
+        if (dist < best) best = dist, s_stop = cum[v];
+      }
+      const double s_arrow = s_stop - A.arrow_before_stop;
+      if (s_stop < 0.0 || s_arrow < kMinArrowLaneRoom) continue;
+      const Eigen::Vector3d c = pointAt(lane.centerline, cum, s_arrow);
+      const Eigen::Vector3d t = (pointAt(lane.centerline, cum, s_arrow + 0.5) -
+                                 pointAt(lane.centerline, cum, s_arrow - 0.5))
                                     .normalized();
       const Eigen::Vector3d n(-t.y(), t.x(), 0.0);
       Polyline ring;

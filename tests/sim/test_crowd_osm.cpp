@@ -1,0 +1,131 @@
+// Lanelet2 OSM reader and the World built from it (tests for issue 3, simulate).
+#include <catch2/catch.hpp>
+
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/io/lanelet2_osm.hpp"
+#include "mapfuse/sim/lanelet2_world.hpp"
+#include "support/test_support.hpp"
+
+using namespace mapfuse;
+
+namespace {
+constexpr const char* kKarlsruhe = "data/maps/lanelet2_karlsruhe_mapping_example.osm";
+
+/// Two lanelets in a row (negative ids, as JOSM writes new elements), one unknown way type,
+/// one relation of an unknown type, a lanelet without optional tags.
+const char* kSmallMap = R"(<?xml version='1.0' encoding='UTF-8'?>
+<osm version='0.6' generator='test'>
+  <node id='-1' lat='49.0000000' lon='8.4000000'/>
+  <node id='-2' lat='49.0001000' lon='8.4000000'/>
+  <node id='-3' lat='49.0002000' lon='8.4000000'/>
+  <node id='-4' lat='49.0000000' lon='8.4000500'/>
+  <node id='-5' lat='49.0001000' lon='8.4000500'/>
+  <node id='-6' lat='49.0002000' lon='8.4000500'/>
+  <node id='-7' lat='49.0001000' lon='8.4001000'><tag k='ele' v='2.5'/></node>
+  <way id='-10'><nd ref='-1'/><nd ref='-2'/><tag k='type' v='line_thin'/><tag k='subtype' v='dashed'/></way>
+  <way id='-11'><nd ref='-2'/><nd ref='-3'/><tag k='type' v='line_thin'/><tag k='subtype' v='solid'/></way>
+  <way id='-12'><nd ref='-4'/><nd ref='-5'/><tag k='type' v='curbstone'/></way>
+  <way id='-13'><nd ref='-5'/><nd ref='-6'/><tag k='type' v='road_border'/></way>
+  <way id='-14'><nd ref='-2'/><nd ref='-5'/><tag k='type' v='stop_line'/></way>
+  <way id='-15'><nd ref='-5'/><nd ref='-7'/><tag k='type' v='hedge_of_mystery'/></way>
+  <way id='-16'><nd ref='-6'/><nd ref='-7'/></way>
+  <relation id='-20'><member type='way' ref='-10' role='left'/><member type='way' ref='-12' role='right'/>
+    <tag k='type' v='lanelet'/><tag k='subtype' v='road'/></relation>
+  <relation id='-21'><member type='way' ref='-11' role='left'/><member type='way' ref='-13' role='right'/>
+    <tag k='type' v='lanelet'/></relation>
+  <relation id='-22'><member type='way' ref='-15' role='outer'/><tag k='type' v='multipolygon'/></relation>
+</osm>
+)";
+
+template <class F>
+std::string parseErrorOf(F&& f) {
+  try {
+    f();
+  } catch (const ParseError& e) {
+    return e.what();
+  }
+  return "(no ParseError)";
+}
+}  // namespace
+
+TEST_CASE("Lanelet2: Karlsruhe example map counts", "[sim][osm]") {
+  const auto path = test::requireShared(kKarlsruhe);
+  const io::Lanelet2Map map = io::readLanelet2Osm(path);
+  CHECK(map.lanelets.size() == 371);
+  CHECK(map.countWays("stop_line") == 28);
+  CHECK(map.countWays("traffic_sign") == 11);
+  CHECK(map.countWays("traffic_light") == 10);
+  CHECK(map.node_count == 2258);
+  REQUIRE(map.first_node);
+  CHECK(map.first_node->lat == Approx(49.00345654351).margin(1e-11));
+
+  const sim::World world = sim::worldFromLanelet2(map, *map.first_node);
+  std::map<CrowdClass, int> count;
+  for (const auto& m : world.truth.instances) ++count[m.cls];
+  CHECK(count[CrowdClass::kStopLine] == 28);
+  CHECK(count[CrowdClass::kTrafficSign] == 11);
+  CHECK(count[CrowdClass::kTrafficLight] == 10);
+  CHECK(count[CrowdClass::kCrosswalk] == 8);
+  CHECK(count[CrowdClass::kPole] == 21);  // placed under every sign and light
+  CHECK(count[CrowdClass::kGroundArrow] > 0);
+  // The lane graph is connected: most lanes have a successor.
+  int with_successor = 0;
+  for (const auto& l : world.lanes) with_successor += !l.successors.empty();
+  CHECK(with_successor > 0.8 * world.lanes.size());
+}
+
+TEST_CASE("Lanelet2: negative ids, missing optional tags and unknown types load", "[sim][osm]") {
+  const io::Lanelet2Map map = io::parseLanelet2Osm(kSmallMap, "small.osm");
+  REQUIRE(map.lanelets.size() == 2);
+  CHECK(map.lanelets[0].id == -20);
+  CHECK(map.lanelets[1].subtype.empty());
+  CHECK(map.lanelets[1].one_way);
+  CHECK(map.skipped_way_types.at("hedge_of_mystery") == 1);
+  CHECK(map.skipped_way_types.at("(none)") == 1);
+  CHECK(map.skipped_relation_types.at("multipolygon") == 1);
+  CHECK(map.way(-15)->points[1].alt == 2.5);
+
+  const sim::World world = sim::worldFromLanelet2(map, *map.first_node);
+  REQUIRE(world.lanes.size() == 2);
+  // Both bounds run north; the left bound (x = 8.4) is west, so the lanes drive north and the
+  // first connects to the second through the shared end nodes.
+  CHECK(world.lanes[0].centerline.back().y() > world.lanes[0].centerline.front().y());
+  REQUIRE(world.lanes[0].successors.size() == 1);
+  CHECK(world.lanes[0].successors[0] == 1);
+  int lines = 0, stops = 0;
+  for (const auto& m : world.truth.instances) {
+    lines += m.cls == CrowdClass::kLaneLine;
+    stops += m.cls == CrowdClass::kStopLine;
+  }
+  CHECK(lines == 2);
+  CHECK(stops == 1);
+  CHECK(world.stats.at("skipped_ways") == 2);
+}
+
+TEST_CASE("Lanelet2: malformed maps are ParseErrors naming file and element", "[sim][osm]") {
+  const std::string good = kSmallMap;
+  // Truncated XML.
+  CHECK_THAT(parseErrorOf([&] { io::parseLanelet2Osm(good.substr(0, good.size() / 2), "t.osm"); }),
+             Catch::Contains("t.osm") && Catch::Contains("XML"));
+  // A way referring to a node that does not exist.
+  std::string missing = good;
+  missing.replace(missing.find("<nd ref='-3'/>"), 14, "<nd ref='-99'/>");
+  CHECK_THAT(parseErrorOf([&] { io::parseLanelet2Osm(missing, "m.osm"); }),
+             Catch::Contains("m.osm") && Catch::Contains("way -11") && Catch::Contains("-99"));
+  // A latitude that is not a number / out of range.
+  std::string bad_lat = good;
+  bad_lat.replace(bad_lat.find("lat='49.0001000' lon='8.4000000'"), 16, "lat='north'");
+  CHECK_THAT(parseErrorOf([&] { io::parseLanelet2Osm(bad_lat, "b.osm"); }),
+             Catch::Contains("b.osm") && Catch::Contains("node -2 lat"));
+  std::string far_lat = good;
+  far_lat.replace(far_lat.find("lat='49.0001000' lon='8.4000000'"), 16, "lat='91.00000'");
+  CHECK_THAT(parseErrorOf([&] { io::parseLanelet2Osm(far_lat, "f.osm"); }),
+             Catch::Contains("node -2 lat") && Catch::Contains("out of range"));
+  // A lanelet bound that does not exist.
+  std::string no_bound = good;
+  no_bound.replace(no_bound.find("ref='-13' role='right'"), 9, "ref='-77'");
+  CHECK_THAT(parseErrorOf([&] { io::parseLanelet2Osm(no_bound, "n.osm"); }),
+             Catch::Contains("relation -21"));
+  // Missing file: IoError.
+  CHECK_THROWS_AS(io::readLanelet2Osm("/nonexistent/map.osm"), IoError);
+}

@@ -1,0 +1,228 @@
+// The crowdsourced-drive simulator (issue 3): error statistics against the configured sigmas,
+// determinism, ground-truth round trips, LSM consistency, frames reprojection, app exit codes.
+#include <catch2/catch.hpp>
+#include <fstream>
+#include <map>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "mapfuse/core/params.hpp"
+#include "mapfuse/io/document.hpp"
+#include "mapfuse/io/json_geometry.hpp"
+#include "mapfuse/io/lsm_io.hpp"
+#include "mapfuse/io/vector_map_io.hpp"
+#include "mapfuse/sim/polyline.hpp"
+#include "mapfuse/stages/simulate.hpp"
+#include "support/test_support.hpp"
+
+using namespace mapfuse;
+namespace fs = std::filesystem;
+
+namespace {
+constexpr double kGpsRmsTolerance = 0.10;        // relative, issue 3
+constexpr double kDriftTolerance = 0.20;         // relative, issue 3
+constexpr double kReprojectionTolerance = 0.01;  // m, issue 3
+constexpr double kMaskAgreement = 0.9;     // share of polyline pixels painted with their class
+constexpr double kLsmTruthDistance = 0.5;  // m, mean distance of a true-pose LSM point to its truth
+
+stages::SimulateParams smallParams() {
+  stages::SimulateParams p;
+  p.traversals = 3;
+  p.routes = 2;
+  p.route_length = 300.0;
+  return p;
+}
+
+std::map<std::string, std::string> readTree(const fs::path& root) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(root))
+    if (e.is_regular_file())
+      files[fs::relative(e.path(), root).string()] = test::readText(e.path());
+  return files;
+}
+
+std::vector<std::vector<double>> readCsv(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);  // header
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) row.push_back(cell.empty() ? 0.0 : std::atof(cell.c_str()));
+    rows.push_back(row);
+  }
+  return rows;
+}
+}  // namespace
+
+TEST_CASE("simulate: configs/simulate.json mirrors the defaults, defaults are valid", "[sim]") {
+  const auto j = io::readDocument(fs::path(MAPFUSE_SOURCE_DIR) / "configs" / "simulate.json");
+  CHECK(j == paramsToJson(stages::SimulateParams{}));
+  CHECK_NOTHROW(stages::SimulateParams{}.validate());
+  stages::SimulateParams bad;
+  bad.level = "pixels";
+  CHECK_THROWS_AS(bad.validate(), ConfigError);
+}
+
+TEST_CASE("simulate: measured GPS and odometry errors match the configured sigmas", "[sim]") {
+  stages::SimulateParams p;
+  p.level = "truth";
+  p.traversals = 120;
+  p.routes = 12;
+  p.route_length = 500.0;
+  const auto out = test::tempDir("sim_stats");
+  const auto s = stages::runSimulate(p, out).summary;
+  const double gps = s.at("gps_error_rms_m"), gps_expected = s.at("gps_error_rms_expected_m");
+  const double drift = s.at("odometry_drift_per_100m_rms_m");
+  const double drift_expected = s.at("odometry_drift_per_100m_expected_m");
+  INFO("gps " << gps << " expected " << gps_expected << "; drift " << drift << " expected "
+              << drift_expected);
+  CHECK(std::abs(gps / gps_expected - 1.0) < kGpsRmsTolerance);
+  CHECK(std::abs(drift / drift_expected - 1.0) < kDriftTolerance);
+  // Outliers are injected at the configured rate (binomial, 4 sigma).
+  const double n = s.at("gps_fixes"), k = s.at("gps_outliers_injected");
+  const double q = p.drive.gps_outlier_probability;
+  CHECK(std::abs(k - n * q) < 4.0 * std::sqrt(n * q * (1 - q)));
+}
+
+TEST_CASE("simulate: one seed gives byte-identical outputs", "[sim]") {
+  auto p = smallParams();
+  p.level = "lsm";
+  const auto a = test::tempDir("sim_det_a"), b = test::tempDir("sim_det_b");
+  stages::runSimulate(p, a);
+  stages::runSimulate(p, b);
+  const auto ta = readTree(a), tb = readTree(b);
+  CHECK(ta.size() > 5);
+  CHECK(ta == tb);
+  p.seed = 7;
+  const auto c = test::tempDir("sim_det_c");
+  stages::runSimulate(p, c);
+  CHECK(readTree(c) != ta);
+}
+
+TEST_CASE("simulate: ground truth round-trips and LSMs are consistent with it", "[sim]") {
+  auto p = smallParams();
+  p.format = "json";
+  const auto out = test::tempDir("sim_truth");
+  stages::runSimulate(p, out);
+  const VectorMap truth = io::readVectorMap(out / "truth" / "vector_map.json");
+  CHECK_NOTHROW(validateVectorMap(truth, "truth"));
+  io::writeVectorMap(out / "again.json", truth);
+  CHECK(io::readDocument(out / "again.json") ==
+        io::readDocument(out / "truth" / "vector_map.json"));
+  std::map<int64_t, const MapInstance*> by_id;
+  for (const auto& m : truth.instances) by_id[m.id] = &m;
+  int checked = 0;
+  for (const auto& e : fs::directory_iterator(out / "lsm")) {
+    const Lsm lsm = io::readLsm(e.path());
+    CHECK_NOTHROW(validateLsm(lsm, e.path().string()));
+    CHECK(lsm.frame == LsmFrame::kOdom);
+    CHECK(!lsm.gps.empty());
+    // True keyframe poses from the trajectory file.
+    const auto traj = io::readDocument(out / "truth" / (lsm.drive_id + ".trajectory.json"));
+    REQUIRE(traj.at("poses").size() == lsm.keyframes.size());
+    std::map<int64_t, Pose3> T_true;
+    for (const auto& q : traj.at("poses"))
+      T_true[q.at("id")] = io::readPose(io::JsonView(q.at("pose"), "traj"));
+    double sum = 0.0;
+    int n = 0;
+    for (const auto& el : lsm.elements) {
+      if (el.truth_id < 0) continue;
+      REQUIRE(by_id.count(el.truth_id));
+      const MapInstance& m = *by_id[el.truth_id];
+      CHECK(el.cls == m.cls);
+      if (m.cls != CrowdClass::kLaneLine) continue;
+      if (m.attributes.style == LineStyle::kDashed)  // one dash per element
+        CHECK(polylineLength(el.points_body) < 3.0 + 0.5);
+      for (const auto& pb : el.points_body) {
+        sum += sim::distanceToPolyline(m.points, T_true.at(el.anchor) * pb);
+        ++n;
+      }
+    }
+    REQUIRE(n > 0);
+    INFO(lsm.drive_id << " mean distance " << sum / n);
+    CHECK(sum / n < kLsmTruthDistance);
+    ++checked;
+  }
+  CHECK(checked == p.traversals);
+}
+
+TEST_CASE("simulate: frames pixels re-projected with the true pose land on their element",
+          "[sim]") {
+  auto p = smallParams();
+  p.level = "frames";
+  p.traversals = 1;
+  p.route_length = 150.0;
+  p.frames.pixel_sigma = 0.0;
+  const auto out = test::tempDir("sim_frames");
+  stages::runSimulate(p, out);
+  const VectorMap truth = io::readVectorMap(out / "truth" / "vector_map.json");
+  std::map<int64_t, const MapInstance*> by_id;
+  for (const auto& m : truth.instances) by_id[m.id] = &m;
+  fs::path drive;
+  for (const auto& e : fs::directory_iterator(out / "frames")) drive = e.path();
+  const auto calib = io::readDocument(drive / "calibration.json");
+  Eigen::Matrix3d K;
+  for (int i = 0; i < 9; ++i) K(i / 3, i % 3) = calib.at("K")[i];
+  const Pose3 T_body_cam = io::readPose(io::JsonView(calib.at("T_body_cam"), "calib"));
+  const auto poses = readCsv(drive / "truth" / "poses.csv");
+  std::ifstream in(drive / "observations.jsonl");
+  std::string line;
+  int checked = 0, painted = 0;
+  double worst = 0.0;
+  while (std::getline(in, line)) {
+    const auto j = nlohmann::json::parse(line);
+    const int f = j.at("frame");
+    const auto& r = poses.at(f);
+    Pose3 T = Pose3::Identity();
+    T.linear() = Eigen::Quaterniond(r[5], r[6], r[7], r[8]).toRotationMatrix();
+    T.translation() = Eigen::Vector3d(r[2], r[3], r[4]);
+    const Pose3 T_enu_cam = T * T_body_cam;
+    char name[32];
+    std::snprintf(name, sizeof name, "masks/%06d.png", f);
+    const cv::Mat mask = cv::imread((drive / name).string(), cv::IMREAD_UNCHANGED);
+    REQUIRE(!mask.empty());
+    for (const auto& o : j.at("ground")) {
+      if (o.at("class") != "lane_line") continue;
+      const MapInstance& m = *by_id.at(o.at("truth_id").get<int64_t>());
+      for (const auto& px : o.at("pixels")) {
+        const Eigen::Vector3d ray =
+            T_enu_cam.linear() * (K.inverse() * Eigen::Vector3d(px[0], px[1], 1.0));
+        const Eigen::Vector3d c = T_enu_cam.translation();
+        const double lambda = (m.points[0].z() - c.z()) / ray.z();  // road plane of the element
+        const Eigen::Vector3d hit = c + lambda * ray;
+        worst = std::max(worst, sim::distanceToPolyline(m.points, hit));
+        const int u = static_cast<int>(std::lround(px[0].get<double>()));
+        const int v = static_cast<int>(std::lround(px[1].get<double>()));
+        painted +=
+            mask.at<uint8_t>(std::clamp(v, 0, mask.rows - 1), std::clamp(u, 0, mask.cols - 1)) == 1;
+        ++checked;
+      }
+    }
+  }
+  REQUIRE(checked > 100);
+  CHECK(worst < kReprojectionTolerance);
+  CHECK(painted > kMaskAgreement * checked);
+}
+
+TEST_CASE("simulate: app exit codes", "[sim][app]") {
+  const auto dir = test::tempDir("sim_app");
+  const std::string app = test::appPath("simulate").string();
+  test::writeText(dir / "bad.json", R"({"traversals": 2, "no_such_key": 1})");
+  CHECK(test::runCommand(app + " -o " + (dir / "o1").string() + " --config " +
+                         (dir / "bad.json").string() + " 2>/dev/null") == 2);
+  CHECK(test::runCommand(app + " -o " + (dir / "o2").string() +
+                         " --map /nonexistent/map.osm 2>/dev/null") == 4);
+  CHECK(test::runCommand(app + " -o " + (dir / "o3").string() + " --level pixels 2>/dev/null") ==
+        2);
+  test::writeText(dir / "broken.osm",
+                  "<?xml version='1.0'?><osm><node id='1' lat='x' lon='8'/></osm>");
+  CHECK(test::runCommand(app + " -o " + (dir / "o4").string() + " --map " +
+                         (dir / "broken.osm").string() + " 2>/dev/null") == 3);
+  CHECK(test::runCommand(app + " --help >/dev/null") == 0);
+  CHECK(test::runCommand(app + " -o " + (dir / "o5").string() +
+                         " --traversals 2 --route-length 200 >/dev/null 2>&1") == 0);
+  CHECK(fs::exists(dir / "o5" / "simulate.summary.json"));
+}
