@@ -182,3 +182,30 @@ TEST_CASE("inconsistent LSM content is refused as bad input", "[io][lsm]") {
   CHECK_THAT(msg, Catch::Contains("elements[0].anchor 77"));
   CHECK_THROWS_AS(io::readLsm(dir / "a.json"), InputError);
 }
+
+TEST_CASE("info describes files and derives the batch origin", "[io][info]") {
+  const auto dir = test::tempDir("info");
+  Lsm lsm = test::makeLsm();
+  io::writeLsm(dir / "enu.json", lsm);
+  const std::string info = test::appPath("info").string();
+  REQUIRE(test::runCommand(info + " " + (dir / "enu.json").string() + " > " +
+                           (dir / "out.txt").string()) == 0);
+  const auto j = io::Json::parse(test::readText(dir / "out.txt"));
+  CHECK(j["format"] == "mapfuse.lsm");
+  CHECK(j["elements"] == 2);
+  CHECK(j["keyframes"] == 3);
+  CHECK(j["trajectory_length_m"].get<double>() == Approx(10.0).epsilon(0.01));
+  // An odom LSM: the origin is its first GPS fix.
+  lsm.frame = LsmFrame::kOdom;
+  lsm.origin.reset();
+  io::writeLsm(dir / "odom.cbor", lsm);
+  REQUIRE(test::runCommand(info + " --origin " + (dir / "odom.cbor").string() + " > " +
+                           (dir / "o.txt").string()) == 0);
+  CHECK(test::readText(dir / "o.txt") == "49.011,8.4228,113\n");
+  lsm.gps.clear();
+  io::writeLsm(dir / "nogps.json", lsm);
+  CHECK(test::runCommand(info + " --origin " + (dir / "nogps.json").string() + " 2>/dev/null") ==
+        3);
+  test::writeText(dir / "junk.json", "{\"format\": 3}");
+  CHECK(test::runCommand(info + " " + (dir / "junk.json").string() + " 2>/dev/null") == 3);
+}

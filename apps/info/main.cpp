@@ -1,0 +1,33 @@
+// info: what mapfuse files hold (one JSON object per line on stdout), or the shared ENU origin
+// of a batch (--origin), for scripts and Makefiles.
+#include <iomanip>
+#include <iostream>
+
+#include "mapfuse/core/cli.hpp"
+#include "mapfuse/stages/info.hpp"
+
+int main(int argc, char** argv) {
+  using namespace mapfuse;
+  CLI::App app(
+      "Describe mapfuse files (LSM, vector map, tiles, summary) as JSON lines on stdout; with "
+      "--origin print the ENU origin \"lat,lon,alt\" of the first LSM (its origin, else its "
+      "first GPS fix), the value per-drive georef jobs of one batch share.",
+      "info");
+  std::vector<std::string> files;
+  bool origin = false;
+  cli::CommonOptions common;
+  app.add_option("files", files, "mapfuse files, @list.txt, or - for a list on stdin")->required();
+  app.add_flag("--origin", origin, "Print the shared ENU origin of the first LSM as lat,lon,alt");
+  cli::addCommonOptions(app, common);
+  return cli::run(app, argc, argv, [&] {
+    cli::applyCommonOptions(common);
+    const auto paths = cli::expandInputList(files);
+    if (origin) {
+      const geo::GeoOrigin o = stages::originOfLsm(paths.at(0));
+      std::cout << std::setprecision(12) << o.lat << ',' << o.lon << ',' << std::setprecision(8)
+                << o.alt << '\n';
+      return;
+    }
+    for (const auto& p : paths) std::cout << stages::describeFile(p).dump() << '\n';
+  });
+}
