@@ -1,0 +1,51 @@
+#pragma once
+/// @file Georeferencing of one LSM (§4.1, eq. (4)-(6), Song et al. 2023): a Ceres pose graph over
+/// its keyframes with odometry relative-pose factors and GPS position factors, robust to multipath
+/// (Cauchy loss, then explicit chi-square rejection and re-solve).
+#include <string>
+#include <vector>
+
+#include "mapfuse/core/lsm.hpp"
+#include "mapfuse/geo/origin.hpp"
+
+namespace mapfuse::fusion {
+
+struct GeorefSettings {
+  double odom_sigma_translation_per_m = 0.02;  ///< relative odometry sigma per metre travelled
+  double odom_sigma_rotation_per_m = 0.001;    ///< rad per metre travelled
+  double odom_min_sigma_translation = 0.02;    ///< m, floor of the relative sigma
+  double odom_min_sigma_rotation = 0.002;      ///< rad, floor of the relative sigma
+  double gps_time_offset = 0.0;  ///< s, added to GPS stamps before association (receiver latency)
+  double gps_max_extrapolation = 0.5;  ///< s, fixes further outside the keyframe span are dropped
+  double cauchy_scale = 2.0;           ///< Cauchy loss scale on whitened GPS residuals (sigmas)
+  double chi2_gate = 11.34;      ///< reject fixes with whitened squared residual above (3 dof, 99%)
+  int max_rejection_rounds = 3;  ///< solve / reject / re-solve rounds
+  int max_iterations = 100;      ///< Levenberg-Marquardt iterations per solve
+};
+
+struct GeorefResult {
+  Lsm lsm;  ///< keyframes in `enu` of the origin; elements unchanged (they ride their anchors)
+  bool converged = false;
+  int iterations = 0;  ///< summed over solves
+  int gps_total = 0, gps_used = 0, gps_rejected = 0, gps_dropped = 0;
+  std::vector<double> rejected_stamps;  ///< s, stamps of rejected fixes (multipath)
+  double residual_mean = 0.0;  ///< m, horizontal+vertical GPS residual norm over accepted fixes
+  double residual_rms = 0.0;   ///< m
+  double residual_max = 0.0;   ///< m
+  double final_cost = 0.0;     ///< Ceres cost of the last solve
+};
+
+/// @brief Georeferences one LSM into ENU of `origin`.
+/// @param lsm input (keyframes in odom, or already in enu: only relative motion is used)
+/// @param origin the run's shared ENU origin
+/// @param source file name for error messages
+/// @throws InputError when the LSM has no keyframe or no usable GPS fix.
+GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin,
+                             const GeorefSettings& settings, const std::string& source);
+
+/// @brief Relative odometry covariance between two consecutive keyframes: the growth of their
+/// absolute covariances (diagonal), bounded below by the distance-proportional model.
+Matrix6d relativeOdometryCovariance(const Keyframe& a, const Keyframe& b, double sigma_t_per_m,
+                                    double sigma_r_per_m, double min_sigma_t, double min_sigma_r);
+
+}  // namespace mapfuse::fusion

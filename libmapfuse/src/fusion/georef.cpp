@@ -1,0 +1,214 @@
+#include "mapfuse/fusion/georef.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "factors.hpp"
+#include "mapfuse/core/error.hpp"
+
+namespace mapfuse::fusion {
+
+using detail::PoseParams;
+
+Matrix6d relativeOdometryCovariance(const Keyframe& a, const Keyframe& b, double sigma_t_per_m,
+                                    double sigma_r_per_m, double min_sigma_t, double min_sigma_r) {
+  const double dist = (b.T_frame_body.translation() - a.T_frame_body.translation()).norm();
+  const double st = std::max(min_sigma_t, sigma_t_per_m * dist);
+  const double sr = std::max(min_sigma_r, sigma_r_per_m * dist);
+  Matrix6d cov = diagonalCovariance(st, sr);
+  const Vector6d growth = b.covariance.diagonal() - a.covariance.diagonal();
+  for (int i = 0; i < 6; ++i) cov(i, i) = std::max(cov(i, i), growth(i));
+  return cov;
+}
+
+namespace {
+
+struct GpsObs {
+  int index;            // into lsm.gps
+  int kf_a, kf_b;       // keyframe interval (first/last pair at the ends)
+  double alpha;         // interpolation weight of kf_b
+  Eigen::Vector3d enu;  // measured position
+  Eigen::Matrix3d sqrt_info;
+  bool rejected = false;
+};
+
+// Yaw + translation fit of odometry positions onto ENU positions (4 DOF: odom z is up).
+Pose3 fitYawTranslation(const std::vector<Eigen::Vector3d>& o,
+                        const std::vector<Eigen::Vector3d>& g, const std::vector<char>& use) {
+  Eigen::Vector3d mo = Eigen::Vector3d::Zero(), mg = Eigen::Vector3d::Zero();
+  int n = 0;
+  for (std::size_t k = 0; k < o.size(); ++k)
+    if (use[k]) mo += o[k], mg += g[k], ++n;
+  Pose3 T = Pose3::Identity();
+  if (n == 0) return T;
+  mo /= n;
+  mg /= n;
+  double sxx = 0, sxy = 0;
+  for (std::size_t k = 0; k < o.size(); ++k) {
+    if (!use[k]) continue;
+    const Eigen::Vector3d a = o[k] - mo, b = g[k] - mg;
+    sxx += a.x() * b.x() + a.y() * b.y();
+    sxy += a.x() * b.y() - a.y() * b.x();
+  }
+  const double yaw = (n >= 2 && std::hypot(sxx, sxy) > 1e-9) ? std::atan2(sxy, sxx) : 0.0;
+  T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = mg - T.linear() * mo;
+  return T;
+}
+
+}  // namespace
+
+GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin, const GeorefSettings& s,
+                             const std::string& source) {
+  if (lsm.keyframes.size() < 2)
+    throw InputError(source + ": georef needs at least 2 keyframes, the LSM has " +
+                     std::to_string(lsm.keyframes.size()));
+  const geo::EnuConverter enu(origin);
+  const auto& kfs = lsm.keyframes;
+  const int nk = int(kfs.size());
+  GeorefResult res;
+  res.gps_total = int(lsm.gps.size());
+
+  // Associate each fix with the keyframe interval around its (offset-corrected) stamp.
+  std::vector<GpsObs> obs;
+  for (int g = 0; g < int(lsm.gps.size()); ++g) {
+    const GpsFix& fix = lsm.gps[g];
+    const double t = fix.stamp + s.gps_time_offset;
+    GpsObs o{g, 0, 1, 0.0, enu.toEnu(fix.position), Eigen::Matrix3d::Identity()};
+    if (t <= kfs.front().stamp) {
+      if (kfs.front().stamp - t > s.gps_max_extrapolation) {
+        ++res.gps_dropped;
+        continue;
+      }
+    } else if (t >= kfs.back().stamp) {
+      if (t - kfs.back().stamp > s.gps_max_extrapolation) {
+        ++res.gps_dropped;
+        continue;
+      }
+      o.kf_a = nk - 2;
+      o.kf_b = nk - 1;
+      o.alpha = 1.0;
+    } else {
+      const auto it = std::upper_bound(kfs.begin(), kfs.end(), t,
+                                       [](double v, const Keyframe& k) { return v < k.stamp; });
+      o.kf_b = int(it - kfs.begin());
+      o.kf_a = o.kf_b - 1;
+      const double dt = kfs[o.kf_b].stamp - kfs[o.kf_a].stamp;
+      o.alpha = dt > 0 ? (t - kfs[o.kf_a].stamp) / dt : 0.0;
+    }
+    if (!(fix.sigma_h > 0) || !(fix.sigma_v > 0))
+      throw InputError(source + ": gps[" + std::to_string(g) + "] has a non-positive sigma");
+    o.sqrt_info = Eigen::Vector3d(1 / fix.sigma_h, 1 / fix.sigma_h, 1 / fix.sigma_v).asDiagonal();
+    obs.push_back(o);
+  }
+  if (obs.empty()) throw InputError(source + ": no GPS fix within the keyframe time span");
+
+  // Initial T_enu_odom: yaw + translation fit, refitted on the inliers of the first fit.
+  std::vector<Eigen::Vector3d> po, pg;
+  for (const auto& o : obs) {
+    po.push_back(
+        interpolate(kfs[o.kf_a].T_frame_body, kfs[o.kf_b].T_frame_body, o.alpha).translation());
+    pg.push_back(o.enu);
+  }
+  std::vector<char> use(obs.size(), 1);
+  Pose3 T_enu_odom = fitYawTranslation(po, pg, use);
+  {
+    std::vector<double> r;
+    for (std::size_t k = 0; k < po.size(); ++k) r.push_back((T_enu_odom * po[k] - pg[k]).norm());
+    std::vector<double> sorted = r;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double gate = std::max(3.0 * sorted[sorted.size() / 2], 3.0 * lsm.gps[0].sigma_h);
+    for (std::size_t k = 0; k < r.size(); ++k) use[k] = r[k] <= gate;
+    T_enu_odom = fitYawTranslation(po, pg, use);
+  }
+
+  std::vector<PoseParams> poses(nk);
+  for (int i = 0; i < nk; ++i) poses[i].set(T_enu_odom * kfs[i].T_frame_body);
+
+  // Relative odometry measurements (eq. 5) are fixed from the input.
+  std::vector<Pose3> rel(nk);
+  std::vector<Matrix6d> rel_L(nk);
+  for (int i = 0; i + 1 < nk; ++i) {
+    rel[i] = kfs[i].T_frame_body.inverse() * kfs[i + 1].T_frame_body;
+    rel_L[i] = detail::sqrtInformation<6>(relativeOdometryCovariance(
+        kfs[i], kfs[i + 1], s.odom_sigma_translation_per_m, s.odom_sigma_rotation_per_m,
+        s.odom_min_sigma_translation, s.odom_min_sigma_rotation));
+  }
+
+  for (int round = 0; round < std::max(1, s.max_rejection_rounds); ++round) {
+    ceres::Problem problem;
+    for (auto& p : poses) detail::addPose(problem, p);
+    for (int i = 0; i + 1 < nk; ++i)
+      problem.AddResidualBlock(detail::RelativePoseFactor::create(rel[i], rel_L[i]), nullptr,
+                               poses[i].t, poses[i].q, poses[i + 1].t, poses[i + 1].q);
+    // eq. (6): GPS position factors, Cauchy-robust in the first round.
+    int active = 0;
+    for (const auto& o : obs) {
+      if (o.rejected) continue;
+      ++active;
+      ceres::LossFunction* loss = round == 0 ? new ceres::CauchyLoss(s.cauchy_scale) : nullptr;
+      problem.AddResidualBlock(
+          detail::InterpolatedPositionFactor::create(o.enu, o.alpha, o.sqrt_info), loss,
+          poses[o.kf_a].t, poses[o.kf_b].t);
+    }
+    if (active < 2) {  // a single fix fixes position only: hold the initial heading
+      problem.SetParameterBlockConstant(poses[0].q);
+    }
+    ceres::Solver::Options opt;
+    opt.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+    opt.max_num_iterations = s.max_iterations;
+    opt.num_threads = 1;
+    ceres::Solver::Summary summary;
+    ceres::Solve(opt, &problem, &summary);
+    res.iterations += int(summary.iterations.size());
+    res.converged = summary.termination_type == ceres::CONVERGENCE;
+    res.final_cost = summary.final_cost;
+
+    // chi-square gate on whitened residuals of the still-active fixes
+    int newly = 0;
+    for (auto& o : obs) {
+      if (o.rejected) continue;
+      const Eigen::Vector3d p = (1 - o.alpha) * Eigen::Map<Eigen::Vector3d>(poses[o.kf_a].t) +
+                                o.alpha * Eigen::Map<Eigen::Vector3d>(poses[o.kf_b].t);
+      const double chi2 = (o.sqrt_info * (p - o.enu)).squaredNorm();
+      if (chi2 > s.chi2_gate && active - newly > 2) {
+        o.rejected = true;
+        ++newly;
+      }
+    }
+    if (newly == 0 && round > 0) break;
+  }
+
+  // Residual statistics over accepted fixes.
+  std::vector<double> r;
+  for (const auto& o : obs) {
+    const Eigen::Vector3d p = (1 - o.alpha) * Eigen::Map<Eigen::Vector3d>(poses[o.kf_a].t) +
+                              o.alpha * Eigen::Map<Eigen::Vector3d>(poses[o.kf_b].t);
+    if (o.rejected) {
+      ++res.gps_rejected;
+      res.rejected_stamps.push_back(lsm.gps[o.index].stamp);
+    } else {
+      r.push_back((p - o.enu).norm());
+    }
+  }
+  res.gps_used = int(r.size());
+  double sum = 0, sq = 0;
+  for (double v : r) sum += v, sq += v * v, res.residual_max = std::max(res.residual_max, v);
+  if (!r.empty()) res.residual_mean = sum / r.size(), res.residual_rms = std::sqrt(sq / r.size());
+
+  res.lsm = lsm;
+  res.lsm.frame = LsmFrame::kEnu;
+  res.lsm.origin = origin;
+  for (int i = 0; i < nk; ++i) {
+    Keyframe& k = res.lsm.keyframes[i];
+    k.T_frame_body = poses[i].get();
+    // Absolute uncertainty after fusion: GPS-level position, odometry-level attitude.
+    const double sh = lsm.gps.front().sigma_h / std::sqrt(std::max(1.0, double(res.gps_used) / nk));
+    Matrix6d cov = Matrix6d::Zero();
+    cov.diagonal() << sh * sh, sh * sh, 4 * sh * sh, kfs[i].covariance.diagonal().tail<3>();
+    k.covariance = cov;
+  }
+  return res;
+}
+
+}  // namespace mapfuse::fusion

@@ -1,0 +1,101 @@
+// georef: GPS + odometry pose graph per LSM (eq. 4-6), against the fixture's ground truth.
+#include <catch2/catch.hpp>
+
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/fusion/georef.hpp"
+#include "mapfuse/io/lsm_io.hpp"
+#include "mapfuse/stages/georef.hpp"
+#include "sim_fixture.hpp"
+#include "support/test_support.hpp"
+
+using namespace mapfuse;
+
+namespace {
+// Keyframe error after georef is at GPS level: the per-traversal bias (2 m) plus a margin for
+// white noise and drift; never the outlier magnitude (10-20 m).
+constexpr double kGpsBias = 2.0;
+constexpr double kGpsLevelMargin = 1.0;                     // m
+constexpr double kMaxSingleKeyframeError = kGpsBias + 2.0;  // m, no keyframe pulled by outliers
+}  // namespace
+
+TEST_CASE("georef puts keyframes at GPS level and rejects multipath fixes") {
+  const auto world = test::trueWorld();
+  test::FixtureOptions o;
+  o.gps_bias = kGpsBias;
+  o.outlier_probability = 0.1;
+  int injected = 0, rejected = 0;
+  for (int t = 0; t < 4; ++t) {
+    const auto tr = test::makeTraversal(world, t, o);
+    injected += tr.outliers;
+    const auto r = fusion::georeferenceLsm(tr.lsm, test::fixtureOrigin(), {}, "fixture");
+    CHECK(r.converged);
+    CHECK(r.lsm.frame == LsmFrame::kEnu);
+    double sum = 0, worst = 0;
+    for (std::size_t k = 0; k < tr.truth.size(); ++k) {
+      const double e = (r.lsm.keyframes[k].T_frame_body.translation() - tr.truth[k].translation())
+                           .head<2>()
+                           .norm();
+      sum += e;
+      worst = std::max(worst, e);
+    }
+    const double mean = sum / tr.truth.size();
+    INFO("traversal " << t << " mean " << mean << " worst " << worst << " rejected "
+                      << r.gps_rejected << " of " << tr.outliers);
+    CHECK(mean < tr.gps_bias.head<2>().norm() + kGpsLevelMargin);
+    CHECK(worst < kMaxSingleKeyframeError);
+    CHECK(r.gps_rejected >= tr.outliers);      // every injected outlier rejected ...
+    CHECK(r.gps_rejected <= tr.outliers + 2);  // ... and few good fixes with it
+    rejected += r.gps_rejected;
+    // elements ride their anchors: the body-frame points are untouched
+    CHECK(r.lsm.elements.size() == tr.lsm.elements.size());
+    CHECK(r.lsm.elements[0].points_body[0] == tr.lsm.elements[0].points_body[0]);
+  }
+  CHECK(injected > 0);
+}
+
+TEST_CASE("georef rejects LSMs it cannot georeference") {
+  const auto world = test::trueWorld();
+  auto tr = test::makeTraversal(world, 0, {});
+  tr.lsm.gps.clear();
+  CHECK_THROWS_AS(fusion::georeferenceLsm(tr.lsm, test::fixtureOrigin(), {}, "x.json"), InputError);
+  tr.lsm.keyframes.clear();
+  CHECK_THROWS_AS(fusion::georeferenceLsm(tr.lsm, test::fixtureOrigin(), {}, "x.json"), InputError);
+  CHECK_THROWS_AS(stages::parseOrigin("49.0,8.4"), ConfigError);
+  CHECK_THROWS_AS(stages::parseOrigin("91,8.4,1"), ConfigError);
+  CHECK(stages::parseOrigin("49.5,8.25,100").lon == Approx(8.25));
+}
+
+TEST_CASE("configs/georef.json mirrors GeorefParams defaults") {
+  const auto j = nlohmann::json::parse(
+      test::readText(std::filesystem::path(MAPFUSE_SOURCE_DIR) / "configs/georef.json"));
+  CHECK(j == paramsToJson(stages::GeorefParams{}));
+  CHECK_NOTHROW(stages::GeorefParams{}.validate());
+}
+
+TEST_CASE("georef app: shared origin, summary, exit codes") {
+  const auto dir = test::tempDir("georef_app");
+  const auto world = test::trueWorld();
+  for (int t = 0; t < 2; ++t)
+    io::writeLsm(dir / ("t" + std::to_string(t) + ".lsm.json"),
+                 test::makeTraversal(world, t, {}).lsm);
+  test::writeText(dir / "list.txt",
+                  (dir / "t0.lsm.json").string() + "\n" + (dir / "t1.lsm.json").string() + "\n");
+  const std::string app = test::appPath("georef").string();
+  REQUIRE(test::runCommand(app + " @" + (dir / "list.txt").string() + " -o " +
+                           (dir / "out").string() + " --quiet") == 0);
+  const Lsm a = io::readLsm(dir / "out/t0.lsm.json"), b = io::readLsm(dir / "out/t1.lsm.json");
+  REQUIRE(a.origin);
+  REQUIRE(b.origin);
+  CHECK(a.origin->lat == b.origin->lat);
+  CHECK(a.origin->lon == b.origin->lon);
+  const auto summary = nlohmann::json::parse(test::readText(dir / "out/georef.summary.json"));
+  CHECK(summary["lsms"].size() == 2);
+  // bad LSM -> 3; unknown config key -> 2
+  test::writeText(dir / "bad.lsm.json", "{\"format\": \"mapfuse.lsm\", \"version\": 1}");
+  CHECK(test::runCommand(app + " " + (dir / "bad.lsm.json").string() + " -o " +
+                         (dir / "out2").string() + " --quiet 2>/dev/null") == 3);
+  test::writeText(dir / "cfg.json", "{\"no_such_key\": 1}");
+  CHECK(test::runCommand(app + " " + (dir / "t0.lsm.json").string() + " -o " +
+                         (dir / "out3").string() + " --config " + (dir / "cfg.json").string() +
+                         " 2>/dev/null") == 2);
+}
