@@ -140,6 +140,7 @@ World buildProceduralWorld(const ProceduralParams& P, const geo::GeoOrigin& orig
           ref.push_back(p0 + s * (p1 - p0) + amp * std::pow(std::sin(kPi * s), 2) * nrm);
         }
         const double L = polylineLength(ref);
+        B.world.stats["road_km"] += L / 1000.0;
         // Lanes: forward (a->b) on the right, backward on the left; inner lane first.
         Arm& arm_a = arms[a].emplace_back();
         Arm& arm_b = arms[b].emplace_back();
