@@ -1,0 +1,108 @@
+# Crowdsourced vector-map pipeline as Make rules: one rule per stage and per drive, so that
+# `make -j` runs independent drives in parallel and reruns only what changed. Every tool writes
+# its outputs atomically and each rule's target is the file its tool writes last, so a batch
+# killed mid-way reruns only the unfinished steps.
+#
+#   make -j2 -f scripts/crowd.mk LSM_DIR=drives/ WORK=out/crowd            # LSMs as input
+#   make -j2 -f scripts/crowd.mk FRAMES_DIR=frames/ WORK=out/crowd         # raw drives as input
+#   ... TRUTH=truth/vector_map.json TRUTH_TRAJ=truth/   # adds evaluate
+#   ... TILE_SIZE=500                                    # align + aggregate per tile, then stitch
+#
+# Variables: BIN (tools, default build/bin), METHOD (align method, default gba_sgicp),
+# CONFIG_DIR (folder with <stage>.json configs; default: none, built-in defaults),
+# ORIGIN (lat,lon,alt; default: derived once from the first drive's first GPS fix).
+
+BIN ?= build/bin
+WORK ?= out/crowd
+METHOD ?= gba_sgicp
+TRUTH ?=
+TRUTH_TRAJ ?=
+TILE_SIZE ?=
+TILE_MARGIN ?= 50
+CONFIG_DIR ?=
+Q ?= -q
+
+cfg = $(if $(CONFIG_DIR),$(if $(wildcard $(CONFIG_DIR)/$(1).json),--config $(CONFIG_DIR)/$(1).json))
+
+ifneq ($(FRAMES_DIR),)
+  # Raw drives: one folder per drive holding frames.json; lsm-build makes <drive>.lsm.json.
+  DRIVES := $(sort $(notdir $(patsubst %/frames.json,%,$(wildcard $(FRAMES_DIR)/*/frames.json))))
+  LSMS := $(foreach d,$(DRIVES),$(WORK)/lsm/$(d).lsm.json)
+else ifneq ($(LSM_DIR),)
+  LSMS := $(sort $(wildcard $(LSM_DIR)/*.cbor $(LSM_DIR)/*.json))
+else
+  $(error set LSM_DIR=<folder of LSM files> or FRAMES_DIR=<folder of raw drive folders>)
+endif
+ifeq ($(strip $(LSMS)),)
+  $(error no drives found (LSM_DIR=$(LSM_DIR) FRAMES_DIR=$(FRAMES_DIR)))
+endif
+
+NAMES := $(notdir $(LSMS))
+GEOREF := $(foreach n,$(NAMES),$(WORK)/georef/$(n).d/$(n))
+ALIGN_SUMMARY := $(WORK)/align/align.summary.json
+ALIGNED := $(foreach n,$(NAMES),$(WORK)/align/$(n))
+MAP_SUMMARY := $(WORK)/aggregate/aggregate.summary.json
+MAP := $(WORK)/aggregate/map.cbor
+ifneq ($(TILE_SIZE),)
+  MAP_SUMMARY := $(WORK)/stitch/stitch.summary.json
+  MAP := $(WORK)/stitch/map.cbor
+endif
+EVAL_SUMMARY := $(WORK)/evaluate/evaluate.summary.json
+
+.PHONY: all map evaluate clean
+all: $(if $(TRUTH),$(EVAL_SUMMARY),$(MAP_SUMMARY))
+map: $(MAP_SUMMARY)
+evaluate: $(EVAL_SUMMARY)
+
+# ---- lsm-build: one rule per raw drive ----
+define LSM_BUILD_RULE
+$(WORK)/lsm/$(1).lsm.json: $(FRAMES_DIR)/$(1)/frames.json
+	$(BIN)/lsm-build $(Q) $(call cfg,lsm-build) -o $(WORK)/lsm/$(1).d $(FRAMES_DIR)/$(1) >/dev/null
+	mv $(WORK)/lsm/$(1).d/$(1).lsm.json $$@
+endef
+$(foreach d,$(DRIVES),$(eval $(call LSM_BUILD_RULE,$(d))))
+
+# ---- the batch's one ENU origin, derived once ----
+$(WORK)/origin.txt: | $(firstword $(LSMS))
+	@mkdir -p $(WORK)
+	$(if $(ORIGIN),echo $(ORIGIN),$(BIN)/info --origin $(firstword $(LSMS))) > $@.tmp && mv $@.tmp $@
+
+# ---- georef: one rule per drive, all sharing origin.txt ----
+define GEOREF_RULE
+$(WORK)/georef/$(notdir $(1)).d/$(notdir $(1)): $(1) $(WORK)/origin.txt
+	$(BIN)/georef $(Q) $(call cfg,georef) --origin $$$$(cat $(WORK)/origin.txt) -o $(WORK)/georef/$(notdir $(1)).d $(1)
+endef
+$(foreach l,$(LSMS),$(eval $(call GEOREF_RULE,$(l))))
+
+ifeq ($(TILE_SIZE),)
+# ---- align: all drives together; its summary is written last ----
+$(ALIGN_SUMMARY): $(GEOREF)
+	$(BIN)/align $(Q) $(call cfg,align) --method $(METHOD) -o $(WORK)/align $(GEOREF)
+
+# ---- aggregate ----
+$(MAP_SUMMARY): $(ALIGN_SUMMARY)
+	$(BIN)/aggregate $(Q) $(call cfg,aggregate) -o $(WORK)/aggregate $(ALIGNED)
+else
+# ---- tiled: tile, then align + aggregate per tile (sub-make over the tile list), stitch ----
+$(WORK)/tiles/tiles.txt: $(GEOREF)
+	$(BIN)/tile $(Q) $(call cfg,tile) --tile-size $(TILE_SIZE) --margin $(TILE_MARGIN) -o $(WORK)/tiles $(GEOREF) > $@.tmp && mv $@.tmp $@
+
+$(MAP_SUMMARY): $(WORK)/tiles/tiles.txt
+	$(MAKE) -f $(lastword $(MAKEFILE_LIST)) tiles-run TILES="$$(cat $<)"
+	$(BIN)/stitch $(Q) $(call cfg,stitch) --tiles $(WORK)/tiles/tiles.json -o $(MAP) \
+	  $(foreach t,$$(cat $<),$(WORK)/tiles/$$t/aggregate/map.cbor)
+endif
+
+.PHONY: tiles-run
+tiles-run: $(foreach t,$(TILES),$(WORK)/tiles/$(t)/aggregate/aggregate.summary.json)
+$(WORK)/tiles/%/align/align.summary.json:
+	$(BIN)/align $(Q) $(call cfg,align) --method $(METHOD) -o $(WORK)/tiles/$*/align $(wildcard $(WORK)/tiles/$*/*.cbor $(WORK)/tiles/$*/*.json)
+$(WORK)/tiles/%/aggregate/aggregate.summary.json: $(WORK)/tiles/%/align/align.summary.json
+	$(BIN)/aggregate $(Q) $(call cfg,aggregate) -o $(WORK)/tiles/$*/aggregate $(filter-out %.summary.json %.config.json,$(wildcard $(WORK)/tiles/$*/align/*.cbor $(WORK)/tiles/$*/align/*.json))
+
+# ---- evaluate against ground truth ----
+$(EVAL_SUMMARY): $(MAP_SUMMARY) $(TRUTH)
+	$(BIN)/evaluate map $(Q) --map $(MAP) --truth $(TRUTH) $(if $(TRUTH_TRAJ),--truth-trajectories $(TRUTH_TRAJ) --lsm $(ALIGNED)) -o $(WORK)/evaluate
+
+clean:
+	rm -rf $(WORK)
