@@ -1,0 +1,320 @@
+#include "mapfuse/aggregate/lane_instantiation.hpp"
+
+// Boost.Geometry buffer/rtree instantiations trigger GCC false positives.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <algorithm>
+#include <boost/geometry.hpp>
+#include <boost/geometry/geometries/box.hpp>
+#include <boost/geometry/geometries/point_xy.hpp>
+#include <boost/geometry/index/rtree.hpp>
+#include <cmath>
+#include <numeric>
+#include <set>
+
+#include "mapfuse/aggregate/dbscan.hpp"
+#include "mapfuse/aggregate/geometry2d.hpp"
+#include "mapfuse/core/vector_map.hpp"
+
+namespace mapfuse::aggregate {
+namespace {
+
+constexpr double kSimplifyTolerance = 0.02;  // m
+
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+using Vec3 = Eigen::Vector3d;
+using P2 = bg::model::d2::point_xy<double>;
+using Line2 = bg::model::linestring<P2>;
+using Poly2 = bg::model::polygon<P2>;
+using MPoly2 = bg::model::multi_polygon<Poly2>;
+using Box2 = bg::model::box<P2>;
+using BoxValue = std::pair<Box2, std::size_t>;
+using PointValue = std::pair<P2, std::size_t>;
+
+struct Piece {
+  std::size_t obs = 0;  ///< index into items
+  int64_t tile = 0;
+  std::vector<Vec3> points;
+};
+
+int64_t tileKey(const Vec3& p, double size) {
+  const int64_t ix = int64_t(std::floor(p.x() / size));
+  const int64_t iy = int64_t(std::floor(p.y() / size));
+  return (ix << 32) ^ (iy & 0xffffffffLL);
+}
+
+// Cuts a polyline where it crosses the tile grid; each piece lies in one tile.
+void cutAtTiles(const std::vector<Vec3>& pts, double size, std::size_t obs,
+                std::vector<Piece>& out) {
+  Piece cur;
+  bool open = false;
+  for (std::size_t i = 1; i < pts.size(); ++i) {
+    const Vec3 a = pts[i - 1], d = pts[i] - a;
+    if (d.head<2>().norm() < 1e-6) continue;
+    std::vector<double> ts{0.0, 1.0};
+    for (int axis = 0; axis < 2; ++axis) {
+      if (std::abs(d[axis]) < 1e-12) continue;
+      const double lo = std::min(a[axis], a[axis] + d[axis]);
+      const double hi = std::max(a[axis], a[axis] + d[axis]);
+      for (double g = std::ceil(lo / size) * size; g < hi; g += size) {
+        const double t = (g - a[axis]) / d[axis];
+        if (t > 1e-9 && t < 1 - 1e-9) ts.push_back(t);
+      }
+    }
+    std::sort(ts.begin(), ts.end());
+    for (std::size_t k = 1; k < ts.size(); ++k) {
+      const Vec3 p = a + ts[k - 1] * d, q = a + ts[k] * d;
+      const int64_t key = tileKey(0.5 * (p + q), size);
+      if (!open || key != cur.tile) {
+        if (open) out.push_back(std::move(cur));
+        cur = Piece{obs, key, {p}};
+        open = true;
+      }
+      cur.points.push_back(q);
+    }
+  }
+  if (open) out.push_back(std::move(cur));
+}
+
+Line2 toLine(const std::vector<Vec3>& pts) {
+  Line2 l;
+  for (const auto& p : pts)
+    if (l.empty() || std::hypot(p.x() - bg::get<0>(l.back()), p.y() - bg::get<1>(l.back())) > 1e-3)
+      l.emplace_back(p.x(), p.y());
+  return l;
+}
+
+Box2 boxOf(const std::vector<Vec3>& pts, double margin) {
+  Box2 b(P2(pts[0].x(), pts[0].y()), P2(pts[0].x(), pts[0].y()));
+  for (const auto& p : pts) bg::expand(b, P2(p.x(), p.y()));
+  return Box2(P2(b.min_corner().x() - margin, b.min_corner().y() - margin),
+              P2(b.max_corner().x() + margin, b.max_corner().y() + margin));
+}
+
+struct Fragment {
+  std::vector<Vec3> centreline;
+  std::vector<Vec3> samples;  ///< resampled member points
+  std::set<std::size_t> obs;
+};
+
+// Fraction of a's centreline points within `tol` of b's centreline.
+double coveredFraction(const Fragment& a, const Fragment& b, double tol) {
+  if (a.centreline.empty()) return 0.0;
+  int inside = 0;
+  for (const auto& p : a.centreline)
+    if (distanceToPolyline2d(p, b.centreline) <= tol) ++inside;
+  return double(inside) / double(a.centreline.size());
+}
+
+struct End {
+  Vec3 pos;
+  Eigen::Vector2d dir;  ///< outward unit direction
+};
+
+End endOf(const Fragment& f, int which) {
+  const auto& c = f.centreline;
+  Eigen::Vector2d axis = principalAxis2d(c);
+  if (c.size() >= 2 && (c.back() - c.front()).head<2>().dot(axis) < 0) axis = -axis;
+  return which == 0 ? End{c.front(), -axis} : End{c.back(), axis};
+}
+
+int findRoot(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+}  // namespace
+
+LaneInstantiation instantiateLanes(const std::vector<Observation>& items,
+                                   const std::vector<std::size_t>& indices,
+                                   const LaneInstantiationParams& p, int num_drives) {
+  LaneInstantiation result;
+  // ---- tiling: pieces of observations, each inside one tile
+  std::vector<Piece> pieces;
+  for (std::size_t idx : indices) cutAtTiles(items[idx].points, p.tile_size, idx, pieces);
+  pieces.erase(std::remove_if(pieces.begin(), pieces.end(),
+                              [](const Piece& q) { return toLine(q.points).size() < 2; }),
+               pieces.end());
+  const std::size_t n = pieces.size();
+  result.stats.pieces = n;
+  if (n == 0) return result;
+
+  // ---- stage 1: buffered polygons, overlap-area similarity, DBSCAN
+  std::vector<MPoly2> polys(n);
+  std::vector<double> areas(n);
+  std::vector<BoxValue> boxes(n);
+  const bg::strategy::buffer::distance_symmetric<double> distance(p.buffer_width);
+  const bg::strategy::buffer::side_straight side;
+  const bg::strategy::buffer::join_miter join;
+  const bg::strategy::buffer::end_flat end;
+  const bg::strategy::buffer::point_circle circle(8);
+#pragma omp parallel for schedule(dynamic, 64)
+  for (std::ptrdiff_t i = 0; i < std::ptrdiff_t(n); ++i) {
+    // simplified first (Douglas-Peucker, 2 cm): fewer polygon vertices, same overlap areas
+    Line2 simple;
+    bg::simplify(toLine(pieces[i].points), simple, kSimplifyTolerance);
+    bg::buffer(simple, polys[i], distance, side, join, end, circle);
+    areas[i] = bg::area(polys[i]);
+    boxes[i] = {boxOf(pieces[i].points, p.buffer_width), std::size_t(i)};
+  }
+  const bgi::rtree<BoxValue, bgi::rstar<16>> tree(boxes.begin(), boxes.end());
+  std::vector<std::vector<std::size_t>> upper(n);  // neighbours j > i
+#pragma omp parallel for schedule(dynamic, 64)
+  for (std::ptrdiff_t i = 0; i < std::ptrdiff_t(n); ++i) {
+    std::vector<BoxValue> hits;
+    tree.query(bgi::intersects(boxes[i].first), std::back_inserter(hits));
+    for (const auto& h : hits) {
+      const std::size_t j = h.second;
+      if (j <= std::size_t(i) || pieces[j].tile != pieces[i].tile) continue;
+      const double smaller = std::min(areas[i], areas[j]);
+      if (smaller <= 0) continue;
+      MPoly2 inter;
+      bg::intersection(polys[i], polys[j], inter);
+      if (bg::area(inter) >= p.min_overlap_ratio * smaller) upper[i].push_back(j);
+    }
+  }
+  std::vector<std::vector<std::size_t>> neighbours(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j : upper[i]) {
+      neighbours[i].push_back(j);
+      neighbours[j].push_back(i);
+    }
+  for (auto& l : neighbours) std::sort(l.begin(), l.end());
+  const int min_pts = std::max(1, std::min(p.min_pts, num_drives));
+  const DbscanResult clusters = dbscan(neighbours, min_pts);
+  result.stats.noise_pieces = std::size_t(clusters.num_noise);
+
+  // ---- each cluster (a MultiLineString) -> a centreline fragment
+  std::vector<Fragment> frags(std::size_t(clusters.num_clusters));
+  for (std::size_t i = 0; i < n; ++i) {
+    if (clusters.labels[i] < 0) continue;
+    Fragment& f = frags[std::size_t(clusters.labels[i])];
+    const auto r = resamplePolyline(pieces[i].points, p.resample_step);
+    f.samples.insert(f.samples.end(), r.begin(), r.end());
+    f.obs.insert(pieces[i].obs);
+  }
+  for (auto& f : frags) f.centreline = binnedCentreline(f.samples, p.station_step);
+
+  // merge fragments of one line split by a tile edge running along it (side by side)
+  {
+    const double tol = 2 * p.buffer_width;
+    std::vector<BoxValue> fb;
+    for (std::size_t i = 0; i < frags.size(); ++i)
+      fb.push_back({boxOf(frags[i].centreline, tol), i});
+    const bgi::rtree<BoxValue, bgi::rstar<16>> ftree(fb.begin(), fb.end());
+    std::vector<int> parent(frags.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    bool merged = false;
+    for (std::size_t i = 0; i < frags.size(); ++i) {
+      std::vector<BoxValue> hits;
+      ftree.query(bgi::intersects(fb[i].first), std::back_inserter(hits));
+      for (const auto& h : hits) {
+        const std::size_t j = h.second;
+        if (j <= i) continue;
+        if (std::max(coveredFraction(frags[i], frags[j], tol),
+                     coveredFraction(frags[j], frags[i], tol)) >= 0.5) {
+          parent[findRoot(parent, int(j))] = findRoot(parent, int(i));
+          merged = true;
+        }
+      }
+    }
+    if (merged) {
+      std::vector<Fragment> out;
+      std::vector<int> slot(frags.size(), -1);
+      for (std::size_t i = 0; i < frags.size(); ++i) {
+        const int r = findRoot(parent, int(i));
+        if (slot[r] < 0) {
+          slot[r] = int(out.size());
+          out.emplace_back();
+        }
+        Fragment& f = out[std::size_t(slot[r])];
+        f.samples.insert(f.samples.end(), frags[i].samples.begin(), frags[i].samples.end());
+        f.obs.insert(frags[i].obs.begin(), frags[i].obs.end());
+      }
+      for (auto& f : out) f.centreline = binnedCentreline(f.samples, p.station_step);
+      frags = std::move(out);
+    }
+  }
+  result.stats.fragments = frags.size();
+
+  // ---- stage 2: link fragment ends with the modified core-object rule
+  const std::size_t m = frags.size();
+  std::vector<End> ends(2 * m);
+  std::vector<PointValue> end_points(2 * m);
+  for (std::size_t f = 0; f < m; ++f)
+    for (int w = 0; w < 2; ++w) {
+      ends[2 * f + w] = endOf(frags[f], w);
+      end_points[2 * f + w] = {P2(ends[2 * f + w].pos.x(), ends[2 * f + w].pos.y()), 2 * f + w};
+    }
+  const bgi::rtree<PointValue, bgi::rstar<16>> etree(end_points.begin(), end_points.end());
+  const double cos_max = std::cos(p.link_angle_deg * M_PI / 180.0);
+  const double reach = std::max(p.link_distance, p.link_lateral);
+  auto follows = [&](const End& a, const End& b) {  // b lies ahead of a, facing back at it
+    if (a.dir.dot(b.dir) > -cos_max) return false;
+    const Eigen::Vector2d v = (b.pos - a.pos).head<2>();
+    const double along = v.dot(a.dir);
+    const double lateral = (v - along * a.dir).norm();
+    return along >= -p.link_lateral && along <= p.link_distance && lateral <= p.link_lateral;
+  };
+  std::vector<std::vector<std::size_t>> cand(2 * m);
+  for (std::size_t e = 0; e < 2 * m; ++e) {
+    const auto& q = ends[e].pos;
+    const Box2 box(P2(q.x() - reach, q.y() - reach), P2(q.x() + reach, q.y() + reach));
+    std::vector<PointValue> hits;
+    etree.query(bgi::within(box), std::back_inserter(hits));
+    for (const auto& h : hits) {
+      const std::size_t f = h.second;
+      if (f / 2 == e / 2) continue;
+      if (follows(ends[e], ends[f]) && follows(ends[f], ends[e])) cand[e].push_back(f);
+    }
+    std::sort(cand[e].begin(), cand[e].end());
+  }
+  auto isCore = [&](std::size_t e) {
+    const int size = 1 + int(cand[e].size());  // |N_eps| counts the end itself
+    return p.link_min_pts <= size && size <= p.link_max_pts;
+  };
+  std::vector<long> link(2 * m, -1);
+  for (std::size_t e = 0; e < 2 * m; ++e) {
+    if (1 + int(cand[e].size()) > p.link_max_pts) ++result.stats.branch_ends;
+    if (!isCore(e)) continue;
+    for (std::size_t f : cand[e])
+      if (isCore(f) && link[f] < 0 && link[e] < 0) {
+        link[e] = long(f);
+        link[f] = long(e);
+        ++result.stats.links;
+      }
+  }
+
+  // ---- walk the chains into instances
+  std::vector<bool> used(m, false);
+  auto walk = [&](std::size_t start, int entry) {
+    LaneInstance inst;
+    std::set<std::size_t> obs;
+    std::size_t f = start;
+    int in = entry;
+    while (!used[f]) {
+      used[f] = true;
+      ++inst.fragments;
+      auto c = frags[f].centreline;
+      if (in == 1) std::reverse(c.begin(), c.end());
+      inst.centreline.insert(inst.centreline.end(), c.begin(), c.end());
+      obs.insert(frags[f].obs.begin(), frags[f].obs.end());
+      const long next = link[2 * f + (1 - in)];
+      if (next < 0) break;
+      f = std::size_t(next) / 2;
+      in = int(next % 2);
+    }
+    inst.observations.assign(obs.begin(), obs.end());
+    if (polylineLength(inst.centreline) < p.min_instance_length)
+      ++result.stats.dropped_short;
+    else
+      result.instances.push_back(std::move(inst));
+  };
+  for (std::size_t f = 0; f < m; ++f)
+    if (!used[f] && (link[2 * f] < 0 || link[2 * f + 1] < 0)) walk(f, link[2 * f] < 0 ? 0 : 1);
+  for (std::size_t f = 0; f < m; ++f)  // closed loops
+    if (!used[f]) walk(f, 0);
+  return result;
+}
+
+}  // namespace mapfuse::aggregate

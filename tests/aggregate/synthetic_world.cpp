@@ -1,0 +1,153 @@
+#include "synthetic_world.hpp"
+
+#include <cmath>
+
+namespace mapfuse::test {
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+std::vector<Vec3> line(const Vec3& a, const Vec3& b, double step = 1.0) {
+  const int n = std::max(1, int(std::ceil((b - a).norm() / step)));
+  std::vector<Vec3> out;
+  for (int i = 0; i <= n; ++i) out.push_back(a + (b - a) * double(i) / n);
+  return out;
+}
+
+std::vector<Vec3> rect(const Vec3& c, double along, double across, double z = 0.0) {
+  return {c + Vec3(-along / 2, -across / 2, z), c + Vec3(along / 2, -across / 2, z),
+          c + Vec3(along / 2, across / 2, z), c + Vec3(-along / 2, across / 2, z)};
+}
+
+}  // namespace
+
+SynthWorld makeSynthWorld(const SynthOptions& o) {
+  SynthWorld w;
+  w.truth.origin = o.origin;
+  w.truth.source = "synthetic truth";
+  int64_t id = 1;
+  auto add = [&](CrowdClass cls, std::vector<Vec3> pts, Attributes attr = {}, double h = 0) {
+    MapInstance m;
+    m.id = id++;
+    m.cls = cls;
+    m.points = std::move(pts);
+    m.attributes = attr;
+    m.height = h;
+    w.truth.instances.push_back(std::move(m));
+  };
+  const double L = o.length, mid = L / 2;
+  const Attributes solid{LineStyle::kSolid, LineColor::kWhite};
+  const Attributes dashed{LineStyle::kDashed, LineColor::kWhite};
+  add(CrowdClass::kLaneLine, line({0, 0, 0}, {L, 0, 0}), solid);
+  add(CrowdClass::kLaneLine, line({0, 3.5, 0}, {L, 3.5, 0}), dashed);
+  add(CrowdClass::kLaneLine, line({0, 7, 0}, {L, 7, 0}), {LineStyle::kSolid, LineColor::kYellow});
+  if (o.fork) {
+    const double a = -6.0 * M_PI / 180, len = 60.0;
+    add(CrowdClass::kLaneLine, line({mid, 0, 0}, {mid + len * std::cos(a), len * std::sin(a), 0}),
+        solid);
+  }
+  if (o.merge) {
+    const double a = -6.0 * M_PI / 180, len = 60.0;
+    add(CrowdClass::kLaneLine,
+        line({mid - len * std::cos(a), 7 - len * std::sin(a), 0}, {mid, 7, 0}), solid);
+  }
+  if (o.discrete) {
+    for (double x = 10; x < L - o.view; x += 25) add(CrowdClass::kPole, {{x, -4, 0.1}}, {}, 5.0);
+    for (double x = 20; x < L - o.view; x += 50) {
+      const double y = -4.5;
+      add(CrowdClass::kTrafficSign,
+          {{x, y - 0.3, 2.0}, {x, y + 0.3, 2.0}, {x, y + 0.3, 2.6}, {x, y - 0.3, 2.6}});
+    }
+    for (double x = 30; x < L - 40; x += 40)
+      add(CrowdClass::kGroundArrow, rect({x, 1.75, 0}, 3, 1));
+    add(CrowdClass::kCrosswalk, rect({L - o.view - 15, 3.5, 0}, 4, 7));
+    add(CrowdClass::kStopLine, line({L - o.view - 20, 0, 0}, {L - o.view - 20, 3.5, 0}, 3.5));
+  }
+
+  std::mt19937_64 rng(o.seed);
+  std::normal_distribution<double> g(0.0, 1.0);
+  auto noise2 = [&](double s) { return Vec3(s * g(rng), s * g(rng), 0.3 * s * g(rng)); };
+  for (int d = 0; d < o.drives; ++d) {
+    Lsm lsm;
+    lsm.drive_id = "synth_" + std::to_string(d);
+    lsm.vehicle_id = "veh_" + std::to_string(d % 3);
+    lsm.frame = LsmFrame::kEnu;
+    lsm.origin = o.origin;
+    const bool reverse = d % 2 == 1;
+    const Vec3 drive_offset = noise2(o.drive_sigma);
+    const double lane_y = reverse ? 5.25 : 1.75;
+    int64_t eid = 1;
+    std::vector<double> stations;
+    for (double s = 0; s <= L - o.view + 1e-9; s += o.keyframe_step) stations.push_back(s);
+    for (std::size_t k = 0; k < stations.size(); ++k) {
+      const double s = reverse ? L - o.view - stations[k] : stations[k];
+      Keyframe kf;
+      kf.id = int64_t(k);
+      kf.stamp = double(k);
+      kf.T_frame_body =
+          poseFromXyzRpy(reverse ? s + o.view : s, lane_y, 0, 0, 0, reverse ? M_PI : 0.0);
+      lsm.keyframes.push_back(kf);
+      const Pose3 T_body_enu = kf.T_frame_body.inverse();
+      for (const auto& t : w.truth.instances) {
+        // seen when its first point (lines: the visible part) lies within the view window
+        std::vector<Vec3> pts;
+        if (t.cls == CrowdClass::kLaneLine) {
+          for (const auto& p : t.points)
+            if (p.x() >= s - 1e-9 && p.x() <= s + o.view + 1e-9) pts.push_back(p);
+          if (pts.size() < 2) continue;
+        } else {
+          Vec3 c = Vec3::Zero();
+          for (const auto& p : t.points) c += p;
+          c /= double(t.points.size());
+          // each discrete element is observed once per drive: from the keyframe before it
+          if (!(c.x() >= s && c.x() < s + o.keyframe_step)) continue;
+          pts = t.points;
+        }
+        const Vec3 elem_offset = noise2(o.element_sigma);
+        Element e;
+        e.id = eid++;
+        e.cls = t.cls;
+        e.attributes = t.attributes;
+        e.anchor = kf.id;
+        e.height = t.height;
+        e.truth_id = t.id;
+        e.confidence = 0.9;
+        e.observations = 5;
+        for (const auto& p : pts) {
+          const Vec3 noisy = p + drive_offset + elem_offset + noise2(o.point_sigma);
+          e.points_body.push_back(T_body_enu * noisy);
+          e.covariances.push_back(Eigen::Matrix3d::Identity() * 0.01);
+        }
+        if (reverse && t.cls == CrowdClass::kLaneLine)
+          std::reverse(e.points_body.begin(), e.points_body.end());
+        lsm.elements.push_back(std::move(e));
+      }
+    }
+    std::uniform_real_distribution<double> ux(0, L), uy(-8, 15);
+    for (int f = 0; f < o.false_positives; ++f) {
+      Element e;
+      e.id = eid++;
+      e.anchor = 0;
+      e.confidence = 0.3;
+      const Vec3 c(ux(rng), uy(rng), 0);
+      const int kind = f % 3;
+      e.cls = kind == 0   ? CrowdClass::kPole
+              : kind == 1 ? CrowdClass::kGroundArrow
+                          : CrowdClass::kLaneLine;
+      std::vector<Vec3> pts = kind == 0   ? std::vector<Vec3>{c}
+                              : kind == 1 ? rect(c, 3, 1)
+                                          : line(c, c + Vec3(6, 2, 0));
+      if (kind == 0) e.height = 4.0;
+      const Pose3 T_body_enu = lsm.keyframes[0].T_frame_body.inverse();
+      for (const auto& p : pts) {
+        e.points_body.push_back(T_body_enu * p);
+        e.covariances.push_back(Eigen::Matrix3d::Identity() * 0.01);
+      }
+      lsm.elements.push_back(std::move(e));
+    }
+    w.lsms.push_back(std::move(lsm));
+  }
+  return w;
+}
+
+}  // namespace mapfuse::test

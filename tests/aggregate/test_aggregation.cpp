@@ -1,0 +1,164 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "mapfuse/aggregate/aggregator.hpp"
+#include "mapfuse/aggregate/geometry2d.hpp"
+#include "mapfuse/core/error.hpp"
+#include "synthetic_world.hpp"
+
+using namespace mapfuse;
+using namespace mapfuse::aggregate;
+using Vec3 = Eigen::Vector3d;
+
+namespace {
+
+constexpr double kLanePointTolerance = 0.10;  // m, every map lane point to its truth line
+constexpr double kDiscreteTolerance = 0.15;   // m, merged centre to truth centre
+
+ObservationSet observe(const test::SynthWorld& w) {
+  std::vector<std::string> names;
+  for (const auto& l : w.lsms) names.push_back(l.drive_id);
+  return collectObservations(w.lsms, names);
+}
+
+std::vector<const MapInstance*> ofClass(const VectorMap& m, CrowdClass c) {
+  std::vector<const MapInstance*> out;
+  for (const auto& i : m.instances)
+    if (i.cls == c) out.push_back(&i);
+  return out;
+}
+
+double distanceToTruth(const Vec3& p, const VectorMap& truth, CrowdClass c) {
+  double best = 1e300;
+  for (const auto* t : ofClass(truth, c)) best = std::min(best, distanceToPolyline2d(p, t->points));
+  return best;
+}
+
+Vec3 centre(const MapInstance& m) {
+  Vec3 c = Vec3::Zero();
+  for (const auto& p : m.points) c += p;
+  return c / double(m.points.size());
+}
+
+}  // namespace
+
+TEST_CASE("a straight three-line road gives three lane instances on the truth",
+          "[aggregate][lanes]") {
+  test::SynthOptions o;
+  o.discrete = false;
+  const auto w = test::makeSynthWorld(o);
+  AggregatorStats stats;
+  const VectorMap map = aggregateObservations(observe(w), AggregatorParams{}, &stats);
+  const auto lanes = ofClass(map, CrowdClass::kLaneLine);
+  REQUIRE(lanes.size() == 3);
+  CHECK(stats.lanes.branch_ends == 0);
+  double covered = 0;
+  for (const auto* l : lanes) {
+    CHECK(l->bezier.size() >= 1);
+    CHECK(l->support.drives == o.drives);
+    covered += polylineLength(l->points);
+    for (const auto& p : l->points)
+      CHECK(distanceToTruth(p, w.truth, CrowdClass::kLaneLine) < kLanePointTolerance);
+    // attributes by majority vote: the middle line is dashed, the y = 7 line yellow
+    const double y = l->points.front().y();
+    CHECK(l->attributes.style == (std::abs(y - 3.5) < 1 ? LineStyle::kDashed : LineStyle::kSolid));
+    CHECK(l->attributes.color == (std::abs(y - 7) < 1 ? LineColor::kYellow : LineColor::kWhite));
+  }
+  CHECK(covered >= 0.95 * 3 * o.length);
+  CHECK(stats.bezier_max_deviation <= AggregatorParams{}.bezier.max_deviation);
+}
+
+TEST_CASE("a fork splits its line into three instances", "[aggregate][lanes]") {
+  test::SynthOptions o;
+  o.discrete = false;
+  o.fork = true;
+  const auto w = test::makeSynthWorld(o);
+  AggregatorStats stats;
+  const VectorMap map = aggregateObservations(observe(w), AggregatorParams{}, &stats);
+  // y = 3.5 and y = 7 lines, plus trunk before the fork, trunk after it and the branch
+  CHECK(ofClass(map, CrowdClass::kLaneLine).size() == 5);
+  CHECK(stats.lanes.branch_ends >= 1);
+  // within one tile of the fork the trunk and the branch (< 0.5 m apart) are averaged together
+  constexpr double kForkTileTolerance = 0.4;  // m
+  std::size_t total = 0, close = 0;
+  for (const auto* l : ofClass(map, CrowdClass::kLaneLine))
+    for (const auto& p : l->points) {
+      const double d = distanceToTruth(p, w.truth, CrowdClass::kLaneLine);
+      CHECK(d < kForkTileTolerance);
+      ++total;
+      close += d < kLanePointTolerance;
+    }
+  CHECK(double(close) >= 0.97 * double(total));
+}
+
+TEST_CASE("a merge ends both incoming lines and starts a new instance", "[aggregate][lanes]") {
+  test::SynthOptions o;
+  o.discrete = false;
+  o.merge = true;
+  const auto w = test::makeSynthWorld(o);
+  AggregatorStats stats;
+  const VectorMap map = aggregateObservations(observe(w), AggregatorParams{}, &stats);
+  CHECK(ofClass(map, CrowdClass::kLaneLine).size() == 5);
+  CHECK(stats.lanes.branch_ends >= 1);
+}
+
+TEST_CASE("discrete elements are clustered, merged and false positives dropped",
+          "[aggregate][discrete]") {
+  test::SynthOptions o;
+  o.false_positives = 3;
+  const auto w = test::makeSynthWorld(o);
+  AggregatorStats stats;
+  const VectorMap map = aggregateObservations(observe(w), AggregatorParams{}, &stats);
+  for (CrowdClass c : {CrowdClass::kPole, CrowdClass::kTrafficSign, CrowdClass::kGroundArrow,
+                       CrowdClass::kCrosswalk, CrowdClass::kStopLine}) {
+    const auto truth = ofClass(w.truth, c);
+    const auto got = ofClass(map, c);
+    INFO(crowdClassName(c));
+    REQUIRE(got.size() == truth.size());
+    for (const auto* t : truth) {
+      double best = 1e300;
+      const MapInstance* match = nullptr;
+      for (const auto* g : got)
+        if ((centre(*g) - centre(*t)).norm() < best)
+          best = (centre(*g) - centre(*t)).norm(), match = g;
+      CHECK(best < kDiscreteTolerance);
+      CHECK(match->points.size() == (c == CrowdClass::kPole ? 1u : t->points.size()));
+      if (c == CrowdClass::kPole) CHECK(match->height == Approx(5.0).margin(1e-9));
+      CHECK(match->support.drives == o.drives);
+    }
+  }
+  CHECK(stats.noise[std::size_t(CrowdClass::kPole)] >= std::size_t(o.drives));
+  // random false lane lines do not become instances
+  CHECK(ofClass(map, CrowdClass::kLaneLine).size() == 3);
+}
+
+TEST_CASE("aggregation is deterministic", "[aggregate]") {
+  test::SynthOptions o;
+  o.fork = true;
+  const auto w = test::makeSynthWorld(o);
+  const auto set = observe(w);
+  const VectorMap a = aggregateObservations(set, AggregatorParams{});
+  const VectorMap b = aggregateObservations(set, AggregatorParams{});
+  REQUIRE(a.instances.size() == b.instances.size());
+  for (std::size_t i = 0; i < a.instances.size(); ++i)
+    CHECK(a.instances[i].points == b.instances[i].points);
+}
+
+TEST_CASE("collecting observations rejects odom LSMs and mixed origins", "[aggregate][errors]") {
+  test::SynthOptions o;
+  o.drives = 2;
+  auto w = test::makeSynthWorld(o);
+  w.lsms[1].origin->lat += 1e-4;
+  try {
+    collectObservations(w.lsms, {"a.cbor", "b.cbor"});
+    FAIL("origin mismatch accepted");
+  } catch (const InputError& e) {
+    CHECK_THAT(e.what(), Catch::Contains("b.cbor"));
+    CHECK_THAT(e.what(), Catch::Contains("a.cbor"));
+    CHECK_THAT(e.what(), Catch::Contains("origin"));
+  }
+  w = test::makeSynthWorld(o);
+  w.lsms[0].frame = LsmFrame::kOdom;
+  CHECK_THROWS_AS(collectObservations(w.lsms, {"a.cbor", "b.cbor"}), InputError);
+  CHECK_THROWS_AS(collectObservations({}, {}), InputError);
+}
