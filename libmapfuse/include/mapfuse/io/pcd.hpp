@@ -1,0 +1,20 @@
+#pragma once
+/// @file Binary PCD v0.7 of a labelled cloud, PCL-compatible (pcl::PointXYZRGBL reads it):
+/// FIELDS x y z rgb label confidence; x, y, z, confidence float32; rgb packed 0x00RRGGBB in a
+/// uint32 (PCL's layout); label uint32 (LidarClass id).
+#include <filesystem>
+
+#include "mapfuse/lidar/labeled_cloud.hpp"
+
+namespace mapfuse::io {
+
+/// @brief Writes the cloud atomically. @throws InputError for inconsistent array sizes.
+void writePcd(const std::filesystem::path& path, const lidar::LabeledCloud& cloud);
+
+/// @brief Reads a `DATA binary` PCD with fields x, y, z and optional label / confidence
+/// (SIZE 4, any order; other fields skipped).
+/// @throws IoError when unreadable; ParseError(file, field) for a malformed header, `ascii` or
+/// `binary_compressed` data, missing x/y/z or a truncated body.
+lidar::LabeledCloud readPcd(const std::filesystem::path& path);
+
+}  // namespace mapfuse::io

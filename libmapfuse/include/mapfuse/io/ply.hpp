@@ -1,0 +1,20 @@
+#pragma once
+/// @file Binary little-endian PLY of a labelled cloud, CloudCompare-compatible:
+/// `element vertex N` with `float x, y, z; uchar red, green, blue; uchar label;
+/// float confidence` (colours from the LiDAR class palette).
+#include <filesystem>
+
+#include "mapfuse/lidar/labeled_cloud.hpp"
+
+namespace mapfuse::io {
+
+/// @brief Writes the cloud atomically. @throws InputError for inconsistent array sizes.
+void writePly(const std::filesystem::path& path, const lidar::LabeledCloud& cloud);
+
+/// @brief Reads a binary little-endian PLY with vertex properties x, y, z (float or double)
+/// and optional label (any integer type) and confidence (float); other properties are skipped.
+/// @throws IoError when unreadable; ParseError(file, field) for a malformed header, an
+/// unsupported format or type, a missing x/y/z or a truncated body.
+lidar::LabeledCloud readPly(const std::filesystem::path& path);
+
+}  // namespace mapfuse::io

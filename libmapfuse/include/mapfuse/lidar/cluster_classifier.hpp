@@ -1,0 +1,68 @@
+#pragma once
+/// @file One random forest (OpenCV ml::RTrees) per LiDAR label that judges whether a cluster
+/// carrying that label is labelled correctly (Jeong et al. 2018, §2.1.2 error minimisation).
+/// Stored as `<dir>/rtrees_<label name>.yml`; labels without a file are not filtered.
+#include <array>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mapfuse/core/classes.hpp"
+#include "mapfuse/lidar/cluster_features.hpp"
+
+namespace mapfuse::lidar {
+
+struct RTreesSettings {
+  int max_depth = 12;             ///< tree depth
+  int min_sample_count = 5;       ///< samples per leaf
+  int num_trees = 100;            ///< forest size
+  int min_samples_per_class = 5;  ///< a label needs this many correct and wrong clusters
+  uint64_t seed = 42;             ///< OpenCV RNG seed (deterministic training)
+};
+
+/// Training samples of one label: features and whether the cluster's label was correct.
+struct LabelSamples {
+  std::vector<ClusterFeatures> features;
+  std::vector<int> correct;  ///< 1 correct, 0 wrong
+};
+
+/// What training did per label.
+struct TrainingReport {
+  std::array<int, kNumLidarClasses> positives{}, negatives{};
+  std::array<bool, kNumLidarClasses> trained{};
+  std::array<double, kNumLidarClasses> training_accuracy{};  ///< on the training samples
+};
+
+class ClusterClassifier {
+ public:
+  ClusterClassifier();
+  ~ClusterClassifier();
+  ClusterClassifier(ClusterClassifier&&) noexcept;
+  ClusterClassifier& operator=(ClusterClassifier&&) noexcept;
+
+  /// @brief Loads every `rtrees_<label>.yml` found in `dir` (none found = empty classifier).
+  /// @throws IoError when `dir` is not a folder; ParseError when a file cannot be loaded.
+  static ClusterClassifier load(const std::filesystem::path& dir);
+
+  /// @brief Trains one forest per label with enough positive and negative samples.
+  static ClusterClassifier train(const std::array<LabelSamples, kNumLidarClasses>& samples,
+                                 const RTreesSettings& settings, TrainingReport* report);
+
+  /// @brief Writes `rtrees_<label>.yml` for every trained label (each file atomically).
+  void save(const std::filesystem::path& dir) const;
+
+  bool empty() const;
+  bool has(LidarClass label) const;
+  /// @brief Names of the labels that have a forest.
+  std::vector<std::string> labels() const;
+
+  /// @brief True when the cluster is judged correctly labelled (always true without a forest).
+  bool accept(LidarClass label, const ClusterFeatures& features) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace mapfuse::lidar

@@ -1,0 +1,28 @@
+#pragma once
+/// @file Views of the semantic voxel map: the labelled cloud of voxel centres (PLY / PCD),
+/// per-scan SemanticKITTI labels, and the top-down picture.
+#include <Eigen/Core>
+#include <cstdint>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "mapfuse/core/se3.hpp"
+#include "mapfuse/lidar/labeled_cloud.hpp"
+#include "mapfuse/lidar/voxel_map.hpp"
+
+namespace mapfuse::lidar {
+
+/// @brief Voxel centres with their argmax label and its posterior probability.
+LabeledCloud toLabeledCloud(const SemanticVoxelMap& map);
+
+/// @brief SemanticKITTI label word per scan point: the semantic id of the label of the voxel the
+/// point falls in (T_map_velo applied), 0 (unlabeled) where the map has no voxel.
+std::vector<uint32_t> scanLabels(const SemanticVoxelMap& map, const Pose3& T_map_velo,
+                                 const std::vector<Eigen::Vector3f>& points_velo);
+
+/// @brief Top-down picture (BGR, north/+y up): each pixel shows the class colour of the highest
+/// voxel in its column; `resolution` m per pixel; white where the map is empty.
+/// @param[out] origin_xy map (x, y) of the top-left pixel corner, m
+cv::Mat renderTopDown(const SemanticVoxelMap& map, double resolution, Eigen::Vector2d* origin_xy);
+
+}  // namespace mapfuse::lidar

@@ -1,0 +1,34 @@
+#pragma once
+/// @file Coordinate alignment of Velodyne points with image_02 (Jeong et al. 2018, eq. 2-3):
+/// [u v 1]^T ~ P_rect_02 * R_rect_00 * T_cam0_velo * [x y z 1]^T, keeping points whose range
+/// lies in [min_range, max_range] and that land inside the image in front of the camera.
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+namespace mapfuse::lidar {
+
+struct ProjectionSettings {
+  double min_range = 5.0;   ///< m, Euclidean distance from the Velodyne origin
+  double max_range = 50.0;  ///< m
+  int image_width = 0;      ///< px
+  int image_height = 0;     ///< px
+};
+
+/// Points of a scan that see the image, with their pixels.
+struct ProjectedPoints {
+  std::vector<uint32_t> point_index;  ///< index into the scan
+  std::vector<int32_t> u, v;          ///< pixel column / row (rounded to the nearest pixel)
+  std::size_t size() const { return point_index.size(); }
+};
+
+/// @brief Projects one point; returns false when behind the camera (depth <= 0).
+/// @param P 3x4 Velodyne -> image matrix (KittiCalibration::veloToImage2())
+bool projectPoint(const Eigen::Matrix<double, 3, 4>& P, const Eigen::Vector3d& p_velo, double* u,
+                  double* v);
+
+/// @brief eq. (2)-(3): the scan points (velo frame) that land in the image within range.
+ProjectedPoints projectScan(const std::vector<Eigen::Vector3f>& points_velo,
+                            const Eigen::Matrix<double, 3, 4>& P, const ProjectionSettings& s);
+
+}  // namespace mapfuse::lidar

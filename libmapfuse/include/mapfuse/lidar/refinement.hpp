@@ -1,0 +1,43 @@
+#pragma once
+/// @file Batch map refinement (Jeong et al. 2018, §2.2): a K-nearest-voxel mean-distance
+/// filter that removes isolated voxels, and removal of the traces moving vehicles leave, found
+/// by DBSCAN on the 2D (x, y) projection of the vehicle voxels.
+#include <cstdint>
+#include <vector>
+
+#include "mapfuse/lidar/voxel_map.hpp"
+
+namespace mapfuse::lidar {
+
+struct KnnFilterSettings {
+  int k = 6;  ///< neighbours K
+  double max_mean_distance =
+      0.20;             ///< delta_d, m: voxels whose K nearest are farther on average go
+  int num_threads = 1;  ///< OpenMP threads (results do not depend on it)
+};
+
+/// @brief Keep mask: 1 when the mean distance from the voxel centre to its K nearest other voxel
+/// centres is <= delta_d. Exact K-nearest search over growing cube shells of the voxel hash,
+/// stopping as soon as the result is decided (all unvisited voxels are farther than the shell).
+std::vector<uint8_t> knnMeanDistanceFilter(const SemanticVoxelMap& map, const KnnFilterSettings& s);
+
+struct VehicleTraceSettings {
+  double eps = 0.25;             ///< DBSCAN radius on the (x, y) plane, m
+  int min_points = 5;            ///< DBSCAN core threshold (2D cells, including the cell itself)
+  std::size_t max_voxels = 500;  ///< eta_d: clusters with more vehicle voxels are traces
+  double max_length = 10.0;  ///< eta_l, m: clusters longer than this (principal axis) are traces
+};
+
+struct VehicleTraceStats {
+  std::size_t vehicle_voxels = 0;
+  std::size_t clusters = 0;
+  std::size_t removed_clusters = 0;
+  std::size_t removed_voxels = 0;
+};
+
+/// @brief Keep mask: 0 for vehicle voxels in DBSCAN clusters with > max_voxels voxels or longer
+/// than max_length; all other voxels (and DBSCAN noise) are kept.
+std::vector<uint8_t> vehicleTraceFilter(const SemanticVoxelMap& map, const VehicleTraceSettings& s,
+                                        VehicleTraceStats* stats);
+
+}  // namespace mapfuse::lidar

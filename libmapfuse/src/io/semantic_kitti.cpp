@@ -1,0 +1,27 @@
+#include "mapfuse/io/semantic_kitti.hpp"
+
+#include <cstring>
+
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/io/atomic_file.hpp"
+
+namespace mapfuse::io {
+
+std::vector<uint32_t> readSemanticKittiLabels(const std::filesystem::path& path) {
+  const std::string bytes = readBytes(path);
+  if (bytes.size() % 4 != 0)
+    throw ParseError(path.string(), "size",
+                     std::to_string(bytes.size()) + " bytes is not a multiple of 4 (uint32)");
+  std::vector<uint32_t> out(bytes.size() / 4);
+  std::memcpy(out.data(), bytes.data(), bytes.size());
+  return out;
+}
+
+void writeSemanticKittiLabels(const std::filesystem::path& path,
+                              const std::vector<uint32_t>& labels) {
+  std::string bytes(labels.size() * 4, '\0');
+  std::memcpy(bytes.data(), labels.data(), bytes.size());
+  writeBytesAtomic(path, bytes);
+}
+
+}  // namespace mapfuse::io

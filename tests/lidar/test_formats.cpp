@@ -1,0 +1,106 @@
+// PLY / PCD / SemanticKITTI .label / KITTI poses round trips and malformed input.
+#include <catch2/catch.hpp>
+
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/io/kitti_poses.hpp"
+#include "mapfuse/io/pcd.hpp"
+#include "mapfuse/io/ply.hpp"
+#include "mapfuse/io/semantic_kitti.hpp"
+#include "support/test_support.hpp"
+
+using namespace mapfuse;
+
+namespace {
+lidar::LabeledCloud sampleCloud(std::size_t n) {
+  lidar::LabeledCloud c;
+  for (std::size_t i = 0; i < n; ++i) {
+    c.points.emplace_back(0.05f * i, -0.1f * i, 1.0f + 0.01f * i);
+    c.labels.push_back(static_cast<uint8_t>(i % 8));
+    c.confidence.push_back(static_cast<float>(i % 100) / 100.0f);
+  }
+  return c;
+}
+void checkSame(const lidar::LabeledCloud& a, const lidar::LabeledCloud& b) {
+  REQUIRE(a.size() == b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    CHECK(a.points[i] == b.points[i]);
+    CHECK(a.labels[i] == b.labels[i]);
+    CHECK(a.confidence[i] == b.confidence[i]);
+  }
+}
+}  // namespace
+
+TEST_CASE("PLY round-trip keeps points, labels, confidence and count", "[lidar][io]") {
+  const auto dir = test::tempDir("ply");
+  const auto cloud = sampleCloud(1234);
+  io::writePly(dir / "m.ply", cloud);
+  const std::string text = test::readText(dir / "m.ply");
+  CHECK(text.rfind("ply\nformat binary_little_endian 1.0\n", 0) == 0);
+  CHECK(text.find("element vertex 1234\n") != std::string::npos);
+  CHECK(text.find("property uchar label\nproperty float confidence\nend_header\n") !=
+        std::string::npos);
+  checkSame(cloud, io::readPly(dir / "m.ply"));
+  // truncated body
+  test::writeText(dir / "t.ply", text.substr(0, text.size() - 7));
+  try {
+    io::readPly(dir / "t.ply");
+    FAIL("no throw");
+  } catch (const ParseError& e) {
+    CHECK(e.field() == "vertex");
+  }
+  test::writeText(dir / "a.ply", "ply\nformat ascii 1.0\nelement vertex 0\nend_header\n");
+  CHECK_THROWS_AS(io::readPly(dir / "a.ply"), ParseError);
+}
+
+TEST_CASE("PCD round-trip keeps points, labels, confidence and count", "[lidar][io]") {
+  const auto dir = test::tempDir("pcd");
+  const auto cloud = sampleCloud(777);
+  io::writePcd(dir / "m.pcd", cloud);
+  const std::string text = test::readText(dir / "m.pcd");
+  CHECK(text.find("FIELDS x y z rgb label confidence\n") != std::string::npos);
+  CHECK(text.find("POINTS 777\nDATA binary\n") != std::string::npos);
+  checkSame(cloud, io::readPcd(dir / "m.pcd"));
+  test::writeText(dir / "t.pcd", text.substr(0, text.size() - 1));
+  CHECK_THROWS_AS(io::readPcd(dir / "t.pcd"), ParseError);
+  std::string ascii = text;
+  ascii.replace(ascii.find("DATA binary"), 11, "DATA ascii");
+  test::writeText(dir / "a.pcd", ascii);
+  try {
+    io::readPcd(dir / "a.pcd");
+    FAIL("no throw");
+  } catch (const ParseError& e) {
+    CHECK(e.field() == "DATA");
+  }
+}
+
+TEST_CASE("SemanticKITTI .label round-trip and truncation", "[lidar][io]") {
+  const auto dir = test::tempDir("label");
+  std::vector<uint32_t> labels = {0, 40, 48, (7u << 16) | 10u, 70, 80};
+  io::writeSemanticKittiLabels(dir / "000000.label", labels);
+  const auto back = io::readSemanticKittiLabels(dir / "000000.label");
+  CHECK(back == labels);
+  CHECK(io::semanticIdOf(back[3]) == 10);
+  test::writeText(dir / "bad.label", std::string(10, '\0'));
+  CHECK_THROWS_AS(io::readSemanticKittiLabels(dir / "bad.label"), ParseError);
+}
+
+TEST_CASE("KITTI poses file reads the odometry ground truth", "[lidar][io]") {
+  const auto poses =
+      io::readKittiOdometryPoses(test::requireShared("data/kitti_odometry/poses/00.txt"));
+  REQUIRE(poses.size() == 6);
+  CHECK(poses[0].translation().norm() < 1e-6);
+  // "frames 0->1 move ~0.859 m forward" (data README)
+  CHECK((poses[1].translation() - poses[0].translation()).norm() == Approx(0.859).margin(0.01));
+  const auto dir = test::tempDir("poses");
+  io::writeKittiOdometryPoses(dir / "p.txt", poses);
+  const auto back = io::readKittiOdometryPoses(dir / "p.txt");
+  REQUIRE(back.size() == 6);
+  CHECK((back[5].matrix() - poses[5].matrix()).cwiseAbs().maxCoeff() < 1e-8);
+  test::writeText(dir / "bad.txt", "1 0 0 0 0 1 0 0 0 0 1\n");
+  try {
+    io::readKittiOdometryPoses(dir / "bad.txt");
+    FAIL("no throw");
+  } catch (const ParseError& e) {
+    CHECK(e.field() == "line 1");
+  }
+}
