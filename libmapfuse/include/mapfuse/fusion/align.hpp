@@ -1,0 +1,91 @@
+#pragma once
+/// @file Multi-traversal alignment (§4.2, Song et al. 2023): SGICP between overlapping submaps of
+/// different traversals (eq. (7)), PCM outlier rejection (Mangelson et al. 2018), the
+/// multi-trajectory pose graph (eq. (8)-(11)) and global bundle adjustment GBA (eq. (12)-(14)).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mapfuse/core/lsm.hpp"
+#include "mapfuse/fusion/point_cloud.hpp"
+
+namespace mapfuse::fusion {
+
+/// Registration flavour (paper Table 1 baselines).
+enum class AlignMethod {
+  kIcp,       ///< point-to-point ICP, no semantics, + pose graph
+  kSicp,      ///< point-to-point ICP within classes, + pose graph
+  kSgicp,     ///< semantic GICP with class pyramid and weights, + pose graph (stage 1)
+  kGbaSgicp,  ///< stage 1 then GBA (stage 2)
+};
+std::optional<AlignMethod> alignMethodFromName(const std::string& name);
+const char* alignMethodName(AlignMethod m);
+
+struct AlignSettings {
+  AlignMethod method = AlignMethod::kGbaSgicp;
+  double submap_length = 60.0;  ///< m of keyframe path per submap
+  double min_overlap = 0.3;     ///< fraction of source points with a target point within 2 m
+  std::vector<double> pyramid_distances = {4.0, 2.0, 1.0};  ///< m, max correspondence per level
+  std::vector<double> class_weights = {1.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0};  ///< w_l by CrowdClass
+  double min_fitness = 0.3;               ///< accept a registration above this inlier fraction
+  double max_rmse = 0.5;                  ///< m, and below this RMS residual
+  int max_iterations = 30;                ///< per pyramid level
+  double pcm_gate = 16.81;                ///< chi2 (6 dof, 99%) of pairwise cycle consistency
+  int pcm_exact_max = 40;                 ///< exact maximum clique up to this many constraints
+  double odom_sigma_per_m = 0.01;         ///< relative odometry sigma per metre (pose graph, PCM)
+  double odom_min_sigma = 0.02;           ///< m / rad floor
+  double prior_rotation_sigma = 0.05;     ///< rad, GPS prior on attitude (eq. 9)
+  double inter_huber = 1.0;               ///< Huber delta on whitened inter-trajectory residuals
+  double gba_association_distance = 0.5;  ///< m, element point association radius
+  double gba_point_sigma = 0.05;          ///< m, point-to-line / point-to-plane sigma
+  double gba_huber = 1.0;                 ///< Huber delta on whitened GBA residuals
+  int gba_rounds = 2;                     ///< association / solve rounds
+  int solver_iterations = 100;            ///< Levenberg-Marquardt iterations per solve
+  int threads = 2;                        ///< OpenMP threads over pairs
+};
+
+/// An inter-trajectory relative pose constraint (InterRPC) between two keyframes.
+struct InterConstraint {
+  int lsm_a = 0, kf_a = 0;                     ///< target side (keyframe index)
+  int lsm_b = 0, kf_b = 0;                     ///< source side
+  Pose3 T_a_b = Pose3::Identity();             ///< measured body-a <- body-b
+  Matrix6d covariance = Matrix6d::Identity();  ///< (rho, phi) of T_a_b
+  double overlap = 0, fitness = 0, rmse = 0;
+  int iterations = 0;
+  bool converged = false;
+  bool accepted = false;    ///< passed the registration checks
+  bool consistent = false;  ///< kept by PCM
+};
+
+/// @brief Element points of a keyframe range as a labelled cloud in the LSM frame, with
+/// geometry-aware covariances (lines: free along the line; planar: free in the plane; poles:
+/// free vertically), `point_sigma` across.
+Cloud elementCloud(const Lsm& lsm, int kf_begin, int kf_end, double point_sigma = 0.05);
+
+/// @brief Stage 1 registrations between overlapping submaps of different LSMs (OpenMP over pairs).
+std::vector<InterConstraint> registerSubmaps(const std::vector<Lsm>& lsms, const AlignSettings& s);
+
+/// @brief PCM: per pair of LSMs, the pairwise-consistency graph of its accepted constraints and
+/// its maximum clique; sets `consistent`. @return number kept.
+int pcmSelect(const std::vector<Lsm>& lsms, std::vector<InterConstraint>& constraints,
+              const AlignSettings& s);
+
+/// @brief Maximum clique of an undirected graph (adjacency matrix): exact branch and bound up to
+/// `exact_max` vertices, greedy by degree above. Vertices returned sorted.
+std::vector<int> maximumClique(const std::vector<std::vector<char>>& adjacency, int exact_max);
+
+/// @brief Multi-trajectory pose graph, eq. (8)-(11): GPS priors from the current keyframes,
+/// odometry between consecutive keyframes, Huber-robust InterRPCs (only `consistent` ones).
+/// Updates keyframe poses in place; `priors` holds the georeferenced (GPS) keyframes and the
+/// odometry. @return final Ceres cost.
+double solveMultiPoseGraph(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors,
+                           const std::vector<InterConstraint>& constraints, const AlignSettings& s,
+                           bool* converged = nullptr);
+
+/// @brief GBA, eq. (12)-(14): point-to-line (lane/stop lines, poles) and point-to-plane (arrows,
+/// crosswalks, signs) residuals between elements of different LSMs, Huber loss, GPS priors and
+/// odometry from `priors` (georef output). Updates keyframe poses in place. @return final cost.
+double solveGba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const AlignSettings& s,
+                int* residuals = nullptr, bool* converged = nullptr);
+
+}  // namespace mapfuse::fusion

@@ -1,0 +1,198 @@
+// Multi-trajectory pose graph (eq. (8)-(11)) and GBA (eq. (12)-(14)), Song et al. 2023, in Ceres.
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+
+#include "factors.hpp"
+#include "mapfuse/fusion/align.hpp"
+#include "mapfuse/fusion/voxel_hash.hpp"
+
+namespace mapfuse::fusion {
+
+using detail::PoseParams;
+
+namespace {
+
+using PoseSet = std::vector<std::vector<PoseParams>>;
+
+PoseSet makePoses(const std::vector<Lsm>& lsms) {
+  PoseSet P(lsms.size());
+  for (std::size_t l = 0; l < lsms.size(); ++l) {
+    P[l].resize(lsms[l].keyframes.size());
+    for (std::size_t k = 0; k < P[l].size(); ++k) P[l][k].set(lsms[l].keyframes[k].T_frame_body);
+  }
+  return P;
+}
+
+// eq. (9) priors and eq. (10) odometry, both from the georeferenced keyframes.
+void addPriorsAndOdometry(ceres::Problem& problem, PoseSet& P, const std::vector<Lsm>& priors,
+                          const AlignSettings& s) {
+  for (std::size_t l = 0; l < P.size(); ++l) {
+    const auto& kfs = priors[l].keyframes;
+    for (std::size_t k = 0; k < P[l].size(); ++k) {
+      detail::addPose(problem, P[l][k]);
+      Matrix6d cov = Matrix6d::Zero();
+      cov.topLeftCorner<3, 3>() = kfs[k].covariance.topLeftCorner<3, 3>();
+      cov.diagonal().tail<3>().setConstant(s.prior_rotation_sigma * s.prior_rotation_sigma);
+      cov.topLeftCorner<3, 3>().diagonal().array() += 1e-6;
+      problem.AddResidualBlock(
+          detail::PosePriorFactor::create(kfs[k].T_frame_body, detail::sqrtInformation<6>(cov)),
+          nullptr, P[l][k].t, P[l][k].q);
+      if (k == 0) continue;
+      const Pose3 rel = kfs[k - 1].T_frame_body.inverse() * kfs[k].T_frame_body;
+      const double d = rel.translation().norm();
+      const Matrix6d oc =
+          diagonalCovariance(std::max(s.odom_min_sigma, s.odom_sigma_per_m * d),
+                             std::max(0.1 * s.odom_min_sigma, 0.1 * s.odom_sigma_per_m * d));
+      problem.AddResidualBlock(
+          detail::RelativePoseFactor::create(rel, detail::sqrtInformation<6>(oc)), nullptr,
+          P[l][k - 1].t, P[l][k - 1].q, P[l][k].t, P[l][k].q);
+    }
+  }
+}
+
+double solve(ceres::Problem& problem, const AlignSettings& s, bool* converged) {
+  ceres::Solver::Options opt;
+  opt.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  opt.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  opt.max_num_iterations = s.solver_iterations;
+  opt.num_threads = s.threads;
+  ceres::Solver::Summary summary;
+  ceres::Solve(opt, &problem, &summary);
+  if (converged) *converged = summary.termination_type == ceres::CONVERGENCE;
+  return summary.final_cost;
+}
+
+void writeBack(std::vector<Lsm>& lsms, const PoseSet& P) {
+  for (std::size_t l = 0; l < lsms.size(); ++l)
+    for (std::size_t k = 0; k < P[l].size(); ++k) lsms[l].keyframes[k].T_frame_body = P[l][k].get();
+}
+
+// Point-to-line (n_dirs = 1, d = line direction) or point-to-plane residual between a point of
+// LSM A and a point of LSM B, both in their anchors' body frames: eq. (13) / (14).
+struct ElementFactor {
+  Eigen::Vector3d pa, qb, dir_b;  // dir_b: line direction or plane normal in body b
+  bool plane;
+  double inv_sigma;
+  template <class T>
+  bool operator()(const T* ta, const T* qa, const T* tb, const T* qbq, T* res) const {
+    Eigen::Map<const Eigen::Matrix<T, 3, 1>> TA(ta), TB(tb);
+    Eigen::Map<const Eigen::Quaternion<T>> QA(qa), QB(qbq);
+    const Eigen::Matrix<T, 3, 1> d = QA * pa.cast<T>() + TA - (QB * qb.cast<T>() + TB);
+    const Eigen::Matrix<T, 3, 1> u = QB * dir_b.cast<T>();
+    if (plane) {
+      res[0] = T(inv_sigma) * u.dot(d);
+      res[1] = T(0);
+      res[2] = T(0);
+    } else {
+      const Eigen::Matrix<T, 3, 1> perp = d - u * u.dot(d);
+      for (int i = 0; i < 3; ++i) res[i] = T(inv_sigma) * perp[i];
+    }
+    return true;
+  }
+};
+
+struct ElementPoint {
+  int lsm, kf;
+  Eigen::Vector3d body;  // point in anchor body frame
+  Eigen::Vector3d dir;   // line direction / plane normal in anchor body frame
+  bool plane;
+};
+
+std::vector<ElementPoint> elementPoints(const std::vector<Lsm>& lsms, CrowdClass cls) {
+  std::vector<ElementPoint> out;
+  for (int l = 0; l < int(lsms.size()); ++l)
+    for (const Element& e : lsms[l].elements) {
+      if (e.cls != cls || e.points_body.empty()) continue;
+      const int k = int(lsms[l].keyframeIndex(e.anchor));
+      const auto& pts = e.points_body;
+      const GeometryKind kind = geometryKind(cls);
+      Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+      if (kind == GeometryKind::kPlanar && pts.size() >= 3) {
+        Eigen::Vector3d m = Eigen::Vector3d::Zero();
+        for (const auto& p : pts) m += p;
+        m /= double(pts.size());
+        Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+        for (const auto& p : pts) C += (p - m) * (p - m).transpose();
+        normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(C).eigenvectors().col(0);
+      }
+      for (std::size_t i = 0; i < pts.size(); ++i) {
+        ElementPoint ep{l, k, pts[i], Eigen::Vector3d::UnitZ(), kind == GeometryKind::kPlanar};
+        if (kind == GeometryKind::kLine && pts.size() >= 2) {
+          const std::size_t a = i == 0 ? 0 : i - 1, b = std::min(pts.size() - 1, i + 1);
+          ep.dir = (pts[b] - pts[a]).normalized();
+        } else if (kind == GeometryKind::kPlanar) {
+          ep.dir = normal;
+        }  // pole / light: vertical line through the base point
+        out.push_back(ep);
+      }
+    }
+  return out;
+}
+
+}  // namespace
+
+double solveMultiPoseGraph(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors,
+                           const std::vector<InterConstraint>& constraints, const AlignSettings& s,
+                           bool* converged) {
+  PoseSet P = makePoses(lsms);
+  ceres::Problem problem;
+  addPriorsAndOdometry(problem, P, priors, s);
+  for (const auto& c : constraints) {  // eq. (11), Huber-robust
+    if (!c.consistent) continue;
+    problem.AddResidualBlock(
+        detail::RelativePoseFactor::create(c.T_a_b, detail::sqrtInformation<6>(c.covariance)),
+        new ceres::HuberLoss(s.inter_huber), P[c.lsm_a][c.kf_a].t, P[c.lsm_a][c.kf_a].q,
+        P[c.lsm_b][c.kf_b].t, P[c.lsm_b][c.kf_b].q);
+  }
+  const double cost = solve(problem, s, converged);
+  writeBack(lsms, P);
+  return cost;
+}
+
+double solveGba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const AlignSettings& s,
+                int* residuals, bool* converged) {
+  double cost = 0;
+  for (int round = 0; round < std::max(1, s.gba_rounds); ++round) {
+    PoseSet P = makePoses(lsms);
+    ceres::Problem problem;
+    addPriorsAndOdometry(problem, P, priors, s);
+    int count = 0;
+    for (int c = 0; c < kNumCrowdClasses; ++c) {
+      const auto cls = CrowdClass(c);
+      const std::vector<ElementPoint> pts = elementPoints(lsms, cls);
+      if (pts.empty()) continue;
+      std::vector<Eigen::Vector3d> world(pts.size());
+      for (std::size_t i = 0; i < pts.size(); ++i)
+        world[i] = lsms[pts[i].lsm].keyframes[pts[i].kf].T_frame_body * pts[i].body;
+      // Per LSM index, so that each point finds its nearest partner in every other traversal.
+      std::vector<std::vector<int>> members(lsms.size());
+      for (int i = 0; i < int(pts.size()); ++i) members[pts[i].lsm].push_back(i);
+      std::vector<VoxelIndex> index(lsms.size());
+      for (std::size_t l = 0; l < lsms.size(); ++l) {
+        std::vector<Eigen::Vector3d> w;
+        for (int i : members[l]) w.push_back(world[i]);
+        index[l] = VoxelIndex(w, std::max(0.1, s.gba_association_distance));
+      }
+      const double r2 = s.gba_association_distance * s.gba_association_distance;
+      for (int i = 0; i < int(pts.size()); ++i)
+        for (int l = 0; l < int(lsms.size()); ++l) {
+          if (l == pts[i].lsm || members[l].empty()) continue;
+          const int j0 = index[l].nearest(world[i], r2, nullptr);
+          if (j0 < 0) continue;
+          const ElementPoint& a = pts[i];
+          const ElementPoint& b = pts[members[l][j0]];
+          auto* f = new ElementFactor{a.body, b.body, b.dir, b.plane, 1.0 / s.gba_point_sigma};
+          problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ElementFactor, 3, 3, 4, 3, 4>(f),
+                                   new ceres::HuberLoss(s.gba_huber), P[a.lsm][a.kf].t,
+                                   P[a.lsm][a.kf].q, P[b.lsm][b.kf].t, P[b.lsm][b.kf].q);
+          ++count;
+        }
+    }
+    if (residuals) *residuals = count;
+    cost = solve(problem, s, converged);
+    writeBack(lsms, P);
+  }
+  return cost;
+}
+
+}  // namespace mapfuse::fusion

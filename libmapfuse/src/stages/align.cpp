@@ -1,0 +1,139 @@
+#include "mapfuse/stages/align.hpp"
+
+#include <chrono>
+
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/core/log.hpp"
+#include "mapfuse/io/lsm_io.hpp"
+#include "mapfuse/io/stage_report.hpp"
+
+namespace mapfuse::stages {
+
+void AlignParams::validate() const {
+  const char* st = "AlignParams";
+  requireParam(fusion::alignMethodFromName(method).has_value(), st, "method", method,
+               "one of icp, sicp, sgicp, gba_sgicp");
+  requireParam(submap_length > 0, st, "submap_length", submap_length, "> 0");
+  requireParam(min_overlap >= 0 && min_overlap <= 1, st, "min_overlap", min_overlap, "in [0, 1]");
+  requireParam(min_fitness >= 0 && min_fitness <= 1, st, "min_fitness", min_fitness, "in [0, 1]");
+  requireParam(max_rmse > 0, st, "max_rmse", max_rmse, "> 0");
+  requireParam(max_iterations >= 1, st, "max_iterations", max_iterations, ">= 1");
+  requireParam(pcm_gate > 0, st, "pcm_gate", pcm_gate, "> 0");
+  requireParam(pcm_exact_max >= 0, st, "pcm_exact_max", pcm_exact_max, ">= 0");
+  requireParam(odom_sigma_per_m >= 0, st, "odom_sigma_per_m", odom_sigma_per_m, ">= 0");
+  requireParam(odom_min_sigma > 0, st, "odom_min_sigma", odom_min_sigma, "> 0");
+  requireParam(prior_rotation_sigma > 0, st, "prior_rotation_sigma", prior_rotation_sigma, "> 0");
+  requireParam(inter_huber > 0, st, "inter_huber", inter_huber, "> 0");
+  requireParam(gba_association_distance > 0, st, "gba_association_distance",
+               gba_association_distance, "> 0");
+  requireParam(gba_point_sigma > 0, st, "gba_point_sigma", gba_point_sigma, "> 0");
+  requireParam(gba_huber > 0, st, "gba_huber", gba_huber, "> 0");
+  requireParam(gba_rounds >= 1, st, "gba_rounds", gba_rounds, ">= 1");
+  requireParam(solver_iterations >= 1, st, "solver_iterations", solver_iterations, ">= 1");
+  requireParam(threads >= 1, st, "threads", threads, ">= 1");
+}
+
+fusion::AlignSettings AlignParams::settings() const {
+  fusion::AlignSettings s;
+  s.method = *fusion::alignMethodFromName(method);
+  s.submap_length = submap_length;
+  s.min_overlap = min_overlap;
+  s.min_fitness = min_fitness;
+  s.max_rmse = max_rmse;
+  s.max_iterations = max_iterations;
+  s.pcm_gate = pcm_gate;
+  s.pcm_exact_max = pcm_exact_max;
+  s.odom_sigma_per_m = odom_sigma_per_m;
+  s.odom_min_sigma = odom_min_sigma;
+  s.prior_rotation_sigma = prior_rotation_sigma;
+  s.inter_huber = inter_huber;
+  s.gba_association_distance = gba_association_distance;
+  s.gba_point_sigma = gba_point_sigma;
+  s.gba_huber = gba_huber;
+  s.gba_rounds = gba_rounds;
+  s.solver_iterations = solver_iterations;
+  s.threads = threads;
+  return s;
+}
+
+nlohmann::json alignInPlace(std::vector<Lsm>& lsms, const fusion::AlignSettings& s) {
+  using Clock = std::chrono::steady_clock;
+  auto since = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+  };
+  const std::vector<Lsm> priors = lsms;
+  nlohmann::json sum;
+  auto t = Clock::now();
+  std::vector<fusion::InterConstraint> cs = fusion::registerSubmaps(lsms, s);
+  sum["seconds_registration"] = since(t);
+  t = Clock::now();
+  const int kept = fusion::pcmSelect(lsms, cs, s);
+  sum["seconds_pcm"] = since(t);
+  t = Clock::now();
+  bool conv = false;
+  sum["cost_pose_graph"] = fusion::solveMultiPoseGraph(lsms, priors, cs, s, &conv);
+  sum["converged_pose_graph"] = conv;
+  sum["seconds_pose_graph"] = since(t);
+  if (s.method == fusion::AlignMethod::kGbaSgicp) {
+    t = Clock::now();
+    int residuals = 0;
+    sum["cost_gba"] = fusion::solveGba(lsms, priors, s, &residuals, &conv);
+    sum["gba_residuals"] = residuals;
+    sum["converged_gba"] = conv;
+    sum["seconds_gba"] = since(t);
+  }
+  int accepted = 0;
+  nlohmann::json pairs = nlohmann::json::array();
+  for (const auto& c : cs) {
+    accepted += c.accepted;
+    pairs.push_back({{"lsm_a", c.lsm_a},
+                     {"kf_a", c.kf_a},
+                     {"lsm_b", c.lsm_b},
+                     {"kf_b", c.kf_b},
+                     {"overlap", c.overlap},
+                     {"fitness", c.fitness},
+                     {"rmse_m", c.rmse},
+                     {"iterations", c.iterations},
+                     {"converged", c.converged},
+                     {"accepted", c.accepted},
+                     {"pcm_consistent", c.consistent}});
+  }
+  sum["method"] = fusion::alignMethodName(s.method);
+  sum["pairs"] = pairs;
+  sum["constraints_proposed"] = cs.size();
+  sum["constraints_accepted"] = accepted;
+  sum["constraints_pcm_kept"] = kept;
+  sum["converged"] = conv;
+  return sum;
+}
+
+nlohmann::json runAlign(const std::vector<std::string>& inputs,
+                        const std::filesystem::path& out_dir, const AlignParams& params) {
+  const auto t0 = std::chrono::steady_clock::now();
+  params.validate();
+  if (inputs.empty()) throw InputError("align: no input LSM");
+  std::vector<Lsm> lsms;
+  for (const auto& in : inputs) {
+    lsms.push_back(io::readLsm(in));
+    const Lsm& l = lsms.back();
+    if (l.frame != LsmFrame::kEnu || !l.origin)
+      throw InputError(in + ": frame must be enu (run georef first)");
+    const auto& o0 = *lsms.front().origin;
+    if (l.origin->lat != o0.lat || l.origin->lon != o0.lon || l.origin->alt != o0.alt)
+      throw InputError(in + ": origin differs from " + inputs.front() + " (one shared origin)");
+    if (l.keyframes.empty()) throw InputError(in + ": LSM has no keyframes");
+  }
+  nlohmann::json summary = alignInPlace(lsms, params.settings());
+  std::filesystem::create_directories(out_dir);
+  for (std::size_t i = 0; i < lsms.size(); ++i)
+    io::writeLsm(out_dir / std::filesystem::path(inputs[i]).filename(), lsms[i]);
+  summary["inputs"] = inputs;
+  summary["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  MAPFUSE_INFO("align: " << summary["constraints_proposed"] << " constraints proposed, "
+                         << summary["constraints_pcm_kept"] << " kept by PCM");
+  io::writeResolvedConfig(out_dir, "align", paramsToJson(params));
+  io::writeSummary(out_dir, "align", summary);
+  return summary;
+}
+
+}  // namespace mapfuse::stages
