@@ -47,6 +47,9 @@ std::vector<std::string> splitCsv(const std::string& line) {
     while (!cell.empty() && cell.front() == ' ') cell.erase(cell.begin());
     out.push_back(cell);
   }
+  std::string trimmed = line;
+  while (!trimmed.empty() && (trimmed.back() == '\r' || trimmed.back() == ' ')) trimmed.pop_back();
+  if (!trimmed.empty() && trimmed.back() == ',') out.emplace_back();  // empty last cell
   return out;
 }
 

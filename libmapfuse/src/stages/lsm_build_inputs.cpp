@@ -1,5 +1,6 @@
 #include "mapfuse/stages/lsm_build_inputs.hpp"
 
+#include <atomic>
 #include <chrono>
 #include <exception>
 #include <opencv2/imgcodecs.hpp>
@@ -50,8 +51,10 @@ void loadFramesLayout(const LsmBuildInputs& in, const LsmBuildParams& p, LoadedD
     d.frames.resize(df.frames.size());
     std::vector<std::exception_ptr> errors(df.frames.size());
     Progress progress("masks", df.frames.size());
+    std::atomic<bool> failed{false};
 #pragma omp parallel for schedule(dynamic)
     for (int i = 0; i < int(df.frames.size()); ++i) {
+      if (failed) continue;  // a bad mask stops the work early
       try {
         if (df.frames[i].mask.empty())
           throw ParseError((in.drive / "frames.csv").string(), "frame " + std::to_string(i),
@@ -64,6 +67,7 @@ void loadFramesLayout(const LsmBuildInputs& in, const LsmBuildParams& p, LoadedD
         if (!df.observations.empty()) d.frames[i].aerial = df.observations[i].aerial;
       } catch (...) {
         errors[i] = std::current_exception();
+        failed = true;
       }
       progress.advance();
     }

@@ -1,6 +1,7 @@
 #include "mapfuse/stages/lsm_build_pipeline.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <chrono>
 #include <map>
 
@@ -14,6 +15,9 @@ namespace mapfuse::stages {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+/// m, lane observations whose lateral offsets differ less belong to one line (lanes are ~3.5 m
+/// apart, a dashed line's dashes share one offset).
+constexpr double kLaneGroupGap = 0.8;
 double since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
@@ -46,15 +50,29 @@ ProcessedDrive processDrive(const LoadedDrive& d, const LsmBuildParams& p) {
     std::vector<std::optional<double>> per_frame(n);
 #pragma omp parallel for schedule(dynamic)
     for (int i = 0; i < int(n); ++i) {
-      std::vector<std::vector<Eigen::Vector2d>> lanes;
+      // Lane pixels in the fitting band, grouped by their lateral offset on the nominal plane
+      // so that the dashes of one dashed line are fitted as one line.
+      std::vector<std::pair<double, std::vector<Eigen::Vector2d>>> obs;
       for (const auto& g : d.frames[i].ground) {
         if (g.cls != CrowdClass::kLaneLine) continue;
         std::vector<Eigen::Vector2d> near;
+        std::vector<double> lateral;
         for (const auto& px : g.pixels) {
           const auto X = vehicle::backProjectToGround(px, K_inv, d.calib.ground);
-          if (X && X->norm() >= p.min_range && X->norm() <= p.vp_max_range) near.push_back(px);
+          if (!X || X->norm() < p.min_range || X->norm() > p.vp_max_range) continue;
+          near.push_back(px);
+          lateral.push_back(X->x() * std::max(0.2, 15.0 / X->norm()));  // shrink far distortion
         }
-        lanes.push_back(std::move(near));
+        if (near.empty()) continue;
+        std::nth_element(lateral.begin(), lateral.begin() + lateral.size() / 2, lateral.end());
+        obs.push_back({lateral[lateral.size() / 2], std::move(near)});
+      }
+      std::sort(obs.begin(), obs.end(),
+                [](const auto& a, const auto& b) { return a.first < b.first; });
+      std::vector<std::vector<Eigen::Vector2d>> lanes;
+      for (std::size_t k = 0; k < obs.size(); ++k) {
+        if (k == 0 || obs[k].first - obs[k - 1].first > kLaneGroupGap) lanes.emplace_back();
+        lanes.back().insert(lanes.back().end(), obs[k].second.begin(), obs[k].second.end());
       }
       per_frame[i] = vehicle::estimatePitchCorrection(lanes, d.calib.K, d.calib.ground, vs);
     }

@@ -8,6 +8,7 @@
 #include "mapfuse/io/kitti_calib.hpp"
 #include "mapfuse/io/kitti_raw_writer.hpp"
 #include "mapfuse/io/semantic_image.hpp"
+#include "mapfuse/io/semantic_kitti.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/velodyne.hpp"
 #include "mapfuse/sim/lidar_camera.hpp"
@@ -209,7 +210,7 @@ nlohmann::json runSimulateLidar(const std::filesystem::path& out, const Simulate
       vs.reflectance.push_back(p.w());
     }
     io::writeVelodyneBin(drive_dir / "velodyne_points" / "data" / (name + ".bin"), vs);
-    // TODO(lidarsim): labels/<frame>.label with io/semantic_kitti.hpp once it lands.
+    io::writeSemanticKittiLabels(drive_dir / "labels" / (name + ".label"), scan.labels);
     io::writePngBgr(drive_dir / "image_02" / "data" / (name + ".png"), cam.width, cam.height,
                     sim::shadeLabels(cam));
     io::writeSemanticImage(io::semanticsDir(drive_dir) / (name + ".prob"), probs);

@@ -124,9 +124,17 @@ std::vector<Sample> resampleLine(const Instance& inst, const std::vector<double>
   const bool along_track = inst.cls == CrowdClass::kLaneLine && extent > 15.0;
   for (auto& r : raw) {
     if (along_track) {
-      // Arc length of the observing frame plus the forward offset in its body frame.
-      const Eigen::Vector3d pb = poses[r.frame].inverse() * r.p;
-      r.s = path_s[r.frame] + pb.x();
+      // Arc length of the point's projection on the trajectory (searched near the observing
+      // frame), a function of the point only, so all frames agree on it.
+      const int lo = std::max(0, r.frame - 400),
+                hi = std::min(int(poses.size()) - 1, r.frame + 400);
+      int best = r.frame;
+      double bd = 1e300;
+      for (int j = lo; j <= hi; ++j) {
+        const double dd = (poses[j].translation() - r.p).head<2>().squaredNorm();
+        if (dd < bd) bd = dd, best = j;
+      }
+      r.s = path_s[best] + (poses[best].inverse() * r.p).x();
     } else {
       r.s = (r.p.head<2>() - mean).dot(axis);
     }

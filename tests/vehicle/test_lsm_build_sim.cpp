@@ -1,0 +1,148 @@
+// Acceptance of lsm-build on simulate --level frames data (issue 6).
+#include <Eigen/Geometry>
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "mapfuse/io/drive_frames.hpp"
+#include "mapfuse/io/lsm_io.hpp"
+#include "mapfuse/io/vector_map_io.hpp"
+#include "mapfuse/stages/lsm_build.hpp"
+#include "mapfuse/stages/lsm_build_inputs.hpp"
+#include "mapfuse/stages/lsm_build_pipeline.hpp"
+#include "mapfuse/vehicle/ground_ranging.hpp"
+#include "sim_fixture.hpp"
+
+using namespace mapfuse;
+namespace fs = std::filesystem;
+
+namespace {
+constexpr double kRangeErrorFraction = 0.02;  // acceptance: 2 % of range, true plane
+constexpr double kVpImprovement = 3.0;        // acceptance: VP reduces the 1 degree error 3x
+constexpr double kTriangulationTol = 0.3;     // m, acceptance: within 30 m, >= 5 frames
+constexpr double kDeg = M_PI / 180.0;
+
+/// Closest point on the polyline of a true instance.
+Eigen::Vector3d closestOnPolyline(const std::vector<Eigen::Vector3d>& pts,
+                                  const Eigen::Vector3d& x) {
+  Eigen::Vector3d best = pts.front();
+  for (std::size_t i = 1; i < pts.size(); ++i) {
+    const Eigen::Vector3d a = pts[i - 1], d = pts[i] - a;
+    const double t = std::clamp((x - a).dot(d) / std::max(1e-12, d.squaredNorm()), 0.0, 1.0);
+    if ((a + t * d - x).norm() < (best - x).norm()) best = a + t * d;
+  }
+  return best;
+}
+
+/// Mean relative ranging error of lane-line pixels (5-30 m) against the true element, given a
+/// per-frame plane. The reference point is the true ray-road intersection snapped to the truth.
+double meanRangingError(const stages::LoadedDrive& d, const io::DriveFrames& df,
+                        const VectorMap& truth, const std::vector<vehicle::GroundPlane>& planes) {
+  std::map<int64_t, const MapInstance*> by_id;
+  for (const auto& m : truth.instances) by_id[m.id] = &m;
+  const Eigen::Matrix3d K_inv = d.calib.K.inverse();
+  double sum = 0.0;
+  int n = 0;
+  for (std::size_t i = 0; i < d.frames.size(); ++i) {
+    const Pose3 T_enu_cam = df.truth_T_enu_body[i] * d.calib.T_body_cam;
+    const vehicle::GroundPlane true_plane{T_enu_cam.linear().transpose() * Eigen::Vector3d::UnitZ(),
+                                          T_enu_cam.translation().z()};
+    for (const auto& g : d.frames[i].ground) {
+      if (g.cls != CrowdClass::kLaneLine || !by_id.count(g.truth_id)) continue;
+      for (const auto& px : g.pixels) {
+        const auto ref = vehicle::backProjectToGround(px, K_inv, true_plane);
+        const auto est = vehicle::backProjectToGround(px, K_inv, planes[i]);
+        if (!ref || !est || ref->norm() < 5.0 || ref->norm() > 30.0) continue;
+        const Eigen::Vector3d truth_pt =
+            closestOnPolyline(by_id[g.truth_id]->points, T_enu_cam * *ref);
+        sum += (T_enu_cam * *est - truth_pt).norm() / ref->norm();
+        ++n;
+      }
+    }
+  }
+  REQUIRE(n > 100);
+  return sum / n;
+}
+
+std::vector<vehicle::GroundPlane> truePlanes(const stages::LoadedDrive& d,
+                                             const io::DriveFrames& df) {
+  std::vector<vehicle::GroundPlane> out;
+  for (std::size_t i = 0; i < d.frames.size(); ++i) {
+    const Pose3 T_enu_cam = df.truth_T_enu_body[i] * d.calib.T_body_cam;
+    out.push_back(
+        {T_enu_cam.linear().transpose() * Eigen::Vector3d::UnitZ(), T_enu_cam.translation().z()});
+  }
+  return out;
+}
+}  // namespace
+
+TEST_CASE(
+    "simulated frames: ranging error with the true plane, and VP calibration of 1 degree pitch") {
+  const fs::path drive = test::simulatedDrive(/*flat=*/true, /*masks=*/false);
+  const io::DriveFrames df = io::readDriveFrames(drive);
+  const VectorMap truth =
+      io::readVectorMap(drive.parent_path().parent_path() / "truth/vector_map.json");
+  stages::LsmBuildParams p;
+  stages::LsmBuildInputs in;
+  in.drive = drive;
+  stages::LoadedDrive d = stages::loadDrive(in, p);
+
+  const double err_true = meanRangingError(d, df, truth, truePlanes(d, df));
+  CHECK(err_true <= kRangeErrorFraction);
+
+  // Miscalibrate the nominal plane by 1 degree of pitch.
+  d.calib.ground.normal_cam = vehicle::tiltNormal(d.calib.ground.normal_cam, 1.0 * kDeg, 0.0);
+  p.vp_calibration = false;
+  const auto raw = stages::processDrive(d, p);
+  p.vp_calibration = true;
+  p.vp_window = 31;
+  const auto calibrated = stages::processDrive(d, p);
+  const double err_raw = meanRangingError(d, df, truth, raw.planes);
+  const double err_vp = meanRangingError(d, df, truth, calibrated.planes);
+  INFO("true plane " << err_true << ", 1 deg off " << err_raw << ", VP-calibrated " << err_vp
+                     << " (" << calibrated.vp_frames << " VP frames)");
+  CHECK(err_raw >= kVpImprovement * err_vp);
+}
+
+TEST_CASE(
+    "simulated frames: aerial triangulation within 0.3 m (true poses, >= 5 frames, <= 30 m)") {
+  const fs::path drive = test::simulatedDrive(/*flat=*/false, /*masks=*/false);
+  const io::DriveFrames df = io::readDriveFrames(drive);
+  const VectorMap truth =
+      io::readVectorMap(drive.parent_path().parent_path() / "truth/vector_map.json");
+  stages::LsmBuildParams p;
+  p.min_observations = 1;
+  stages::LsmBuildInputs in;
+  in.drive = drive;
+  stages::LoadedDrive d = stages::loadDrive(in, p);
+  d.T_odom_body = df.truth_T_enu_body;  // odom = enu: compare with the truth directly
+  const auto out = stages::processDrive(d, p);
+  std::map<int64_t, const MapInstance*> by_id;
+  for (const auto& m : truth.instances) by_id[m.id] = &m;
+  // Closest camera distance per truth id, from the observations.
+  std::map<int64_t, double> closest;
+  std::map<int64_t, int> frames;
+  for (std::size_t i = 0; i < d.frames.size(); ++i)
+    for (const auto& a : d.frames[i].aerial) {
+      if (!by_id.count(a.truth_id)) continue;
+      const Eigen::Vector3d cam = (d.T_odom_body[i] * d.calib.T_body_cam).translation();
+      const double r = (by_id[a.truth_id]->points.front() - cam).norm();
+      closest[a.truth_id] = closest.count(a.truth_id) ? std::min(closest[a.truth_id], r) : r;
+      ++frames[a.truth_id];
+    }
+  int checked = 0;
+  double worst = 0.0;
+  for (const auto& e : out.lsm.elements) {
+    if (geometryKind(e.cls) != GeometryKind::kPoint && e.cls != CrowdClass::kTrafficSign) continue;
+    if (!by_id.count(e.truth_id) || frames[e.truth_id] < 5 || closest[e.truth_id] > 30.0) continue;
+    const auto pts = out.lsm.pointsInFrame(e);
+    Eigen::Vector3d est = Eigen::Vector3d::Zero(), ref = Eigen::Vector3d::Zero();
+    for (const auto& q : pts) est += q / double(pts.size());
+    for (const auto& q : by_id[e.truth_id]->points)
+      ref += q / double(by_id[e.truth_id]->points.size());
+    worst = std::max(worst, (est - ref).norm());
+    ++checked;
+  }
+  INFO("checked " << checked << " aerial elements, worst error " << worst << " m");
+  CHECK(checked >= 5);
+  CHECK(worst <= kTriangulationTol);
+}
