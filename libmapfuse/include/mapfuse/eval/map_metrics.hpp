@@ -1,0 +1,49 @@
+#pragma once
+/// @file Map quality against ground truth, per class (§5, Song et al. 2023; formulas in
+/// docs/evaluate.md): matching of map instances to truth instances (lane lines by overlap
+/// within a tolerance, discrete elements by distance), relative precision (mean
+/// |rd_obs - rd_truth| over relative distances between neighbouring elements of one class),
+/// absolute position error (mean, RMS, 3 sigma), completeness and redundancy (by length for
+/// lane lines, by count for every other class).
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "mapfuse/core/vector_map.hpp"
+#include "mapfuse/eval/error_stats.hpp"
+
+namespace mapfuse::eval {
+
+struct MapEvalParams {
+  double line_tolerance = 0.5;      ///< m, a lane-line sample within this of the other map matches
+  double discrete_tolerance = 1.5;  ///< m, largest centre distance of a matched discrete pair
+  double sample_step = 0.5;         ///< m, spacing of lane-line samples
+  double lane_width_min = 2.0;      ///< m, neighbouring lines closer than this are not lanes
+  double lane_width_max = 6.0;      ///< m, ... farther than this neither
+  double neighbour_max_distance = 100.0;  ///< m, discrete neighbours farther apart are ignored
+};
+
+struct ClassMetrics {
+  CrowdClass cls = CrowdClass::kLaneLine;
+  bool by_length = false;  ///< lane lines: completeness/redundancy by length
+  std::size_t truth_count = 0, map_count = 0;
+  std::size_t matched_truth = 0, matched_map = 0;  ///< instances with a match
+  double truth_length = 0, map_length = 0;         ///< m (lane lines)
+  double covered_truth_length = 0;                 ///< m of truth within tolerance of the map
+  double matched_map_length = 0;                   ///< m of map within tolerance of the truth
+  double completeness = 0, redundancy = 0;
+  ErrorStats absolute;  ///< position error of matched map geometry, m
+  ErrorStats relative;  ///< |rd_obs - rd_truth| over neighbour pairs, m
+};
+
+struct MapMetrics {
+  std::vector<ClassMetrics> classes;  ///< classes present in the truth or the map, enum order
+};
+
+/// @brief Compares `map` with `truth` (map coordinates are converted to the truth's ENU when the
+/// origins differ).
+MapMetrics evaluateMap(const VectorMap& map, const VectorMap& truth, const MapEvalParams& params);
+
+nlohmann::json toJson(const ClassMetrics& m);
+nlohmann::json toJson(const MapMetrics& m);
+
+}  // namespace mapfuse::eval

@@ -1,0 +1,48 @@
+#pragma once
+/// @file Trajectory metrics of aligned (or georeferenced) LSMs against the simulator's true
+/// trajectories (docs/simulate.md "True trajectory"): absolute trajectory error (ATE) and
+/// relative pose error (RPE) over a fixed travelled distance, keyframes matched by id. Both
+/// are in the same ENU frame, so no alignment is estimated (docs/evaluate.md).
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "mapfuse/core/lsm.hpp"
+#include "mapfuse/eval/error_stats.hpp"
+
+namespace mapfuse::eval {
+
+struct TruePose {
+  int64_t id = 0;  ///< LSM keyframe id
+  double stamp = 0.0;
+  Pose3 T_enu_body = Pose3::Identity();
+};
+
+/// A `mapfuse.trajectory` file written by simulate.
+struct TrueTrajectory {
+  std::string drive_id;
+  geo::GeoOrigin origin;
+  std::vector<TruePose> poses;
+};
+
+/// @brief Reads a `mapfuse.trajectory` file (JSON or CBOR). @throws IoError, ParseError.
+TrueTrajectory readTrueTrajectory(const std::filesystem::path& path);
+
+struct TrajectoryMetrics {
+  std::string drive_id;
+  std::size_t matched = 0;     ///< keyframes found in both
+  ErrorStats ate_translation;  ///< m, |t_est - t_true|
+  ErrorStats ate_rotation;     ///< deg, angle of R_true^T R_est
+  ErrorStats rpe_translation;  ///< m, over segments of `rpe_distance` travelled metres
+  ErrorStats rpe_rotation;     ///< deg
+};
+
+/// @brief Compares the keyframes of `lsm` (frame enu, same origin as the truth) with the truth.
+/// @throws InputError when the LSM is not in enu, the origins differ or no keyframe id matches.
+TrajectoryMetrics compareTrajectory(const Lsm& lsm, const TrueTrajectory& truth,
+                                    double rpe_distance, const std::string& source);
+
+nlohmann::json toJson(const TrajectoryMetrics& m);
+
+}  // namespace mapfuse::eval

@@ -1,0 +1,283 @@
+#include "mapfuse/eval/map_metrics.hpp"
+
+// Boost.Geometry rtree instantiations trigger GCC false positives.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <algorithm>
+#include <boost/geometry.hpp>
+#include <boost/geometry/geometries/box.hpp>
+#include <boost/geometry/geometries/point_xy.hpp>
+#include <boost/geometry/index/rtree.hpp>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+
+#include "mapfuse/aggregate/geometry2d.hpp"
+#include "mapfuse/aggregate/observations.hpp"
+
+namespace mapfuse::eval {
+namespace {
+
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+using Vec3 = Eigen::Vector3d;
+using P2 = bg::model::d2::point_xy<double>;
+using Box2 = bg::model::box<P2>;
+using SegValue = std::pair<Box2, std::pair<int, std::size_t>>;  // (instance, segment)
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Segments of a set of polylines in an rtree: nearest foot queries within a radius.
+class SegmentIndex {
+ public:
+  explicit SegmentIndex(const std::vector<std::vector<Vec3>>& lines) : lines_(lines) {
+    std::vector<SegValue> v;
+    for (std::size_t i = 0; i < lines.size(); ++i)
+      for (std::size_t s = 1; s < lines[i].size(); ++s) {
+        const Vec3 &a = lines[i][s - 1], &b = lines[i][s];
+        v.push_back({Box2(P2(std::min(a.x(), b.x()), std::min(a.y(), b.y())),
+                          P2(std::max(a.x(), b.x()), std::max(a.y(), b.y()))),
+                     {int(i), s}});
+      }
+    tree_ = bgi::rtree<SegValue, bgi::rstar<16>>(v.begin(), v.end());
+  }
+
+  /// Visits, per line within `radius` of p, its closest foot point (accept(line, foot, dist)).
+  void perLine(const Vec3& p, double radius,
+               const std::function<void(int, const Vec3&, double)>& visit) const {
+    std::vector<SegValue> hits;
+    tree_.query(bgi::intersects(
+                    Box2(P2(p.x() - radius, p.y() - radius), P2(p.x() + radius, p.y() + radius))),
+                std::back_inserter(hits));
+    std::map<int, std::pair<double, Vec3>> best;
+    for (const auto& h : hits) {
+      const auto [line, s] = h.second;
+      Vec3 foot;
+      const double d =
+          aggregate::distanceToSegment2d(p, lines_[line][s - 1], lines_[line][s], &foot);
+      if (d > radius) continue;
+      auto it = best.find(line);
+      if (it == best.end() || d < it->second.first) best[line] = {d, foot};
+    }
+    for (const auto& [line, df] : best) visit(line, df.second, df.first);
+  }
+
+  /// Closest foot on lines accepted by `filter` within radius; returns distance (inf if none).
+  double nearest(const Vec3& p, double radius, Vec3* foot, int* line,
+                 const std::function<bool(int)>& filter = {}) const {
+    double best = kInf;
+    perLine(p, radius, [&](int l, const Vec3& f, double d) {
+      if ((filter && !filter(l)) || d >= best) return;
+      best = d;
+      if (foot) *foot = f;
+      if (line) *line = l;
+    });
+    return best;
+  }
+
+ private:
+  const std::vector<std::vector<Vec3>>& lines_;
+  bgi::rtree<SegValue, bgi::rstar<16>> tree_;
+};
+
+Vec3 centreOf(const MapInstance& m) {
+  Vec3 c = Vec3::Zero();
+  for (const auto& p : m.points) c += p;
+  return c / double(m.points.size());
+}
+
+ClassMetrics evaluateLines(const std::vector<const MapInstance*>& map,
+                           const std::vector<const MapInstance*>& truth, const MapEvalParams& p) {
+  ClassMetrics m;
+  m.by_length = true;
+  m.truth_count = truth.size();
+  m.map_count = map.size();
+  std::vector<std::vector<Vec3>> tl, ml;
+  for (const auto* t : truth) tl.push_back(t->points);
+  for (const auto* i : map) ml.push_back(i->points);
+  const SegmentIndex tindex(tl), mindex(ml);
+  const double tol = p.line_tolerance;
+
+  // map side: matched length, absolute error, which truth line each map line follows
+  std::vector<double> abs_errors;
+  std::vector<int> follows(ml.size(), -1);
+  for (std::size_t i = 0; i < ml.size(); ++i) {
+    const auto s = aggregate::resamplePolyline(ml[i], p.sample_step);
+    std::map<int, double> votes;
+    double matched = 0, length = 0;
+    for (std::size_t k = 1; k < s.size(); ++k) {
+      const Vec3 c = 0.5 * (s[k - 1] + s[k]);
+      const double len = (s[k] - s[k - 1]).norm();
+      length += len;
+      int line = -1;
+      const double d = tindex.nearest(c, tol, nullptr, &line);
+      if (d <= tol) {
+        matched += len;
+        votes[line] += len;
+        abs_errors.push_back(d);
+      }
+    }
+    m.map_length += length;
+    m.matched_map_length += matched;
+    if (matched >= 0.5 * length && length > 0) ++m.matched_map;
+    double best = 0;
+    for (const auto& [line, w] : votes)
+      if (w > best) best = w, follows[i] = line;
+  }
+  // truth side: covered length
+  for (std::size_t j = 0; j < tl.size(); ++j) {
+    const auto s = aggregate::resamplePolyline(tl[j], p.sample_step);
+    double covered = 0, length = 0;
+    for (std::size_t k = 1; k < s.size(); ++k) {
+      const Vec3 c = 0.5 * (s[k - 1] + s[k]);
+      const double len = (s[k] - s[k - 1]).norm();
+      length += len;
+      if (mindex.nearest(c, tol, nullptr, nullptr) <= tol) covered += len;
+    }
+    m.truth_length += length;
+    m.covered_truth_length += covered;
+    if (covered >= 0.5 * length && length > 0) ++m.matched_truth;
+  }
+  m.completeness = m.truth_length > 0 ? m.covered_truth_length / m.truth_length : 0.0;
+  m.redundancy =
+      m.map_length > 0
+          ? (m.map_length - std::min(m.matched_map_length, m.covered_truth_length)) / m.map_length
+          : 0.0;
+  m.absolute = errorStats(abs_errors);
+
+  // relative precision: lane widths at stations along every truth line
+  std::vector<double> rel_errors;
+  constexpr double kMaxCos = 0.26;  // foot direction within ~15 deg of the line normal
+  for (std::size_t a = 0; a < tl.size(); ++a) {
+    const auto s = aggregate::resamplePolyline(tl[a], p.sample_step);
+    for (std::size_t k = 0; k < s.size(); ++k) {
+      const Vec3& t = s[k];
+      const Eigen::Vector2d tangent =
+          (s[std::min(k + 1, s.size() - 1)] - s[k == 0 ? 0 : k - 1]).head<2>().normalized();
+      std::pair<double, std::pair<int, Vec3>> side[2] = {{kInf, {-1, Vec3()}},
+                                                         {kInf, {-1, Vec3()}}};
+      tindex.perLine(t, p.lane_width_max, [&](int b, const Vec3& f, double d) {
+        if (std::size_t(b) == a || d < p.lane_width_min) return;
+        const Eigen::Vector2d v = (f - t).head<2>() / d;
+        if (std::abs(v.dot(tangent)) > kMaxCos) return;
+        const int left = tangent.x() * v.y() - tangent.y() * v.x() > 0 ? 1 : 0;
+        if (d < side[left].first) side[left] = {d, {b, f}};
+      });
+      for (const auto& sd : side) {
+        if (sd.second.first < 0) continue;
+        const int b = sd.second.first;
+        const Vec3& f = sd.second.second;
+        Vec3 ma, mb;
+        const double da =
+            mindex.nearest(t, tol, &ma, nullptr, [&](int l) { return follows[l] == int(a); });
+        const double db =
+            mindex.nearest(f, tol, &mb, nullptr, [&](int l) { return follows[l] == b; });
+        if (da > tol || db > tol) continue;
+        rel_errors.push_back(std::abs((ma - mb).head<2>().norm() - sd.first));
+      }
+    }
+  }
+  m.relative = errorStats(rel_errors);
+  return m;
+}
+
+ClassMetrics evaluateDiscrete(const std::vector<const MapInstance*>& map,
+                              const std::vector<const MapInstance*>& truth,
+                              const MapEvalParams& p) {
+  ClassMetrics m;
+  m.truth_count = truth.size();
+  m.map_count = map.size();
+  std::vector<Vec3> tc, mc;
+  for (const auto* t : truth) tc.push_back(centreOf(*t));
+  for (const auto* i : map) mc.push_back(centreOf(*i));
+  // greedy one-to-one matching by increasing centre distance
+  std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;
+  for (std::size_t j = 0; j < tc.size(); ++j)
+    for (std::size_t i = 0; i < mc.size(); ++i) {
+      const double d = (tc[j] - mc[i]).norm();
+      if (d <= p.discrete_tolerance) pairs.emplace_back(d, j, i);
+    }
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<int> match_of_truth(tc.size(), -1), match_of_map(mc.size(), -1);
+  std::vector<double> abs_errors;
+  for (const auto& [d, j, i] : pairs) {
+    if (match_of_truth[j] >= 0 || match_of_map[i] >= 0) continue;
+    match_of_truth[j] = int(i);
+    match_of_map[i] = int(j);
+    abs_errors.push_back(d);
+  }
+  m.matched_truth = m.matched_map = abs_errors.size();
+  m.completeness = tc.empty() ? 0.0 : double(m.matched_truth) / double(tc.size());
+  m.redundancy = mc.empty() ? 0.0 : double(mc.size() - m.matched_map) / double(mc.size());
+  m.absolute = errorStats(abs_errors);
+  // relative precision: distance to the nearest truth neighbour of the same class
+  std::vector<double> rel_errors;
+  for (std::size_t a = 0; a < tc.size(); ++a) {
+    std::size_t b = a;
+    double best = p.neighbour_max_distance;
+    for (std::size_t j = 0; j < tc.size(); ++j)
+      if (j != a && (tc[j] - tc[a]).norm() <= best) best = (tc[j] - tc[a]).norm(), b = j;
+    if (b == a || match_of_truth[a] < 0 || match_of_truth[b] < 0) continue;
+    const double rd_obs =
+        (mc[std::size_t(match_of_truth[a])] - mc[std::size_t(match_of_truth[b])]).norm();
+    rel_errors.push_back(std::abs(rd_obs - best));
+  }
+  m.relative = errorStats(rel_errors);
+  return m;
+}
+
+}  // namespace
+
+MapMetrics evaluateMap(const VectorMap& map_in, const VectorMap& truth, const MapEvalParams& p) {
+  VectorMap map = map_in;
+  if (!aggregate::sameOrigin(map.origin, truth.origin)) {
+    const geo::EnuConverter from(map.origin), to(truth.origin);
+    for (auto& inst : map.instances)
+      for (auto& q : inst.points) q = to.toEnu(from.toWgs84(q));
+  }
+  MapMetrics out;
+  for (int c = 0; c < kNumCrowdClasses; ++c) {
+    const CrowdClass cls = CrowdClass(c);
+    std::vector<const MapInstance*> mi, ti;
+    for (const auto& i : map.instances)
+      if (i.cls == cls) mi.push_back(&i);
+    for (const auto& i : truth.instances)
+      if (i.cls == cls) ti.push_back(&i);
+    if (mi.empty() && ti.empty()) continue;
+    ClassMetrics m =
+        cls == CrowdClass::kLaneLine ? evaluateLines(mi, ti, p) : evaluateDiscrete(mi, ti, p);
+    m.cls = cls;
+    out.classes.push_back(std::move(m));
+  }
+  return out;
+}
+
+nlohmann::json toJson(const ClassMetrics& m) {
+  nlohmann::json j = {{"class", crowdClassName(m.cls)},
+                      {"measure", m.by_length ? "length" : "count"},
+                      {"truth_count", m.truth_count},
+                      {"map_count", m.map_count},
+                      {"matched_truth", m.matched_truth},
+                      {"matched_map", m.matched_map},
+                      {"completeness", m.completeness},
+                      {"redundancy", m.redundancy},
+                      {"relative_precision_m", m.relative.count ? nlohmann::json(m.relative.mean)
+                                                                : nlohmann::json(nullptr)},
+                      {"relative_error", toJson(m.relative)},
+                      {"absolute_error", toJson(m.absolute)}};
+  if (m.by_length) {
+    j["truth_length_m"] = m.truth_length;
+    j["map_length_m"] = m.map_length;
+    j["covered_truth_length_m"] = m.covered_truth_length;
+    j["matched_map_length_m"] = m.matched_map_length;
+  }
+  return j;
+}
+
+nlohmann::json toJson(const MapMetrics& m) {
+  nlohmann::json classes = nlohmann::json::array();
+  for (const auto& c : m.classes) classes.push_back(toJson(c));
+  return classes;
+}
+
+}  // namespace mapfuse::eval

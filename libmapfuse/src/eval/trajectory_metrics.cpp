@@ -1,0 +1,93 @@
+#include "mapfuse/eval/trajectory_metrics.hpp"
+
+#include <cmath>
+#include <unordered_map>
+
+#include "mapfuse/aggregate/observations.hpp"
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/io/document.hpp"
+#include "mapfuse/io/json_geometry.hpp"
+#include "mapfuse/io/json_view.hpp"
+
+namespace mapfuse::eval {
+
+TrueTrajectory readTrueTrajectory(const std::filesystem::path& path) {
+  const auto doc = io::readDocument(path);
+  const io::JsonView v(doc, path.string());
+  v.checkFormat("mapfuse.trajectory", 1);
+  TrueTrajectory t;
+  t.drive_id = v.at("drive_id").string();
+  if (v.at("frame").string() != "enu") v.at("frame").fail("a true trajectory must be in 'enu'");
+  t.origin = io::readOrigin(v.at("origin"));
+  const auto poses = v.at("poses");
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const auto p = poses.at(i);
+    t.poses.push_back({p.at("id").integer(), p.at("stamp").number(), io::readPose(p.at("pose"))});
+  }
+  return t;
+}
+
+namespace {
+double angleDeg(const Eigen::Matrix3d& R) {
+  return Eigen::AngleAxisd(R).angle() * 180.0 / M_PI;
+}
+}  // namespace
+
+TrajectoryMetrics compareTrajectory(const Lsm& lsm, const TrueTrajectory& truth,
+                                    double rpe_distance, const std::string& source) {
+  if (lsm.frame != LsmFrame::kEnu || !lsm.origin)
+    throw InputError(source +
+                     ": trajectory metrics need an LSM in frame 'enu' (georef/align output)");
+  if (!aggregate::sameOrigin(*lsm.origin, truth.origin))
+    throw InputError(source + ": origin differs from the true trajectory of drive '" +
+                     truth.drive_id + "'");
+  std::unordered_map<int64_t, const TruePose*> by_id;
+  for (const auto& p : truth.poses) by_id[p.id] = &p;
+  std::vector<std::pair<Pose3, Pose3>> pairs;  // (estimate, truth) in keyframe order
+  for (const auto& k : lsm.keyframes) {
+    auto it = by_id.find(k.id);
+    if (it != by_id.end()) pairs.emplace_back(k.T_frame_body, it->second->T_enu_body);
+  }
+  if (pairs.empty())
+    throw InputError(source + ": no keyframe id matches the true trajectory of drive '" +
+                     truth.drive_id + "'");
+  TrajectoryMetrics m;
+  m.drive_id = lsm.drive_id;
+  m.matched = pairs.size();
+  std::vector<double> at, ar, rt, rr;
+  for (const auto& [e, t] : pairs) {
+    at.push_back((e.translation() - t.translation()).norm());
+    ar.push_back(angleDeg(t.linear().transpose() * e.linear()));
+  }
+  // RPE: from each keyframe to the first one at least rpe_distance further along the truth
+  std::vector<double> s(pairs.size(), 0.0);
+  for (std::size_t i = 1; i < pairs.size(); ++i)
+    s[i] = s[i - 1] + (pairs[i].second.translation() - pairs[i - 1].second.translation()).norm();
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    j = std::max(j, i);
+    while (j < pairs.size() && s[j] - s[i] < rpe_distance) ++j;
+    if (j >= pairs.size()) break;
+    const Pose3 d_est = pairs[i].first.inverse() * pairs[j].first;
+    const Pose3 d_true = pairs[i].second.inverse() * pairs[j].second;
+    const Pose3 err = d_true.inverse() * d_est;
+    rt.push_back(err.translation().norm());
+    rr.push_back(angleDeg(err.linear()));
+  }
+  m.ate_translation = errorStats(at);
+  m.ate_rotation = errorStats(ar);
+  m.rpe_translation = errorStats(rt);
+  m.rpe_rotation = errorStats(rr);
+  return m;
+}
+
+nlohmann::json toJson(const TrajectoryMetrics& m) {
+  return {{"drive_id", m.drive_id},
+          {"matched_keyframes", m.matched},
+          {"ate_translation_m", toJson(m.ate_translation)},
+          {"ate_rotation_deg", toJson(m.ate_rotation)},
+          {"rpe_translation_m", toJson(m.rpe_translation)},
+          {"rpe_rotation_deg", toJson(m.rpe_rotation)}};
+}
+
+}  // namespace mapfuse::eval

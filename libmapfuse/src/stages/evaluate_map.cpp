@@ -1,0 +1,109 @@
+#include "mapfuse/stages/evaluate_map.hpp"
+
+#include <algorithm>
+
+#include "mapfuse/core/log.hpp"
+#include "mapfuse/eval/map_report.hpp"
+#include "mapfuse/eval/trajectory_metrics.hpp"
+#include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/document.hpp"
+#include "mapfuse/io/lsm_io.hpp"
+#include "mapfuse/io/stage_report.hpp"
+#include "mapfuse/io/vector_map_io.hpp"
+
+namespace mapfuse::stages {
+
+void EvaluateMapParams::validate() const {
+  const char* s = "EvaluateMapParams";
+  requireParam(line_tolerance > 0, s, "line_tolerance", line_tolerance, "line_tolerance > 0");
+  requireParam(discrete_tolerance > 0, s, "discrete_tolerance", discrete_tolerance,
+               "discrete_tolerance > 0");
+  requireParam(sample_step > 0, s, "sample_step", sample_step, "sample_step > 0");
+  requireParam(lane_width_min >= 0, s, "lane_width_min", lane_width_min, "lane_width_min >= 0");
+  requireParam(lane_width_max > lane_width_min, s, "lane_width_max", lane_width_max,
+               "lane_width_max > lane_width_min");
+  requireParam(neighbour_max_distance > 0, s, "neighbour_max_distance", neighbour_max_distance,
+               "neighbour_max_distance > 0");
+  requireParam(rpe_distance > 0, s, "rpe_distance", rpe_distance, "rpe_distance > 0");
+}
+
+eval::MapEvalParams EvaluateMapParams::toEval() const {
+  eval::MapEvalParams p;
+  p.line_tolerance = line_tolerance;
+  p.discrete_tolerance = discrete_tolerance;
+  p.sample_step = sample_step;
+  p.lane_width_min = lane_width_min;
+  p.lane_width_max = lane_width_max;
+  p.neighbour_max_distance = neighbour_max_distance;
+  return p;
+}
+
+int traversalsOf(const std::filesystem::path& map_file, const VectorMap& map) {
+  const auto summary = map_file.parent_path() / "aggregate.summary.json";
+  if (std::filesystem::exists(summary)) {
+    const auto j = io::readDocument(summary);
+    if (j.contains("inputs") && j["inputs"].contains("drives") &&
+        j["inputs"]["drives"].is_number_integer())
+      return j["inputs"]["drives"].get<int>();
+  }
+  int best = 0;
+  for (const auto& i : map.instances) best = std::max(best, i.support.drives);
+  return best;
+}
+
+nlohmann::json runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem::path& out_dir,
+                              const EvaluateMapParams& params) {
+  if (in.maps.empty()) throw InputError("no map to evaluate (--map)");
+  if (!in.traversals.empty() && in.traversals.size() != in.maps.size())
+    throw InputError("--traversals needs one value per --map (" + std::to_string(in.maps.size()) +
+                     " maps, " + std::to_string(in.traversals.size()) + " values)");
+  if (!in.lsms.empty() && in.truth_trajectories.empty())
+    throw InputError("--lsm needs --truth-trajectories (folder of <drive>.trajectory.json)");
+  const VectorMap truth = io::readVectorMap(in.truth);
+  std::vector<eval::MapReportEntry> entries;
+  for (std::size_t i = 0; i < in.maps.size(); ++i) {
+    const VectorMap map = io::readVectorMap(in.maps[i]);
+    eval::MapReportEntry e;
+    e.name = std::filesystem::path(in.maps[i]).filename().string();
+    if (in.maps.size() > 1) e.name = in.maps[i];
+    e.traversals = in.traversals.empty() ? traversalsOf(in.maps[i], map) : in.traversals[i];
+    e.metrics = eval::evaluateMap(map, truth, params.toEval());
+    entries.push_back(std::move(e));
+  }
+  std::vector<eval::TrajectoryMetrics> trajectories;
+  for (const auto& f : in.lsms) {
+    const Lsm lsm = io::readLsm(f);
+    const auto truth_file =
+        std::filesystem::path(in.truth_trajectories) / (lsm.drive_id + ".trajectory.json");
+    if (!std::filesystem::exists(truth_file))
+      throw IoError(truth_file.string(),
+                    "true trajectory of drive '" + lsm.drive_id + "' not found");
+    trajectories.push_back(
+        eval::compareTrajectory(lsm, eval::readTrueTrajectory(truth_file), params.rpe_distance, f));
+  }
+
+  std::filesystem::create_directories(out_dir);
+  nlohmann::json maps = nlohmann::json::array();
+  for (const auto& e : entries)
+    maps.push_back(
+        {{"map", e.name}, {"traversals", e.traversals}, {"classes", eval::toJson(e.metrics)}});
+  nlohmann::json traj = nlohmann::json::array();
+  std::vector<double> ate;
+  for (const auto& t : trajectories) {
+    traj.push_back(eval::toJson(t));
+    if (t.ate_translation.count) ate.push_back(t.ate_translation.rms);
+  }
+  nlohmann::json summary = {{"truth", in.truth}, {"maps", maps}, {"trajectories", traj}};
+  if (!ate.empty()) summary["trajectory_ate_rms_mean_m"] = eval::errorStats(ate).mean;
+  io::writeBytesAtomic(out_dir / "evaluate.md", eval::markdownReport(entries, trajectories));
+  eval::writeErrorPerClassPng(out_dir / "error_per_class.png", entries.back());
+  if (entries.size() > 1)
+    eval::writeErrorVsTraversalsPng(out_dir / "error_vs_traversals.png", entries);
+  io::writeResolvedConfig(out_dir, "evaluate", paramsToJson(params));
+  io::writeSummary(out_dir, "evaluate", summary);
+  MAPFUSE_INFO("evaluate map: " << entries.size() << " map(s), " << trajectories.size()
+                                << " trajectories -> " << out_dir.string());
+  return summary;
+}
+
+}  // namespace mapfuse::stages

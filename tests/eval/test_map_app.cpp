@@ -1,0 +1,93 @@
+#include <catch2/catch.hpp>
+
+#include "mapfuse/io/document.hpp"
+#include "mapfuse/io/vector_map_io.hpp"
+#include "mapfuse/stages/evaluate_map.hpp"
+#include "support/test_support.hpp"
+
+using namespace mapfuse;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string quoted(const fs::path& p) {
+  return "'" + p.string() + "'";
+}
+
+VectorMap simpleMap(double dy) {
+  VectorMap m;
+  m.origin = {49.0, 8.4, 110.0};
+  for (int l = 0; l < 2; ++l) {
+    MapInstance i;
+    i.id = l + 1;
+    i.cls = CrowdClass::kLaneLine;
+    i.points = {{0, 3.5 * l + dy, 0}, {50, 3.5 * l + dy, 0}};
+    i.support.drives = 4;
+    m.instances.push_back(i);
+  }
+  MapInstance p;
+  p.id = 10;
+  p.cls = CrowdClass::kPole;
+  p.points = {{10, -3 + dy, 0}};
+  m.instances.push_back(p);
+  return m;
+}
+
+int runEvaluate(const std::string& args) {
+  return test::runCommand(quoted(test::appPath("evaluate")) + " map -q " + args +
+                          " >/dev/null 2>&1");
+}
+
+}  // namespace
+
+TEST_CASE("configs/evaluate.json mirrors the evaluate map defaults", "[eval][config]") {
+  const stages::EvaluateMapParams defaults;
+  defaults.validate();
+  CHECK(io::readDocument(fs::path(MAPFUSE_SOURCE_DIR) / "configs/evaluate.json") ==
+        paramsToJson(defaults));
+}
+
+TEST_CASE("evaluate map app: outputs, several maps and exit codes", "[eval][app]") {
+  const auto dir = test::tempDir("eval-app");
+  io::writeVectorMap(dir / "truth.json", simpleMap(0.0));
+  io::writeVectorMap(dir / "a.cbor", simpleMap(0.1));
+  io::writeVectorMap(dir / "b.json", simpleMap(0.05));
+  const auto out = dir / "out";
+  REQUIRE(runEvaluate("--map " + quoted(dir / "a.cbor") + " --truth " + quoted(dir / "truth.json") +
+                      " -o " + quoted(out)) == 0);
+  for (const char* f :
+       {"evaluate.summary.json", "evaluate.config.json", "evaluate.md", "error_per_class.png"})
+    CHECK(fs::exists(out / f));
+  const auto summary = io::readDocument(out / "evaluate.summary.json");
+  const auto& lane = summary["maps"][0]["classes"][0];
+  CHECK(lane["class"] == "lane_line");
+  CHECK(lane["absolute_error"]["mean"].get<double>() == Approx(0.1).margin(1e-9));
+  CHECK(summary["maps"][0]["traversals"] == 4);  // from the instance support
+  CHECK_THAT(test::readText(out / "evaluate.md"), Catch::Contains("| lane_line |"));
+
+  // two maps: error versus traversals
+  const auto out2 = dir / "out2";
+  REQUIRE(runEvaluate("--map " + quoted(dir / "a.cbor") + " " + quoted(dir / "b.json") +
+                      " --traversals 5 50 --truth " + quoted(dir / "truth.json") + " -o " +
+                      quoted(out2)) == 0);
+  CHECK(fs::exists(out2 / "error_vs_traversals.png"));
+  CHECK_THAT(test::readText(out2 / "evaluate.md"), Catch::Contains("versus traversals"));
+
+  // exit codes
+  test::writeText(dir / "cfg.json", "{\"line_tolerence\": 1}");
+  CHECK(runEvaluate("--config " + quoted(dir / "cfg.json") + " --map " + quoted(dir / "a.cbor") +
+                    " --truth " + quoted(dir / "truth.json") + " -o " + quoted(out)) == 2);
+  test::writeText(dir / "cfg2.json", "{\"line_tolerance\": 0.01}");
+  CHECK(runEvaluate("--config " + quoted(dir / "cfg2.json") + " --map " + quoted(dir / "a.cbor") +
+                    " --truth " + quoted(dir / "truth.json") + " -o " + quoted(dir / "out3")) == 0);
+  CHECK(io::readDocument(dir / "out3" / "evaluate.config.json")["line_tolerance"] == 0.01);
+  test::writeText(dir / "broken.json", "{\"format\": \"mapfuse.vector_map\", \"version\": 1}");
+  CHECK(runEvaluate("--map " + quoted(dir / "broken.json") + " --truth " +
+                    quoted(dir / "truth.json") + " -o " + quoted(out)) == 3);
+  CHECK(runEvaluate("--map " + quoted(dir / "nope.json") + " --truth " +
+                    quoted(dir / "truth.json") + " -o " + quoted(out)) == 4);
+  CHECK(runEvaluate("--truth " + quoted(dir / "truth.json") + " -o " + quoted(out)) == 2);
+  CHECK(runEvaluate("--map " + quoted(dir / "a.cbor") + " --traversals 1 2 --truth " +
+                    quoted(dir / "truth.json") + " -o " + quoted(out)) == 3);
+  CHECK(test::runCommand(quoted(test::appPath("evaluate")) + " >/dev/null 2>&1") == 2);
+}

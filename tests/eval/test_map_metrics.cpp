@@ -1,0 +1,163 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "mapfuse/eval/error_stats.hpp"
+#include "mapfuse/eval/map_metrics.hpp"
+
+using namespace mapfuse;
+using namespace mapfuse::eval;
+using Vec3 = Eigen::Vector3d;
+
+namespace {
+
+constexpr double kExact = 1e-9;  // metrics of hand-made maps are exact up to rounding
+
+std::vector<Vec3> line(double y, double length = 100.0) {
+  std::vector<Vec3> p;
+  for (int i = 0; i <= 10; ++i) p.push_back({length * i / 10.0, y, 0.0});
+  return p;
+}
+
+MapInstance inst(int64_t id, CrowdClass c, std::vector<Vec3> pts, double h = 0) {
+  MapInstance m;
+  m.id = id;
+  m.cls = c;
+  m.points = std::move(pts);
+  m.height = h;
+  return m;
+}
+
+// three parallel lane lines 3.5 m apart, 100 m long; poles at x = 0, 20, 50 (y = -3)
+VectorMap truthMap() {
+  VectorMap t;
+  t.origin = {49.0, 8.4, 110.0};
+  t.instances = {
+      inst(1, CrowdClass::kLaneLine, line(0)),      inst(2, CrowdClass::kLaneLine, line(3.5)),
+      inst(3, CrowdClass::kLaneLine, line(7)),      inst(4, CrowdClass::kPole, {{0, -3, 0}}, 6),
+      inst(5, CrowdClass::kPole, {{20, -3, 0}}, 6), inst(6, CrowdClass::kPole, {{50, -3, 0}}, 6)};
+  return t;
+}
+
+const ClassMetrics& get(const MapMetrics& m, CrowdClass c) {
+  for (const auto& x : m.classes)
+    if (x.cls == c) return x;
+  FAIL("class missing");
+  throw 0;
+}
+
+}  // namespace
+
+TEST_CASE("error statistics: mean, RMS, 3-sigma quantile", "[eval]") {
+  const auto s = errorStats({0.3, 0.0, 0.0});
+  CHECK(s.count == 3);
+  CHECK(s.mean == Approx(0.1).margin(kExact));
+  CHECK(s.rms == Approx(std::sqrt(0.03)).margin(kExact));
+  CHECK(s.p3sigma == Approx(0.3).margin(kExact));
+  CHECK(s.max == Approx(0.3).margin(kExact));
+  std::vector<double> many(1000, 1.0);
+  many[0] = 50.0;  // one outlier in 1000 is beyond the 99.73 % quantile
+  CHECK(errorStats(many).p3sigma == Approx(1.0));
+  CHECK(errorStats({}).count == 0);
+}
+
+TEST_CASE("the truth against itself is perfect", "[eval][map]") {
+  const auto m = evaluateMap(truthMap(), truthMap(), MapEvalParams{});
+  for (const auto& c : m.classes) {
+    INFO(crowdClassName(c.cls));
+    CHECK(c.completeness == Approx(1.0).margin(kExact));
+    CHECK(c.redundancy == Approx(0.0).margin(kExact));
+    CHECK(c.absolute.max == Approx(0.0).margin(kExact));
+    CHECK(c.relative.count > 0);
+    CHECK(c.relative.max == Approx(0.0).margin(kExact));
+  }
+}
+
+TEST_CASE("a map shifted by 0.1 m has 0.1 m absolute and zero relative error", "[eval][map]") {
+  VectorMap map = truthMap();
+  for (auto& i : map.instances)
+    for (auto& p : i.points) p.y() += 0.1;
+  const auto m = evaluateMap(map, truthMap(), MapEvalParams{});
+  const auto& lanes = get(m, CrowdClass::kLaneLine);
+  CHECK(lanes.by_length);
+  CHECK(lanes.absolute.mean == Approx(0.1).margin(kExact));
+  CHECK(lanes.absolute.rms == Approx(0.1).margin(kExact));
+  CHECK(lanes.absolute.p3sigma == Approx(0.1).margin(kExact));
+  CHECK(lanes.relative.mean == Approx(0.0).margin(kExact));
+  CHECK(lanes.completeness == Approx(1.0).margin(kExact));
+  CHECK(lanes.redundancy == Approx(0.0).margin(kExact));
+  CHECK(lanes.truth_length == Approx(300.0).margin(kExact));
+  const auto& poles = get(m, CrowdClass::kPole);
+  CHECK(!poles.by_length);
+  CHECK(poles.absolute.mean == Approx(0.1).margin(kExact));
+  CHECK(poles.relative.mean == Approx(0.0).margin(kExact));
+  CHECK(poles.completeness == Approx(1.0).margin(kExact));
+}
+
+TEST_CASE("one line moved sideways changes every lane width by its offset", "[eval][map]") {
+  VectorMap map = truthMap();
+  for (auto& p : map.instances[1].points) p.y() += 0.1;  // the middle line
+  for (auto& p : map.instances[5].points) p.x() += 0.3;  // pole at x = 50 -> 50.3
+  const auto m = evaluateMap(map, truthMap(), MapEvalParams{});
+  const auto& lanes = get(m, CrowdClass::kLaneLine);
+  CHECK(lanes.relative.mean == Approx(0.1).margin(kExact));  // widths 3.6 / 3.4 vs 3.5
+  CHECK(lanes.relative.max == Approx(0.1).margin(kExact));
+  CHECK(lanes.absolute.mean == Approx(0.1 / 3.0).margin(kExact));  // one line of three
+  // poles: nearest truth neighbours 0-20, 20-0, 50-20: only the last changes (30 -> 30.3)
+  const auto& poles = get(m, CrowdClass::kPole);
+  CHECK(poles.relative.count == 3);
+  CHECK(poles.relative.mean == Approx(0.1).margin(kExact));
+  CHECK(poles.absolute.mean == Approx(0.1).margin(kExact));
+  CHECK(poles.absolute.max == Approx(0.3).margin(kExact));
+}
+
+TEST_CASE("a missing and a duplicated instance give exact completeness and redundancy",
+          "[eval][map]") {
+  VectorMap map = truthMap();
+  MapInstance dup_line = map.instances[0];
+  dup_line.id = 100;
+  for (auto& p : dup_line.points) p.y() += 0.05;
+  MapInstance dup_pole = map.instances[3];
+  dup_pole.id = 101;
+  dup_pole.points[0].x() += 0.2;
+  // drop line y = 7 and pole x = 50; add the duplicates
+  map.instances = {map.instances[0], map.instances[1], dup_line,
+                   map.instances[3], map.instances[4], dup_pole};
+  const auto m = evaluateMap(map, truthMap(), MapEvalParams{});
+  const auto& lanes = get(m, CrowdClass::kLaneLine);
+  CHECK(lanes.completeness == Approx(2.0 / 3.0).margin(kExact));  // 200 of 300 m
+  CHECK(lanes.redundancy == Approx(1.0 / 3.0).margin(kExact));    // 100 of 300 m of map
+  CHECK(lanes.matched_truth == 2);
+  const auto& poles = get(m, CrowdClass::kPole);
+  CHECK(poles.truth_count == 3);
+  CHECK(poles.map_count == 3);
+  CHECK(poles.matched_truth == 2);
+  CHECK(poles.completeness == Approx(2.0 / 3.0).margin(kExact));
+  CHECK(poles.redundancy == Approx(1.0 / 3.0).margin(kExact));
+  CHECK(poles.absolute.max == Approx(0.0).margin(kExact));  // the exact pole wins the match
+}
+
+TEST_CASE("a false line far from the truth is redundant and unmatched", "[eval][map]") {
+  VectorMap map = truthMap();
+  map.instances.push_back(inst(200, CrowdClass::kLaneLine, line(30, 50)));
+  const auto m = evaluateMap(map, truthMap(), MapEvalParams{});
+  const auto& lanes = get(m, CrowdClass::kLaneLine);
+  CHECK(lanes.completeness == Approx(1.0).margin(kExact));
+  CHECK(lanes.redundancy == Approx(50.0 / 350.0).margin(kExact));
+  CHECK(lanes.matched_map == 3);
+}
+
+TEST_CASE("maps with another origin are converted to the truth's ENU", "[eval][map]") {
+  VectorMap truth = truthMap();
+  VectorMap map = truthMap();
+  const geo::EnuConverter a(truth.origin);
+  map.origin = {49.0005, 8.4004, 111.0};
+  const geo::EnuConverter b(map.origin);
+  for (auto& i : map.instances)
+    for (auto& p : i.points) p = b.toEnu(a.toWgs84(p));
+  constexpr double kConversion = 1e-6;  // m, ENU round trip
+  const auto m = evaluateMap(map, truth, MapEvalParams{});
+  for (const auto& c : m.classes) {
+    CHECK(c.completeness == Approx(1.0).margin(kExact));
+    CHECK(c.absolute.max < kConversion);
+  }
+}
