@@ -36,7 +36,8 @@ cv::Mat renderTopDown(const Lsm& lsm, const std::vector<Pose3>& trajectory, doub
     return cv::Point(int(std::round((p.x() - lo.x()) / res)),
                      int(std::round((hi.y() - p.y()) / res)));
   };
-  // Background mosaic: every picture pixel looks up the latest tile covering it.
+  // Background mosaic: every picture pixel takes the tile that saw it from closest.
+  cv::Mat best_f(H, W, CV_32F, cv::Scalar(1e9f));
   for (const auto& t : tiles) {
     const Pose3 T_cam_odom = t.T_odom_cam.inverse();
     const Eigen::Vector3d n = t.plane.normal_cam.normalized();
@@ -50,11 +51,14 @@ cv::Mat renderTopDown(const Lsm& lsm, const std::vector<Pose3>& trajectory, doub
         const Eigen::Vector3d q = T_cam_odom * p_odom - foot;
         const double f = q.dot(fwd), l = q.dot(left);
         if (f < t.min_x || f >= t.max_x || std::abs(l) >= t.half_width) continue;
+        if (f >= best_f.at<float>(r, c)) continue;
         const int br = int((t.max_x - f) / t.resolution),
                   bc = int((t.half_width - l) / t.resolution);
         if (br < 0 || bc < 0 || br >= t.gray.rows || bc >= t.gray.cols) continue;
         const uint8_t v = t.gray.at<uint8_t>(br, bc);
-        if (v) img.at<cv::Vec3b>(r, c) = cv::Vec3b(v, v, v);
+        if (!v) continue;
+        img.at<cv::Vec3b>(r, c) = cv::Vec3b(v, v, v);
+        best_f.at<float>(r, c) = float(f);
       }
   }
   for (std::size_t i = 1; i < trajectory.size(); ++i)
