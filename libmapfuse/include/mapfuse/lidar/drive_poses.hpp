@@ -1,0 +1,27 @@
+#pragma once
+/// @file Velodyne poses of a KITTI raw drive from OXTS (Jeong et al. 2018, eq. 1) or from a
+/// KITTI-odometry poses file.
+#include <vector>
+
+#include "mapfuse/core/se3.hpp"
+#include "mapfuse/io/kitti_raw.hpp"
+
+namespace mapfuse::lidar {
+
+/// @brief T_w_velo = T_w_imu * inv(T_velo_imu) for every selected frame, with T_w_imu the
+/// KITTI devkit pose (Mercator scaled by cos(lat of the first selected frame)) or, with
+/// `enu`, the ENU pose about the first frame's fix (GeographicLib).
+/// @throws IoError / ParseError when an OXTS record is missing or malformed; InputError when
+/// the calibration has no calib_imu_to_velo.txt.
+std::vector<Pose3> oxtsVeloPoses(const io::KittiRawDrive& drive, bool enu);
+
+/// @brief Velodyne poses from camera poses of a KITTI-odometry poses file:
+/// T_velo0_velo_i = inv(T_cam_velo) * T_cam0_cam_i * T_cam_velo.
+std::vector<Pose3> veloPosesFromCameraPoses(const std::vector<Pose3>& T_cam0_cam,
+                                            const Pose3& T_cam_velo);
+
+/// @brief Moves the poses so that the first lies at the origin (translation only, axes kept:
+/// keeps z up for OXTS worlds). @return the removed translation (m).
+Eigen::Vector3d recenter(std::vector<Pose3>& T_w_velo);
+
+}  // namespace mapfuse::lidar
