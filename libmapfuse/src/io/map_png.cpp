@@ -40,7 +40,10 @@ void writeMapPng(const std::filesystem::path& path, const VectorMap& map,
   }
   for (const auto& inst : map.instances) {
     const auto c = crowdClassColor(inst.cls);
-    const cv::Scalar color(c[2], c[1], c[0]);  // BGR
+    cv::Scalar color(c[2], c[1], c[0]);     // BGR
+    if (inst.cls == CrowdClass::kLaneLine)  // white paint would vanish on the white canvas
+      color = inst.attributes.color == LineColor::kYellow ? cv::Scalar(0, 160, 230)
+                                                          : cv::Scalar(40, 40, 40);
     const auto& pts = inst.points;
     switch (geometryKind(inst.cls)) {
       case GeometryKind::kPoint:

@@ -8,6 +8,7 @@
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/lsm_io.hpp"
+#include "mapfuse/io/map_png.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
 
@@ -61,8 +62,10 @@ nlohmann::json runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
     throw InputError("--lsm needs --truth-trajectories (folder of <drive>.trajectory.json)");
   const VectorMap truth = io::readVectorMap(in.truth);
   std::vector<eval::MapReportEntry> entries;
+  VectorMap last_map;
   for (std::size_t i = 0; i < in.maps.size(); ++i) {
     const VectorMap map = io::readVectorMap(in.maps[i]);
+    last_map = map;
     eval::MapReportEntry e;
     e.name = std::filesystem::path(in.maps[i]).filename().string();
     if (in.maps.size() > 1) e.name = in.maps[i];
@@ -97,6 +100,11 @@ nlohmann::json runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
   if (!ate.empty()) summary["trajectory_ate_rms_mean_m"] = eval::errorStats(ate).mean;
   io::writeBytesAtomic(out_dir / "evaluate.md", eval::markdownReport(entries, trajectories));
   eval::writeErrorPerClassPng(out_dir / "error_per_class.png", entries.back());
+  {  // the (last) map in colour over the truth in grey
+    std::vector<std::vector<Eigen::Vector3d>> background;
+    for (const auto& t : truth.instances) background.push_back(t.points);
+    io::writeMapPng(out_dir / "map_over_truth.png", last_map, background);
+  }
   if (entries.size() > 1)
     eval::writeErrorVsTraversalsPng(out_dir / "error_vs_traversals.png", entries);
   io::writeResolvedConfig(out_dir, "evaluate", paramsToJson(params));

@@ -29,7 +29,7 @@ struct LaneInstantiationParams {
   double tile_size = 10.0;           ///< m, edge of the square tiles observations are cut at
   double resample_step = 0.25;       ///< m, spacing of the points averaged into centrelines
   double station_step = 1.0;         ///< m, bin length of fragment centrelines
-  double link_distance = 4.0;        ///< m, stage-2 eps: longitudinal gap between linked ends
+  double link_distance = 8.0;        ///< m, stage-2 eps: longitudinal gap between linked ends
   double link_lateral = 1.0;         ///< m, largest lateral offset of a linked end
   double link_angle_deg = 30.0;      ///< deg, largest direction change across a link
   int link_min_pts = 1;              ///< stage-2 MinPts

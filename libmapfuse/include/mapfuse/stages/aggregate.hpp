@@ -21,7 +21,7 @@ struct AggregateParams {
   double tile_size = 10.0;    ///< m
   double station_step = 1.0;  ///< m
   // lane lines, stage 2 (linking with MinPts <= |N| <= MaxPts)
-  double link_distance = 4.0;    ///< m
+  double link_distance = 8.0;    ///< m
   double link_lateral = 1.0;     ///< m
   double link_angle_deg = 30.0;  ///< deg
   int link_min_pts = 1;
