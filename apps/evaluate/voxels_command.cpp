@@ -1,0 +1,59 @@
+/// @file `evaluate voxels`: per-class accuracy and IoU (eq. 10-11, Jeong et al. 2018) of a
+/// semantic voxel map or of per-scan .label predictions against the labelled scans of a drive
+/// (docs/lidar-ground-truth.md). Prints the Table 1 layout (Markdown) on stdout.
+#include <iostream>
+#include <memory>
+
+#include "commands.hpp"
+#include "mapfuse/core/cli.hpp"
+#include "mapfuse/io/document.hpp"
+#include "mapfuse/stages/evaluate_voxels.hpp"
+
+namespace {
+
+using namespace mapfuse;
+
+struct VoxelsCommandState {
+  stages::EvaluateVoxelsParams params;
+  stages::EvaluateVoxelsInputs inputs;
+  std::string out_dir;
+};
+
+// --config values become defaults: a field takes the file's value unless given on the command line.
+void applyConfig(CLI::App& sub, stages::EvaluateVoxelsParams& params) {
+  const std::string file = sub.get_option("--config")->as<std::string>();
+  if (file.empty()) return;
+  stages::EvaluateVoxelsParams from_file;
+  paramsFromJson(from_file, io::readDocument(file), file);
+  nlohmann::json merged = paramsToJson(params);
+  const nlohmann::json loaded = paramsToJson(from_file);
+  for (auto it = loaded.begin(); it != loaded.end(); ++it)
+    if (sub.get_option(cli::optionName(it.key().c_str()))->count() == 0) merged[it.key()] = *it;
+  paramsFromJson(params, merged, file);
+}
+
+apps::CommandAction setupVoxels(CLI::App& sub) {
+  auto st = std::make_shared<VoxelsCommandState>();
+  sub.add_option("--drive", st->inputs.drive,
+                 "KITTI raw drive folder with labels/<frame>.label ground truth")
+      ->required();
+  auto* map = sub.add_option("--map", st->inputs.map, "semantic voxel map (.ply) to score");
+  auto* pred = sub.add_option("--predicted-labels", st->inputs.predicted_labels,
+                              "folder of per-scan <frame>.label predictions to score");
+  map->excludes(pred);
+  sub.add_option("-o,--out", st->out_dir, "output folder (voxels.json, voxels.md)")->required();
+  cli::addParamOptions(sub, st->params);
+  return [st, &sub] {
+    applyConfig(sub, st->params);
+    st->params.validate();
+    const auto doc = stages::runEvaluateVoxels(st->inputs, st->out_dir, st->params);
+    std::cout << doc["markdown"].get<std::string>();
+  };
+}
+
+}  // namespace
+
+MAPFUSE_EVALUATE_COMMAND(kVoxelsCommand, "voxels",
+                         "per-class accuracy / IoU of a semantic voxel map or per-scan labels "
+                         "(Jeong et al. 2018, eq. 10-11, Table 1 layout)",
+                         setupVoxels);

@@ -1,0 +1,54 @@
+#pragma once
+/// @file Stage `evaluate voxels`: per-class accuracy (eq. 10) and IoU (eq. 11) of Jeong et al.
+/// 2018 in the paper's Table 1 layout, for (a) a semantic voxel map (PLY from
+/// lidar-semantic-map) against truth voxels built from the drive's labelled scans
+/// (`<drive>/labels/<frame>.label`) with the drive's poses, or (b) per-scan `.label`
+/// predictions against the truth `.label` files. Writes voxels.json, voxels.md and
+/// evaluate-voxels.{config,summary}.json in the output folder.
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "mapfuse/core/params.hpp"
+
+namespace mapfuse::stages {
+
+struct EvaluateVoxelsParams {
+  double voxel_size = 0.05;          ///< m, must equal the map's voxel size
+  double min_range = 5.0;            ///< m, truth only from points the mapper uses
+  double max_range = 50.0;           ///< m
+  bool camera_fov = true;            ///< truth only from points that land in image_02
+  std::string pose_source = "oxts";  ///< oxts (devkit Mercator) | oxts-enu
+  bool recenter = true;              ///< first pose at the origin (as the map is written)
+  std::string title = "mapfuse";     ///< first column of the Markdown table
+
+  template <class V>
+  void visit(V& v) {
+    v("voxel_size", voxel_size, "m", "voxel edge, equal to the evaluated map's");
+    v("min_range", min_range, "m", "truth voxels only from points at least this far");
+    v("max_range", max_range, "m", "truth voxels only from points at most this far");
+    v("camera_fov", camera_fov, "", "truth voxels only from points that land in image_02");
+    v("pose_source", pose_source, "", "poses of the truth scans: oxts (devkit) or oxts-enu");
+    v("recenter", recenter, "", "move the first pose to the origin, as the map is written");
+    v("title", title, "", "method name in the first column of the Markdown table");
+  }
+  /// @throws ConfigError naming field, value and rule.
+  void validate() const;
+};
+
+/// Inputs of the evaluation: exactly one of `map` and `predicted_labels`.
+struct EvaluateVoxelsInputs {
+  std::filesystem::path drive;             ///< KITTI raw drive with labels/ (truth)
+  std::filesystem::path map;               ///< semantic voxel map (.ply), or empty
+  std::filesystem::path predicted_labels;  ///< folder of <frame>.label predictions, or empty
+};
+
+/// @brief Runs the evaluation and writes the reports into `out`. Returns the voxels.json
+/// document ({"mode", "scores", "counts", "trace_removal"?}).
+/// @throws InputError when both or neither prediction inputs are given or sizes disagree;
+/// IoError / ParseError for unreadable or malformed files.
+nlohmann::json runEvaluateVoxels(const EvaluateVoxelsInputs& in, const std::filesystem::path& out,
+                                 const EvaluateVoxelsParams& params);
+
+}  // namespace mapfuse::stages

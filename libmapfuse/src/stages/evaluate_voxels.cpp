@@ -1,0 +1,111 @@
+#include "mapfuse/stages/evaluate_voxels.hpp"
+
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/core/log.hpp"
+#include "mapfuse/eval/voxel_metrics.hpp"
+#include "mapfuse/eval/voxel_truth.hpp"
+#include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/document.hpp"
+#include "mapfuse/io/kitti_raw.hpp"
+#include "mapfuse/io/ply.hpp"
+#include "mapfuse/io/semantic_kitti.hpp"
+#include "mapfuse/io/stage_report.hpp"
+#include "mapfuse/io/velodyne.hpp"
+#include "mapfuse/lidar/drive_poses.hpp"
+
+namespace mapfuse::stages {
+namespace {
+constexpr const char* kStage = "evaluate-voxels";
+constexpr const char* kStageName = "EvaluateVoxelsParams";
+
+std::filesystem::path truthLabels(const io::KittiRawDrive& d, const io::KittiRawFrame& f) {
+  return d.dir / "labels" / (f.name + ".label");
+}
+}  // namespace
+
+void EvaluateVoxelsParams::validate() const {
+  requireParam(voxel_size > 0.0, kStageName, "voxel_size", voxel_size, "> 0");
+  requireParam(min_range >= 0.0 && min_range < max_range, kStageName, "min_range", min_range,
+               "in [0, max_range)");
+  requireParam(pose_source == "oxts" || pose_source == "oxts-enu", kStageName, "pose_source",
+               pose_source, "oxts or oxts-enu");
+}
+
+nlohmann::json runEvaluateVoxels(const EvaluateVoxelsInputs& in, const std::filesystem::path& out,
+                                 const EvaluateVoxelsParams& P) {
+  P.validate();
+  if (in.map.empty() == in.predicted_labels.empty())
+    throw InputError(
+        "evaluate voxels: give exactly one of a voxel map or a predicted labels folder");
+  const io::KittiRawDrive drive = io::openKittiRawDrive(in.drive, io::FrameRange{});
+  nlohmann::json doc;
+  eval::ConfusionMatrix confusion;
+  if (!in.predicted_labels.empty()) {
+    // (b) per-scan predictions vs truth, point by point.
+    std::size_t scans = 0;
+    for (const auto& f : drive.frames) {
+      const auto pred = io::readSemanticKittiLabels(in.predicted_labels / (f.name + ".label"));
+      const auto truth = io::readSemanticKittiLabels(truthLabels(drive, f));
+      try {
+        confusion += eval::compareScanLabels(pred, truth);
+      } catch (const InputError& e) {
+        throw InputError(f.name + ".label: " + e.what());
+      }
+      ++scans;
+    }
+    doc = {{"mode", "scans"}, {"counts", {{"scans", scans}}}};
+  } else {
+    // (a) voxel map vs truth voxels from the labelled scans in the same frame.
+    if (!drive.has_oxts) throw InputError(in.drive.string() + ": truth voxels need OXTS poses");
+    std::vector<Pose3> poses = lidar::oxtsVeloPoses(drive, P.pose_source == "oxts-enu");
+    if (P.recenter) lidar::recenter(poses);
+    eval::VoxelTruth truth(P.voxel_size);
+    const Eigen::Matrix<double, 3, 4> P2 = drive.calib.veloToImage2();
+    for (std::size_t k = 0; k < drive.frames.size(); ++k) {
+      const auto& f = drive.frames[k];
+      const io::VelodyneScan scan = io::readVelodyneBin(f.velodyne);
+      const auto labels = io::readSemanticKittiLabels(truthLabels(drive, f));
+      if (labels.size() != scan.size())
+        throw InputError(truthLabels(drive, f).string() + ": " + std::to_string(labels.size()) +
+                         " labels for " + std::to_string(scan.size()) + " points");
+      eval::addLabelledScan(truth, scan.points, labels, poses[k], P.min_range, P.max_range,
+                            P.camera_fov ? &P2 : nullptr, drive.calib.image_width,
+                            drive.calib.image_height);
+    }
+    const lidar::LabeledCloud map = io::readPly(in.map);
+    const eval::MapComparison cmp = eval::compareVoxelMap(map, truth);
+    confusion = cmp.confusion;
+    const auto share = [](uint64_t a, uint64_t b) {
+      return b ? nlohmann::json(double(a) / double(b)) : nlohmann::json();
+    };
+    doc = {
+        {"mode", "voxels"},
+        {"counts",
+         {{"scans", drive.frames.size()},
+          {"map_voxels", cmp.map_voxels},
+          {"unmatched_map_voxels", cmp.unmatched},
+          {"truth_voxels", cmp.truth_voxels}}},
+        {"trace_removal",
+         {{"moving_truth_voxels", cmp.moving_truth},
+          {"moving_voxels_in_map", cmp.moving_in_map},
+          {"moving_removed_share", share(cmp.moving_truth - cmp.moving_in_map, cmp.moving_truth)},
+          {"parked_truth_voxels", cmp.parked_truth},
+          {"parked_voxels_in_map", cmp.parked_in_map},
+          {"parked_kept_share", share(cmp.parked_in_map, cmp.parked_truth)}}}};
+  }
+  const eval::LabelScores scores = eval::scoreConfusion(confusion);
+  doc["scores"] = eval::scoresToJson(scores);
+  const std::string md = eval::scoresToMarkdown(scores, P.title);
+  io::writeDocument(out / "voxels.json", doc);
+  io::writeBytesAtomic(out / "voxels.md", md);
+  io::writeResolvedConfig(out, kStage, paramsToJson(P));
+  io::writeSummary(out, kStage,
+                   {{"mode", doc["mode"]},
+                    {"mean_iou", doc["scores"]["mean_iou"]},
+                    {"mean_accuracy", doc["scores"]["mean_accuracy"]},
+                    {"evaluated", scores.evaluated}});
+  doc["markdown"] = md;
+  return doc;
+}
+
+}  // namespace mapfuse::stages
