@@ -4,6 +4,7 @@
 #include <chrono>
 #include <exception>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
@@ -15,6 +16,7 @@
 #include "mapfuse/io/kitti_raw.hpp"
 #include "mapfuse/vehicle/dead_reckoning.hpp"
 #include "mapfuse/vehicle/fallback_perception.hpp"
+#include "mapfuse/vehicle/flow_association.hpp"
 
 namespace mapfuse::stages {
 namespace fs = std::filesystem;
@@ -171,6 +173,27 @@ LoadedDrive loadDrive(const LsmBuildInputs& in, const LsmBuildParams& p) {
     const Pose3 T_first = (T_world_cam0.front() * T_cam0_cam * T_cam_body).inverse();
     for (const auto& T : T_world_cam0)
       d.T_odom_body.push_back(T_first * T * T_cam0_cam * T_cam_body);
+  }
+  // Aerial boxes without track ids: associate them frame to frame by optical flow.
+  bool need_flow = false;
+  for (const auto& f : d.frames)
+    for (const auto& a : f.aerial) need_flow = need_flow || a.track_id < 0;
+  if (need_flow && d.images.size() == d.frames.size()) {
+    int64_t next_id = 0;
+    cv::Mat prev;
+    for (std::size_t i = 0; i < d.frames.size(); ++i) {
+      cv::Mat gray;
+      cv::cvtColor(vehicle::readColorImage(d.images[i]), gray, cv::COLOR_BGR2GRAY);
+      if (prev.empty()) {
+        for (auto& a : d.frames[i].aerial) a.track_id = next_id++;
+      } else {
+        vehicle::associateByFlow(prev, gray, d.frames[i - 1].aerial, d.frames[i].aerial, next_id,
+                                 vehicle::FlowSettings{});
+      }
+      prev = gray;
+    }
+  } else if (need_flow) {
+    MAPFUSE_WARN("lsm-build: aerial boxes without track ids and no images: they are ignored");
   }
   if (d.T_odom_body.size() != d.stamps.size() || d.frames.size() != d.stamps.size())
     throw InputError(in.drive.string() + ": frame counts disagree (poses " +
