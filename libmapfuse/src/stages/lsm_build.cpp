@@ -29,6 +29,7 @@ void LsmBuildParams::validate() const {
   oneOf("segmenter", segmenter, {"enet"});
   oneOf("format", format, {"json", "cbor"});
   requireParam(camera_height > 0.0, S, "camera_height", camera_height, "> 0");
+  requireParam(kitti_last_frame >= -1, S, "kitti_last_frame", kitti_last_frame, ">= -1");
   requireParam(wheel_scale > 0.0, S, "wheel_scale", wheel_scale, "> 0");
   requireParam(keyframe_spacing > 0.0, S, "keyframe_spacing", keyframe_spacing, "> 0");
   requireParam(keyframe_max_angle > 0.0, S, "keyframe_max_angle", keyframe_max_angle, "> 0");

@@ -18,6 +18,7 @@ struct LsmBuildParams {
   std::string segmenter = "enet";   ///< fallback perception network: enet
   std::string model;                ///< ENet model; "" = <shared>/models/enet-cityscapes/...
   double camera_height = 1.65;      ///< m, KITTI camera height (frames: from calibration)
+  int kitti_last_frame = -1;  ///< KITTI: last frame index used (-1 = all)
   double wheel_scale = 1.0;         ///< multiplies wheel speeds
   double gyro_bias_x = 0.0, gyro_bias_y = 0.0, gyro_bias_z = 0.0;  ///< rad/s
   double keyframe_spacing = 10.0;                                  ///< m
@@ -54,6 +55,7 @@ struct LsmBuildParams {
     v("segmenter", segmenter, "", "fallback segmentation network (enet)");
     v("model", model, "", "segmentation model file; empty = shared models/enet-cityscapes");
     v("camera_height", camera_height, "m", "KITTI camera height above the road");
+    v("kitti_last_frame", kitti_last_frame, "", "KITTI: last frame index used (-1 = all)");
     v("wheel_scale", wheel_scale, "", "dead reckoning: wheel speed scale");
     v("gyro_bias_x", gyro_bias_x, "rad/s", "dead reckoning: gyro bias x");
     v("gyro_bias_y", gyro_bias_y, "rad/s", "dead reckoning: gyro bias y");
