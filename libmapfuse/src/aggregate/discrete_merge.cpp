@@ -113,8 +113,8 @@ std::vector<MapInstance> mergeDiscrete(const std::vector<Observation>& items,
   std::vector<Vec3> centre(n);
   for (std::size_t i = 0; i < n; ++i) {
     const auto& pts = items[indices[i]].points;
-    if (kind == GeometryKind::kPlanar)
-      geom[i] = toRectangle(pts);
+    if (kind == GeometryKind::kPlanar)  // polygons keep their own vertices (arrows are not boxes)
+      geom[i] = pts.size() >= 3 ? pts : toRectangle(pts);
     else if (stop_line)
       geom[i] = {pts.front(), pts.back()};
     else
@@ -176,15 +176,16 @@ std::vector<MapInstance> mergeDiscrete(const std::vector<Observation>& items,
     for (std::size_t i : mem) {
       const Observation& o = items[indices[i]];
       const double w = std::max(o.confidence, 1e-3);  // confidence-weighted averaging
-      std::vector<Vec3> g = geom[i];
-      if (g.size() == acc.size() && g.size() > 1) g = alignCorners(geom[ref], g);
-      for (std::size_t k = 0; k < acc.size(); ++k) acc[k] += w * g[k];
-      height += w * o.height;
-      wsum += w;
       drives.insert(o.drive);
       inst.support.observations += o.observations;
       styles[o.attributes.style] += w;
       colors[o.attributes.color] += w;
+      // geometry: members with the reference's vertex count, vertices aligned then averaged
+      if (geom[i].size() != acc.size()) continue;
+      const std::vector<Vec3> g = acc.size() > 1 ? alignCorners(geom[ref], geom[i]) : geom[i];
+      for (std::size_t k = 0; k < acc.size(); ++k) acc[k] += w * g[k];
+      height += w * o.height;
+      wsum += w;
     }
     for (auto& c : acc) c /= wsum;
     inst.points = acc;

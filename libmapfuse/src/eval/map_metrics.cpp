@@ -11,6 +11,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <unordered_map>
 
 #include "mapfuse/aggregate/geometry2d.hpp"
 #include "mapfuse/aggregate/observations.hpp"
@@ -248,6 +249,57 @@ MapMetrics evaluateMap(const VectorMap& map_in, const VectorMap& truth, const Ma
         cls == CrowdClass::kLaneLine ? evaluateLines(mi, ti, p) : evaluateDiscrete(mi, ti, p);
     m.cls = cls;
     out.classes.push_back(std::move(m));
+  }
+  return out;
+}
+
+VectorMap clipToCoverage(const VectorMap& truth, const std::vector<Vec3>& trajectory,
+                         double radius) {
+  auto key = [&](double x, double y) {
+    return (int64_t(std::floor(x / radius)) << 32) ^
+           (int64_t(std::floor(y / radius)) & 0xffffffffLL);
+  };
+  std::unordered_multimap<int64_t, Vec3> grid;
+  for (const auto& p : trajectory) grid.emplace(key(p.x(), p.y()), p);
+  auto covered = [&](const Vec3& q) {
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy) {
+        auto r = grid.equal_range(key(q.x() + dx * radius, q.y() + dy * radius));
+        for (auto it = r.first; it != r.second; ++it)
+          if ((it->second - q).head<2>().norm() <= radius) return true;
+      }
+    return false;
+  };
+  constexpr double kMinPiece = 1.0;  // m
+  VectorMap out = truth;
+  out.instances.clear();
+  int64_t next_id = 1;
+  for (const auto& i : truth.instances) next_id = std::max(next_id, i.id + 1);
+  for (const auto& inst : truth.instances) {
+    if (geometryKind(inst.cls) != GeometryKind::kLine) {
+      if (covered(centreOf(inst))) out.instances.push_back(inst);
+      continue;
+    }
+    std::vector<Vec3> piece;
+    bool first = true;
+    auto flush = [&] {
+      if (piece.size() >= 2 && polylineLength(piece) >= kMinPiece) {
+        MapInstance m = inst;
+        m.points = piece;
+        m.bezier.clear();
+        if (!first) m.id = next_id++;
+        first = false;
+        out.instances.push_back(std::move(m));
+      }
+      piece.clear();
+    };
+    for (const auto& q : aggregate::resamplePolyline(inst.points, 0.5)) {
+      if (covered(q))
+        piece.push_back(q);
+      else
+        flush();
+    }
+    flush();
   }
   return out;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "mapfuse/aggregate/observations.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/eval/map_report.hpp"
 #include "mapfuse/eval/trajectory_metrics.hpp"
@@ -25,6 +26,7 @@ void EvaluateMapParams::validate() const {
                "lane_width_max > lane_width_min");
   requireParam(neighbour_max_distance > 0, s, "neighbour_max_distance", neighbour_max_distance,
                "neighbour_max_distance > 0");
+  requireParam(coverage_radius >= 0, s, "coverage_radius", coverage_radius, "coverage_radius >= 0");
   requireParam(rpe_distance > 0, s, "rpe_distance", rpe_distance, "rpe_distance > 0");
 }
 
@@ -60,7 +62,29 @@ nlohmann::json runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
                      " maps, " + std::to_string(in.traversals.size()) + " values)");
   if (!in.lsms.empty() && in.truth_trajectories.empty())
     throw InputError("--lsm needs --truth-trajectories (folder of <drive>.trajectory.json)");
-  const VectorMap truth = io::readVectorMap(in.truth);
+  VectorMap truth = io::readVectorMap(in.truth);
+  std::size_t coverage_files = 0;
+  if (!in.truth_trajectories.empty() && params.coverage_radius > 0) {
+    // score only what the drives could see: truth near the true trajectories
+    if (!std::filesystem::is_directory(in.truth_trajectories))
+      throw IoError(in.truth_trajectories, "not a folder of <drive>.trajectory.json files");
+    std::vector<std::filesystem::path> files;
+    for (const auto& e : std::filesystem::directory_iterator(in.truth_trajectories)) {
+      const std::string name = e.path().filename().string();
+      if (name.size() > 16 && name.rfind(".trajectory.json") == name.size() - 16)
+        files.push_back(e.path());
+    }
+    std::sort(files.begin(), files.end());
+    std::vector<Eigen::Vector3d> positions;
+    for (const auto& f : files) {
+      const auto t = eval::readTrueTrajectory(f);
+      if (!aggregate::sameOrigin(t.origin, truth.origin))
+        throw InputError(f.string() + ": origin differs from the truth map " + in.truth);
+      for (const auto& p : t.poses) positions.push_back(p.T_enu_body.translation());
+    }
+    coverage_files = files.size();
+    truth = eval::clipToCoverage(truth, positions, params.coverage_radius);
+  }
   std::vector<eval::MapReportEntry> entries;
   VectorMap last_map;
   for (std::size_t i = 0; i < in.maps.size(); ++i) {
@@ -96,7 +120,11 @@ nlohmann::json runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
     traj.push_back(eval::toJson(t));
     if (t.ate_translation.count) ate.push_back(t.ate_translation.rms);
   }
-  nlohmann::json summary = {{"truth", in.truth}, {"maps", maps}, {"trajectories", traj}};
+  nlohmann::json summary = {{"truth", in.truth},
+                            {"truth_clipped_to_coverage", coverage_files > 0},
+                            {"coverage_trajectories", coverage_files},
+                            {"maps", maps},
+                            {"trajectories", traj}};
   if (!ate.empty()) summary["trajectory_ate_rms_mean_m"] = eval::errorStats(ate).mean;
   io::writeBytesAtomic(out_dir / "evaluate.md", eval::markdownReport(entries, trajectories));
   eval::writeErrorPerClassPng(out_dir / "error_per_class.png", entries.back());

@@ -43,6 +43,12 @@ struct MapMetrics {
 /// origins differ).
 MapMetrics evaluateMap(const VectorMap& map, const VectorMap& truth, const MapEvalParams& params);
 
+/// @brief The part of a truth map that drives could observe: lane lines cut to their pieces
+/// within `radius` (horizontal) of a trajectory point (sampled every 0.5 m, pieces shorter than
+/// 1 m dropped), other instances kept when their centre is within `radius`.
+VectorMap clipToCoverage(const VectorMap& truth, const std::vector<Eigen::Vector3d>& trajectory,
+                         double radius);
+
 nlohmann::json toJson(const ClassMetrics& m);
 nlohmann::json toJson(const MapMetrics& m);
 

@@ -20,6 +20,7 @@ struct EvaluateMapParams {
   double lane_width_max = 6.0;            ///< m
   double neighbour_max_distance = 100.0;  ///< m
   double rpe_distance = 10.0;             ///< m
+  double coverage_radius = 12.0;          ///< m, 0 = evaluate against the whole truth
 
   template <class V>
   void visit(V& v) {
@@ -32,6 +33,9 @@ struct EvaluateMapParams {
     v("neighbour_max_distance", neighbour_max_distance, "m",
       "discrete elements farther apart are not neighbours");
     v("rpe_distance", rpe_distance, "m", "travelled distance of the relative pose error");
+    v("coverage_radius", coverage_radius, "m",
+      "with --truth-trajectories: score only truth within this distance of a true trajectory "
+      "(0 = whole truth)");
   }
   /// @throws ConfigError naming the field, the value and the rule.
   void validate() const;
