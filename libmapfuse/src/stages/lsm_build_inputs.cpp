@@ -83,7 +83,8 @@ void loadFramesLayout(const LsmBuildInputs& in, const LsmBuildParams& p, LoadedD
 }
 
 void loadKittiLayout(const LsmBuildInputs& in, const LsmBuildParams& p, LoadedDrive& d) {
-  const io::KittiRawDrive kd = io::openKittiRawDrive(in.drive, io::FrameRange{0, p.kitti_last_frame, 1});
+  const io::KittiRawDrive kd =
+      io::openKittiRawDrive(in.drive, io::FrameRange{0, p.kitti_last_frame, 1});
   d.drive_id = in.drive_id.empty() ? in.drive.filename().string() : in.drive_id;
   if (d.drive_id.empty()) d.drive_id = in.drive.parent_path().filename().string();
   d.vehicle_id = "kitti";

@@ -18,7 +18,7 @@ struct LsmBuildParams {
   std::string segmenter = "enet";   ///< fallback perception network: enet
   std::string model;                ///< ENet model; "" = <shared>/models/enet-cityscapes/...
   double camera_height = 1.65;      ///< m, KITTI camera height (frames: from calibration)
-  int kitti_last_frame = -1;  ///< KITTI: last frame index used (-1 = all)
+  int kitti_last_frame = -1;        ///< KITTI: last frame index used (-1 = all)
   double wheel_scale = 1.0;         ///< multiplies wheel speeds
   double gyro_bias_x = 0.0, gyro_bias_y = 0.0, gyro_bias_z = 0.0;  ///< rad/s
   double keyframe_spacing = 10.0;                                  ///< m
