@@ -48,7 +48,10 @@ Made by `make demo` (scripts/demo.sh) from the embedded sample in samples/demo/.
 | crowd/aggregate/ | the vector map: `map.cbor` (compact native), `map.json`, `map.geojson` (WGS84, opens in QGIS), `map.osm` (Lanelet2-style), `map.png` (top-down picture), `aggregate.summary.json` (size in KB/km) |
 | crowd/evaluate/ | `evaluate.md` (paper-style table), `evaluate.summary.json`, `error_per_class.png` |
 | crowd-map.geojson, crowd-map.png | copies of the map for a quick look |
-| lidar/ | (when present) the LiDAR pipeline: simulated KITTI raw drive, semantic voxel map (PLY/PCD), per-scan .label files, top-down PNG, IoU table |
+| lidar/sim/ | a synthetic KITTI raw drive with ground truth (`simulate-lidar`: velodyne, oxts, image_02, semantics_02 network-like probabilities, labels/ true SemanticKITTI labels); docs/lidar-ground-truth.md |
+| lidar/map/ | `lidar-semantic-map` output: `map.ply` (x, y, z, RGB, label, confidence; CloudCompare), `map.pcd` (PCL, `label` field), `labels/<frame>.label` (SemanticKITTI), `topdown.png`, `poses.txt` |
+| lidar/evaluate/ | `voxels.md` / `voxels.json`: per-class accuracy and IoU (paper Table 1 layout) |
+| lidar-map.png | copy of the top-down picture of the voxel map |
 
 Every stage folder also holds `<stage>.config.json` (parameters used) and `<stage>.summary.json`.
 MD
@@ -56,10 +59,10 @@ MD
 echo
 echo "== crowdsourced vector map (evaluate vs ground truth) =="
 cat "$out/crowd/evaluate/evaluate.md"
-if [ -f "$out/lidar/evaluate/evaluate_voxels.md" ]; then
+if [ -f "$out/lidar/evaluate/voxels.md" ]; then
   echo
   echo "== LiDAR semantic voxel map (IoU vs ground truth) =="
-  cat "$out/lidar/evaluate/evaluate_voxels.md"
+  cat "$out/lidar/evaluate/voxels.md"
 fi
 echo
 echo "demo: outputs in $out (see $out/README.md), $(( $(date +%s) - start )) s"
