@@ -71,6 +71,9 @@ class SemanticVoxelMap {
   /// @brief Reserves storage for n voxels.
   void reserve(std::size_t n);
 
+  /// @brief Releases unused voxel-array capacity (after building the map).
+  void shrinkToFit() { voxels_.shrink_to_fit(); }
+
   /// @brief Heap bytes held (voxel array capacity + index table).
   std::size_t memoryBytes() const;
 

@@ -1,0 +1,308 @@
+#include "mapfuse/stages/lidar_semantic_map.hpp"
+
+#include <chrono>
+#include <opencv2/imgcodecs.hpp>
+
+#include "mapfuse/core/classes.hpp"
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/core/log.hpp"
+#include "mapfuse/core/progress.hpp"
+#include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/kitti_poses.hpp"
+#include "mapfuse/io/pcd.hpp"
+#include "mapfuse/io/ply.hpp"
+#include "mapfuse/io/semantic_kitti.hpp"
+#include "mapfuse/io/stage_report.hpp"
+#include "mapfuse/io/velodyne.hpp"
+#include "mapfuse/lidar/drive_poses.hpp"
+#include "mapfuse/lidar/map_export.hpp"
+#include "mapfuse/lidar/refinement.hpp"
+#include "mapfuse/lidar/scan_odometry.hpp"
+#include "mapfuse/stages/lidar_semantic_map_detail.hpp"
+
+namespace mapfuse::stages {
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+constexpr const char* kStage = "lidar-semantic-map";
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+/// Poses of the selected frames in the map frame (first selected frame at the origin).
+std::vector<Pose3> drivePoses(const io::KittiRawDrive& drive, const LidarSemanticMapParams& p,
+                              json& report) {
+  std::string src = p.pose_source;
+  if (src == "auto")
+    src = (drive.has_oxts && drive.calib.has_imu) ? "oxts"
+          : !p.poses_file.empty()                 ? "poses_file"
+                                                  : "odometry";
+  report["source"] = src;
+  std::vector<Pose3> poses;
+  if (src == "oxts" || src == "oxts_enu") {
+    if (!drive.has_oxts) throw InputError(drive.dir.string() + ": not every frame has OXTS");
+    poses = lidar::oxtsVeloPoses(drive, src == "oxts_enu");
+    const Eigen::Vector3d t0 = lidar::recenter(poses);
+    report["origin_translation"] = {t0.x(), t0.y(), t0.z()};
+    const auto ox = io::readOxts(drive.frames.front());
+    report["origin_wgs84"] = {{"lat", ox.lat}, {"lon", ox.lon}, {"alt", ox.alt}};
+  } else if (src == "poses_file") {
+    if (p.poses_file.empty()) throw ConfigError("pose_source poses_file needs --poses-file");
+    const auto cam = io::readKittiOdometryPoses(p.poses_file);
+    std::vector<Pose3> sel;
+    for (const auto& f : drive.frames) {
+      if (f.index >= static_cast<int>(cam.size()))
+        throw InputError(p.poses_file + ": no pose for frame " + std::to_string(f.index));
+      sel.push_back(cam[static_cast<std::size_t>(f.index)]);
+    }
+    poses = lidar::veloPosesFromCameraPoses(sel, drive.calib.T_rect0_velo());
+    const Pose3 T0inv = poses.front().inverse();
+    for (Pose3& T : poses) T = T0inv * T;
+  } else if (src == "odometry") {
+    lidar::OdometrySettings os;
+    os.voxel_size = p.odom_voxel_size;
+    os.local_map_scans = p.odom_local_map_scans;
+    os.coarse_correspondence = p.odom_coarse_distance;
+    os.fine_correspondence = p.odom_fine_distance;
+    os.deskew = p.odom_deskew;
+    os.num_threads = p.num_threads;
+    lidar::ScanOdometry odo(os);
+    Progress progress("odometry scans", drive.frames.size());
+    for (const auto& f : drive.frames) {
+      odo.add(io::readVelodyneBin(f.velodyne).points);
+      progress.advance();
+    }
+    progress.finish();
+    poses = odo.poses();
+    int converged = 0;
+    json steps = json::array();
+    double length = 0;
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      const auto& st = odo.steps()[i];
+      converged += st.converged;
+      if (i > 0) length += (poses[i].translation() - poses[i - 1].translation()).norm();
+      steps.push_back({{"frame", drive.frames[i].index},
+                       {"converged", st.converged},
+                       {"iterations", st.iterations},
+                       {"rmse", st.rmse},
+                       {"inliers", st.num_inliers}});
+    }
+    report["converged_scans"] = converged;
+    report["travelled_distance_m"] = length;
+    report["steps"] = steps;
+  } else {
+    throw ConfigError("pose_source = \"" + src +
+                      "\". Violated constraint: one of auto, oxts, oxts_enu, poses_file, odometry");
+  }
+  return poses;
+}
+}  // namespace
+
+void LidarSemanticMapParams::validate() const {
+  const char* s = "LidarSemanticMapParams";
+  requireParam(first_frame >= 0, s, "first_frame", first_frame, ">= 0");
+  requireParam(last_frame < 0 || last_frame >= first_frame, s, "last_frame", last_frame,
+               "-1 or >= first_frame");
+  requireParam(stride >= 1, s, "stride", stride, ">= 1");
+  requireParam(odom_voxel_size > 0, s, "odom_voxel_size", odom_voxel_size, "> 0");
+  requireParam(odom_local_map_scans >= 1, s, "odom_local_map_scans", odom_local_map_scans, ">= 1");
+  requireParam(odom_fine_distance > 0, s, "odom_fine_distance", odom_fine_distance, "> 0");
+  requireParam(odom_coarse_distance >= odom_fine_distance, s, "odom_coarse_distance",
+               odom_coarse_distance, ">= odom_fine_distance");
+  requireParam(enet_scale > 0.1 && enet_scale <= 4, s, "enet_scale", enet_scale, "in (0.1, 4]");
+  requireParam(label_confidence > 1.0 / kNumLidarClasses && label_confidence <= 1, s,
+               "label_confidence", label_confidence, "in (1/8, 1]");
+  requireParam(min_probability > 0 && min_probability < 1.0 / kNumLidarClasses, s,
+               "min_probability", min_probability, "in (0, 1/8)");
+  requireParam(min_range >= 0, s, "min_range", min_range, ">= 0");
+  requireParam(max_range > min_range, s, "max_range", max_range, "> min_range");
+  requireParam(voxel_size > 0, s, "voxel_size", voxel_size, "> 0");
+  requireParam(min_log_prob < 0, s, "min_log_prob", min_log_prob, "< 0");
+  requireParam(cluster_tolerance > 0, s, "cluster_tolerance", cluster_tolerance, "> 0");
+  requireParam(cluster_min_points >= 1, s, "cluster_min_points", cluster_min_points, ">= 1");
+  requireParam(rtrees_max_depth >= 1, s, "rtrees_max_depth", rtrees_max_depth, ">= 1");
+  requireParam(rtrees_trees >= 1, s, "rtrees_trees", rtrees_trees, ">= 1");
+  requireParam(rtrees_min_samples >= 1, s, "rtrees_min_samples", rtrees_min_samples, ">= 1");
+  requireParam(knn_k >= 1 && knn_k <= 32, s, "knn_k", knn_k, "in 1..32");
+  requireParam(knn_max_mean_distance > 0, s, "knn_max_mean_distance", knn_max_mean_distance, "> 0");
+  requireParam(trace_eps > 0, s, "trace_eps", trace_eps, "> 0");
+  requireParam(trace_min_points >= 1, s, "trace_min_points", trace_min_points, ">= 1");
+  requireParam(trace_max_voxels >= 1, s, "trace_max_voxels", trace_max_voxels, ">= 1");
+  requireParam(trace_max_length > 0, s, "trace_max_length", trace_max_length, "> 0");
+  requireParam(topdown_resolution > 0, s, "topdown_resolution", topdown_resolution, "> 0");
+  requireParam(num_threads >= 1, s, "num_threads", num_threads, ">= 1");
+}
+
+json runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,
+                         const LidarSemanticMapParams& p) {
+  p.validate();
+  const auto t_start = Clock::now();
+  json timings, summary;
+  // Inputs.
+  auto t = Clock::now();
+  const io::KittiRawDrive drive = io::openKittiRawDrive(drive_dir, detail::frameRange(p));
+  const auto fusion_settings = detail::fusionSettings(p, drive);
+  lidar::ClusterClassifier classifier;
+  if (!p.classifier_dir.empty()) classifier = lidar::ClusterClassifier::load(p.classifier_dir);
+  lidar::FrameSemantics semantics(
+      drive, detail::semanticsSettings(p, p.cache_semantics ? output / "semantics_02" : ""));
+  timings["open"] = since(t);
+  MAPFUSE_INFO(kStage << ": " << drive.frames.size() << " frames of " << drive.dir);
+
+  // Poses.
+  t = Clock::now();
+  json pose_report;
+  const std::vector<Pose3> poses = drivePoses(drive, p, pose_report);
+  timings["poses"] = since(t);
+
+  // Incremental semantic labelling, frame by frame.
+  lidar::SemanticVoxelMap map(p.voxel_size, static_cast<float>(p.min_log_prob));
+  const Eigen::Matrix<double, 3, 4> P = drive.calib.veloToImage2();
+  double t_sem = 0, t_proj = 0, t_em = 0, t_fuse = 0, t_load = 0;
+  std::size_t projected = 0, fused = 0, clusters = 0, rejected = 0, rejected_points = 0;
+  Progress progress("frames", drive.frames.size());
+  for (std::size_t i = 0; i < drive.frames.size(); ++i) {
+    const auto& f = drive.frames[i];
+    t = Clock::now();
+    const io::VelodyneScan scan = io::readVelodyneBin(f.velodyne);
+    t_load += since(t);
+    t = Clock::now();
+    const io::SemanticImage sem = semantics.get(f);
+    t_sem += since(t);
+    const auto st =
+        lidar::fuseFrame(map, scan.points, poses[i], P, sem, classifier, fusion_settings);
+    t_proj += st.t_projection;
+    t_em += st.t_error_min;
+    t_fuse += st.t_fusion;
+    projected += st.projected;
+    fused += st.fused_points;
+    clusters += st.error_min.clusters;
+    rejected += st.error_min.rejected_clusters;
+    rejected_points += st.error_min.rejected_points;
+    progress.advance();
+  }
+  progress.finish();
+  const std::size_t voxels_fused = map.size();
+  const double bytes_per_voxel_peak =
+      map.empty() ? 0.0 : static_cast<double>(map.memoryBytes()) / static_cast<double>(map.size());
+  map.shrinkToFit();
+  const double bytes_per_voxel =
+      map.empty() ? 0.0 : static_cast<double>(map.memoryBytes()) / static_cast<double>(map.size());
+  timings["load_scans"] = t_load;
+  timings["semantics"] = t_sem;
+  timings["projection"] = t_proj;
+  timings["error_minimization"] = t_em;
+  timings["fusion"] = t_fuse;
+  timings["per_frame_labelling_excluding_network"] =
+      (t_proj + t_em + t_fuse) / static_cast<double>(drive.frames.size());
+
+  // Batch refinement (§2.2).
+  json refinement = {{"enabled", p.refine}};
+  t = Clock::now();
+  if (p.refine) {
+    lidar::KnnFilterSettings ks;
+    ks.k = p.knn_k;
+    ks.max_mean_distance = p.knn_max_mean_distance;
+    ks.num_threads = p.num_threads;
+    const auto keep = lidar::knnMeanDistanceFilter(map, ks);
+    const std::size_t before = map.size();
+    map.filter(keep);
+    refinement["knn_removed_voxels"] = before - map.size();
+    timings["refinement_knn"] = since(t);
+    if (p.remove_vehicle_traces) {
+      const auto t2 = Clock::now();
+      lidar::VehicleTraceSettings vs;
+      vs.eps = p.trace_eps;
+      vs.min_points = p.trace_min_points;
+      vs.max_voxels = static_cast<std::size_t>(p.trace_max_voxels);
+      vs.max_length = p.trace_max_length;
+      lidar::VehicleTraceStats ts;
+      map.filter(lidar::vehicleTraceFilter(map, vs, &ts));
+      refinement["vehicle_voxels"] = ts.vehicle_voxels;
+      refinement["vehicle_clusters"] = ts.clusters;
+      refinement["trace_clusters_removed"] = ts.removed_clusters;
+      refinement["trace_voxels_removed"] = ts.removed_voxels;
+      timings["refinement_traces"] = since(t2);
+    }
+  }
+
+  // Outputs.
+  t = Clock::now();
+  const lidar::LabeledCloud cloud = lidar::toLabeledCloud(map);
+  io::writePly(output / "map.ply", cloud);
+  io::writePcd(output / "map.pcd", cloud);
+  Eigen::Vector2d topdown_origin;
+  const cv::Mat img = lidar::renderTopDown(map, p.topdown_resolution, &topdown_origin);
+  std::vector<uint8_t> png;
+  if (!cv::imencode(".png", img, png))
+    throw IoError((output / "topdown.png").string(), "PNG encoding failed");
+  io::writeBytesAtomic(output / "topdown.png", std::string(png.begin(), png.end()));
+  io::writeKittiOdometryPoses(output / "poses.txt", poses);
+  std::size_t label_files = 0, labelled_points = 0, scan_points = 0;
+  if (p.write_scan_labels) {
+    for (std::size_t i = 0; i < drive.frames.size(); ++i) {
+      const auto& f = drive.frames[i];
+      const auto scan = io::readVelodyneBin(f.velodyne);
+      const auto labels = lidar::scanLabels(map, poses[i], scan.points);
+      for (uint32_t l : labels) labelled_points += l != 0;
+      scan_points += labels.size();
+      io::writeSemanticKittiLabels(output / "labels" / (f.name + ".label"), labels);
+      ++label_files;
+    }
+  }
+  timings["outputs"] = since(t);
+  timings["total"] = since(t_start);
+
+  json hist = json::object();
+  std::array<std::size_t, kNumLidarClasses> counts{};
+  for (uint8_t l : cloud.labels) ++counts[l];
+  for (int c = 0; c < kNumLidarClasses; ++c) hist[lidarClassName(LidarClass(c))] = counts[c];
+
+  summary["drive"] = drive.dir.string();
+  summary["frames"] = drive.frames.size();
+  summary["first_frame"] = drive.frames.front().index;
+  summary["last_frame"] = drive.frames.back().index;
+  summary["poses"] = pose_report;
+  summary["semantics"] = {{"source", semantics.source()},
+                          {"from_precomputed", semantics.fromPrecomputed()},
+                          {"from_cache", semantics.fromCache()},
+                          {"from_network", semantics.fromNetwork()},
+                          {"network_seconds", semantics.networkSeconds()}};
+  json em = {{"clusters", clusters},
+             {"rejected_clusters", rejected},
+             {"rejected_points", rejected_points}};
+  if (classifier.empty()) {
+    em["skipped"] = true;
+    em["reason"] = p.classifier_dir.empty() ? "no classifier_dir given"
+                                            : "no rtrees_<label>.yml in classifier_dir";
+    MAPFUSE_INFO(kStage << ": error minimisation skipped (" << em["reason"].get<std::string>()
+                        << ")");
+  } else {
+    em["skipped"] = false;
+    em["labels"] = classifier.labels();
+  }
+  summary["error_minimization"] = em;
+  summary["points_projected"] = projected;
+  summary["points_fused"] = fused;
+  summary["voxels_after_fusion"] = voxels_fused;
+  summary["voxels"] = map.size();
+  summary["bytes_per_voxel"] = bytes_per_voxel;
+  summary["bytes_per_voxel_before_shrink"] = bytes_per_voxel_peak;
+  summary["refinement"] = refinement;
+  summary["label_histogram"] = hist;
+  summary["scan_label_files"] = label_files;
+  summary["scan_points_labelled_fraction"] =
+      scan_points ? static_cast<double>(labelled_points) / static_cast<double>(scan_points) : 0.0;
+  summary["topdown"] = {{"resolution_m", p.topdown_resolution},
+                        {"origin_xy", {topdown_origin.x(), topdown_origin.y()}},
+                        {"width", img.cols},
+                        {"height", img.rows}};
+  summary["timings_s"] = timings;
+  io::writeResolvedConfig(output, kStage, paramsToJson(p));
+  io::writeSummary(output, kStage, summary);
+  return summary;
+}
+
+}  // namespace mapfuse::stages

@@ -1,0 +1,46 @@
+#include "mapfuse/stages/lidar_semantic_map_detail.hpp"
+
+#include "mapfuse/core/paths.hpp"
+
+namespace mapfuse::stages::detail {
+
+lidar::FrameFusionSettings fusionSettings(const LidarSemanticMapParams& p,
+                                          const io::KittiRawDrive& drive) {
+  lidar::FrameFusionSettings s;
+  s.projection.min_range = p.min_range;
+  s.projection.max_range = p.max_range;
+  s.projection.image_width = drive.calib.image_width;
+  s.projection.image_height = drive.calib.image_height;
+  s.pixel.label_confidence = static_cast<float>(p.label_confidence);
+  s.pixel.min_probability = static_cast<float>(p.min_probability);
+  s.clustering.tolerance = p.cluster_tolerance;
+  s.clustering.min_points = p.cluster_min_points;
+  return s;
+}
+
+lidar::FrameSemanticsSettings semanticsSettings(const LidarSemanticMapParams& p,
+                                                const std::filesystem::path& cache_dir) {
+  lidar::FrameSemanticsSettings s;
+  s.segmenter = p.segmenter;
+  s.model = p.model.empty() ? sharedRoot() / "models/enet-cityscapes/enet-model.net"
+                            : std::filesystem::path(p.model);
+  s.enet.scale = p.enet_scale;
+  s.precomputed_dir = p.semantics_dir;
+  s.cache_dir = cache_dir;
+  return s;
+}
+
+lidar::RTreesSettings rtreesSettings(const LidarSemanticMapParams& p) {
+  lidar::RTreesSettings s;
+  s.max_depth = p.rtrees_max_depth;
+  s.num_trees = p.rtrees_trees;
+  s.min_samples_per_class = p.rtrees_min_samples;
+  s.seed = p.seed;
+  return s;
+}
+
+io::FrameRange frameRange(const LidarSemanticMapParams& p) {
+  return io::FrameRange{p.first_frame, p.last_frame, p.stride};
+}
+
+}  // namespace mapfuse::stages::detail
