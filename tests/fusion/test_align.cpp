@@ -146,7 +146,7 @@ TEST_CASE("align: traversals on roads that share nothing are not pulled together
   CHECK(std::abs(d1 - d0) < kGpsBias);
 }
 
-TEST_CASE("align app: outputs, summary, exit codes; configs/align.json mirrors defaults") {
+TEST_CASE("align app: outputs, summary, exit codes, and configs/align.json mirrors defaults") {
   const auto j = nlohmann::json::parse(
       test::readText(std::filesystem::path(MAPFUSE_SOURCE_DIR) / "configs/align.json"));
   CHECK(j == paramsToJson(stages::AlignParams{}));

@@ -126,7 +126,7 @@ TEST_CASE("two vanishing directions recover pitch and roll") {
   CHECK_FALSE(normalFromTwoDirections(d1, d1, Eigen::Vector3d(0, -1, 0)));
 }
 
-TEST_CASE("curved or single lanes give no vanishing point; smoothing takes the window median") {
+TEST_CASE("curved or single lanes give no vanishing point, and smoothing takes the window median") {
   const Eigen::Matrix3d K = test::syntheticK();
   const GroundPlane nominal{Eigen::Vector3d(0, -1, 0), kHeight};
   auto lanes = lanePixels(0.0, 0.0, 0.0);
