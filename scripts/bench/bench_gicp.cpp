@@ -12,6 +12,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "mapfuse/core/paths.hpp"
 #include "mapfuse/fusion/gicp.hpp"
 
 using namespace mapfuse;
@@ -43,7 +44,7 @@ double rotDeg(const Pose3& a, const Pose3& b) {
 
 int main(int argc, char** argv) {
   CLI::App app("GICP vs PCL GICP on KITTI odometry scans");
-  std::string seq = std::string(MAPFUSE_DEFAULT_SHARED) + "/data/kitti_odometry";
+  std::string seq = (mapfuse::sharedRoot() / "data/kitti_odometry").string();
   double voxel = 0.25, max_corr = 1.0;
   int frames = 6, repeats = 3;
   app.add_option("--kitti", seq, "kitti_odometry folder")->capture_default_str();
