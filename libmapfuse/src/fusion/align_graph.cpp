@@ -132,20 +132,40 @@ std::vector<ElementPoint> elementPoints(const std::vector<Lsm>& lsms, CrowdClass
 }  // namespace
 
 double solveMultiPoseGraph(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors,
-                           const std::vector<InterConstraint>& constraints, const AlignSettings& s,
+                           std::vector<InterConstraint>& constraints, const AlignSettings& s,
                            bool* converged) {
-  PoseSet P = makePoses(lsms);
-  ceres::Problem problem;
-  addPriorsAndOdometry(problem, P, priors, s);
-  for (const auto& c : constraints) {  // eq. (11), Huber-robust
-    if (!c.consistent) continue;
-    problem.AddResidualBlock(
-        detail::RelativePoseFactor::create(c.T_a_b, detail::sqrtInformation<6>(c.covariance)),
-        new ceres::HuberLoss(s.inter_huber), P[c.lsm_a][c.kf_a].t, P[c.lsm_a][c.kf_a].q,
-        P[c.lsm_b][c.kf_b].t, P[c.lsm_b][c.kf_b].q);
+  const std::vector<Lsm> start = lsms;
+  double cost = 0;
+  for (int round = 0; round < std::max(1, s.graph_rejection_rounds); ++round) {
+    lsms = start;
+    PoseSet P = makePoses(lsms);
+    ceres::Problem problem;
+    addPriorsAndOdometry(problem, P, priors, s);
+    for (const auto& c : constraints) {  // eq. (11), Huber-robust
+      if (!c.consistent || c.graph_outlier) continue;
+      problem.AddResidualBlock(
+          detail::RelativePoseFactor::create(c.T_a_b, detail::sqrtInformation<6>(c.covariance)),
+          new ceres::HuberLoss(s.inter_huber), P[c.lsm_a][c.kf_a].t, P[c.lsm_a][c.kf_a].q,
+          P[c.lsm_b][c.kf_b].t, P[c.lsm_b][c.kf_b].q);
+    }
+    cost = solve(problem, s, converged);
+    writeBack(lsms, P);
+    // Constraints far off the joint solution (lane / dash aliases that PCM could not see because
+    // they were consistent within their LSM pair) are dropped and the graph re-solved.
+    int dropped = 0;
+    for (auto& c : constraints) {
+      if (!c.consistent || c.graph_outlier) continue;
+      const Pose3 est = lsms[c.lsm_a].keyframes[c.kf_a].T_frame_body.inverse() *
+                        lsms[c.lsm_b].keyframes[c.kf_b].T_frame_body;
+      const Vector6d e = logSE3(c.T_a_b.inverse() * est);
+      c.graph_chi2 = e.dot(c.covariance.ldlt().solve(e));
+      if (c.graph_chi2 > s.graph_reject_chi2) {
+        c.graph_outlier = true;
+        ++dropped;
+      }
+    }
+    if (dropped == 0) break;
   }
-  const double cost = solve(problem, s, converged);
-  writeBack(lsms, P);
   return cost;
 }
 

@@ -2,8 +2,10 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "mapfuse/core/error.hpp"
+#include "align_internal.hpp"
 #include "mapfuse/fusion/align.hpp"
 #include "mapfuse/fusion/gicp.hpp"
 
@@ -27,141 +29,63 @@ const char* alignMethodName(AlignMethod m) {
   return "?";
 }
 
-namespace {
-// Covariance free along unit direction d (variance 1 m^2), sigma^2 across.
-Eigen::Matrix3d lineCov(const Eigen::Vector3d& d, double sigma) {
-  return d * d.transpose() + sigma * sigma * (Eigen::Matrix3d::Identity() - d * d.transpose());
-}
-// Free in the plane with normal n, sigma^2 along n.
-Eigen::Matrix3d planeCov(const Eigen::Vector3d& n, double sigma) {
-  return (Eigen::Matrix3d::Identity() - n * n.transpose()) + sigma * sigma * n * n.transpose();
-}
-Eigen::Vector3d planeNormal(const std::vector<Eigen::Vector3d>& pts) {
-  Eigen::Vector3d m = Eigen::Vector3d::Zero();
-  for (const auto& p : pts) m += p;
-  m /= double(pts.size());
-  Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
-  for (const auto& p : pts) C += (p - m) * (p - m).transpose();
-  if (pts.size() < 3) return Eigen::Vector3d::UnitZ();
-  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(C).eigenvectors().col(0);
-}
-}  // namespace
-
-Cloud elementCloud(const Lsm& lsm, int kf_begin, int kf_end, double sigma) {
-  Cloud c;
-  for (const Element& e : lsm.elements) {
-    const int k = int(lsm.keyframeIndex(e.anchor));
-    if (k < kf_begin || k >= kf_end) continue;
-    const Pose3& T = lsm.keyframes[k].T_frame_body;
-    std::vector<Eigen::Vector3d> pts;
-    for (const auto& p : e.points_body) pts.push_back(T * p);
-    const GeometryKind kind = geometryKind(e.cls);
-    const Eigen::Vector3d n = kind == GeometryKind::kPlanar ? planeNormal(pts) : Eigen::Vector3d();
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-      Eigen::Matrix3d C;
-      if (kind == GeometryKind::kLine && pts.size() >= 2) {
-        const std::size_t a = i == 0 ? 0 : i - 1, b = std::min(pts.size() - 1, i + 1);
-        C = lineCov((pts[b] - pts[a]).normalized(), sigma);
-      } else if (kind == GeometryKind::kPlanar) {
-        C = planeCov(n, sigma);
-      } else {  // pole / light base point: free vertically
-        C = lineCov(Eigen::Vector3d::UnitZ(), sigma);
-      }
-      c.points.push_back(pts[i]);
-      c.covariances.push_back(C);
-      c.labels.push_back(uint8_t(e.cls));
-    }
-  }
-  return c;
-}
-
-namespace {
-struct Submap {
-  int lsm, kf_begin, kf_end, anchor;
-  Cloud cloud;
-  Eigen::Vector2d lo, hi;
-};
-
-std::vector<Submap> buildSubmaps(const std::vector<Lsm>& lsms, double length) {
-  std::vector<Submap> out;
-  for (int l = 0; l < int(lsms.size()); ++l) {
-    const auto& kfs = lsms[l].keyframes;
-    int begin = 0;
-    double dist = 0;
-    for (int k = 1; k <= int(kfs.size()); ++k) {
-      if (k < int(kfs.size()))
-        dist += (kfs[k].T_frame_body.translation() - kfs[k - 1].T_frame_body.translation()).norm();
-      if (k == int(kfs.size()) || dist >= length) {
-        Submap s{l, begin, k, (begin + k - 1) / 2, elementCloud(lsms[l], begin, k), {}, {}};
-        if (s.cloud.size() >= 10) {
-          s.lo = s.hi = s.cloud.points[0].head<2>();
-          for (const auto& p : s.cloud.points) {
-            s.lo = s.lo.cwiseMin(p.head<2>());
-            s.hi = s.hi.cwiseMax(p.head<2>());
-          }
-          out.push_back(std::move(s));
-        }
-        begin = k;
-        dist = 0;
-      }
-    }
-  }
-  return out;
-}
-}  // namespace
-
 std::vector<InterConstraint> registerSubmaps(const std::vector<Lsm>& lsms, const AlignSettings& s) {
+  using namespace detail;
   const std::vector<Submap> maps = buildSubmaps(lsms, s.submap_length);
-  std::vector<std::pair<int, int>> pairs;
-  const double margin = 5.0;
-  for (int i = 0; i < int(maps.size()); ++i)
-    for (int j = 0; j < int(maps.size()); ++j) {
-      if (maps[i].lsm >= maps[j].lsm) continue;
-      const bool overlap = (maps[i].lo.array() - margin <= maps[j].hi.array()).all() &&
-                           (maps[j].lo.array() - margin <= maps[i].hi.array()).all();
-      if (overlap) pairs.emplace_back(i, j);
-    }
+  const std::vector<SubmapPair> pairs = selectPairs(maps, s);
   const bool semantic = s.method != AlignMethod::kIcp;
   const bool gicp = s.method == AlignMethod::kSgicp || s.method == AlignMethod::kGbaSgicp;
+  const std::vector<double> weights = labelWeights(s.class_weights);
   std::vector<InterConstraint> out(pairs.size());
-  std::vector<char> keep(pairs.size(), 0);
+  // Coarse level: displacement votes per pair, summed with the votes of the pairs of adjacent
+  // submaps of the same two LSMs (their relative GPS error is nearly the same; more road
+  // directions and landmarks remove lane and dash aliases).
+  std::vector<VoteGrid> votes(gicp ? pairs.size() : 0);
+  std::vector<double> vw = labelWeights(s.coarse_class_weights);
+  for (int l = 0; l < kNumAlignLabels; ++l) vw[l] *= weights[l];
+#pragma omp parallel for schedule(dynamic) num_threads(s.threads)
+  for (int p = 0; p < int(votes.size()); ++p)
+    votes[p] = voteDisplacements(maps[pairs[p].a].coarse, maps[pairs[p].b].coarse, vw,
+                                 s.coarse_radius, s.coarse_bin);
+  std::map<std::pair<int, int>, int> pair_index;
+  for (int p = 0; p < int(pairs.size()); ++p) pair_index[{pairs[p].a, pairs[p].b}] = p;
 #pragma omp parallel for schedule(dynamic) num_threads(s.threads)
   for (int p = 0; p < int(pairs.size()); ++p) {
-    const Submap& A = maps[pairs[p].first];
-    const Submap& B = maps[pairs[p].second];
+    const Submap& A = maps[pairs[p].a];
+    const Submap& B = maps[pairs[p].b];
     InterConstraint& c = out[p];
     c.lsm_a = A.lsm;
     c.kf_a = A.anchor;
     c.lsm_b = B.lsm;
     c.kf_b = B.anchor;
-    {  // overlap at the initial (georeferenced) poses
-      const GicpTarget probe(A.cloud, 2.0);
-      int near = 0;
-      for (const auto& q : B.cloud.points) near += probe.nearest(q, -1, 4.0, nullptr) >= 0;
-      c.overlap = double(near) / double(B.cloud.size());
-    }
-    if (c.overlap < s.min_overlap) continue;
-    keep[p] = 1;
+    c.overlap = pairs[p].overlap;
     Pose3 delta = Pose3::Identity();  // maps B's ENU points onto A's
+    if (gicp) {
+      // Coarsest level of the semantic pyramid: displacement voting (align_coarse.cpp).
+      VoteGrid sum = votes[p];
+      for (int da = -s.coarse_neighbors; da <= s.coarse_neighbors; ++da)
+        for (int db = -s.coarse_neighbors; db <= s.coarse_neighbors; ++db) {
+          const int a2 = pairs[p].a + da, b2 = pairs[p].b + db;
+          if ((da == 0 && db == 0) || a2 < 0 || b2 < 0 || a2 >= int(maps.size()) ||
+              b2 >= int(maps.size()) || maps[a2].lsm != A.lsm || maps[b2].lsm != B.lsm)
+            continue;
+          const auto it = pair_index.find({a2, b2});
+          if (it != pair_index.end()) sum.add(votes[it->second], 0.5);
+        }
+      const CoarseResult cr = votePeak(sum, s.coarse_prior_sigma);
+      delta.translation().head<2>() = cr.t;
+    }
     GicpResult r;
-    const int levels = int(s.pyramid_distances.size());
-    for (int lvl = 0; lvl < levels; ++lvl) {
+    for (double dist : s.pyramid_distances) {
       GicpSettings g;
-      g.max_correspondence_distance = s.pyramid_distances[lvl];
+      g.max_correspondence_distance = dist;
       g.max_iterations = s.max_iterations;
       g.same_label_only = semantic;
       g.point_to_point = !gicp;
       g.lambda = 1e-3;
       g.huber_delta = gicp ? 3.0 : 0.0;
-      if (gicp) {
-        // Semantic pyramid: point-like landmarks first, then lines, then everything.
-        g.label_weights = s.class_weights;
-        if (lvl == 0 && levels > 1)
-          for (int l : {0, 1, 2, 3}) g.label_weights[l] = 0.0;
-        if (lvl == 1 && levels > 2)
-          for (int l : {2, 3}) g.label_weights[l] = 0.0;
-      }
-      const GicpTarget target(A.cloud, g.max_correspondence_distance);
+      if (gicp) g.label_weights = weights;
+      const GicpTarget target(A.cloud, dist);
       GicpResult lr = alignGicp(target, B.cloud, delta, g);
       if (lr.num_inliers >= g.min_inliers) delta = lr.T_target_source;
       c.iterations += lr.iterations;
@@ -171,25 +95,23 @@ std::vector<InterConstraint> registerSubmaps(const std::vector<Lsm>& lsms, const
     c.fitness = r.fitness;
     c.rmse = r.rmse;
     c.accepted = r.converged && r.fitness >= s.min_fitness && r.rmse <= s.max_rmse;
-    // InterRPC: T_a_b = T_enu_a^-1 * delta * T_enu_b, covariance from the inverse Hessian scaled by
-    // the reduced chi-square, moved into the relative frame by the adjoint.
+    // InterRPC: T_a_b = T_enu_a^-1 * delta * T_enu_b. Covariance: the inverse Hessian (delta's
+    // right perturbation = perturbation of B's points in ENU... moved to body b by the adjoint),
+    // inflated for the per-element correlated noise the per-point model ignores, with a floor.
     const Pose3& Ta = lsms[A.lsm].keyframes[A.anchor].T_frame_body;
     const Pose3& Tb = lsms[B.lsm].keyframes[B.anchor].T_frame_body;
     c.T_a_b = Ta.inverse() * delta * Tb;
     Matrix6d H = r.hessian;
     H.diagonal().array() += 1e-6;
-    const double scale =
-        gicp ? std::max(1.0, r.error / std::max(1, r.num_inliers - 6)) : r.rmse * r.rmse + 1e-4;
+    const double scale = gicp ? s.constraint_cov_scale * std::max(1.0, r.error / std::max(1, r.num_inliers - 6))
+                              : r.rmse * r.rmse + 1e-4;
     Matrix6d cov = H.inverse() * scale;
     const Matrix6d Ad = adjoint(Tb.inverse());
     cov = Ad * cov * Ad.transpose();
-    cov += diagonalCovariance(0.02, 0.001);
+    cov += diagonalCovariance(s.constraint_min_sigma, 0.1 * s.constraint_min_sigma);
     c.covariance = 0.5 * (cov + cov.transpose());
   }
-  std::vector<InterConstraint> kept;
-  for (std::size_t p = 0; p < out.size(); ++p)
-    if (keep[p]) kept.push_back(out[p]);
-  return kept;
+  return out;
 }
 
 }  // namespace mapfuse::fusion

@@ -15,6 +15,18 @@ void AlignParams::validate() const {
                "one of icp, sicp, sgicp, gba_sgicp");
   requireParam(submap_length > 0, st, "submap_length", submap_length, "> 0");
   requireParam(min_overlap >= 0 && min_overlap <= 1, st, "min_overlap", min_overlap, "in [0, 1]");
+  requireParam(overlap_radius > 0, st, "overlap_radius", overlap_radius, "> 0");
+  requireParam(max_partners >= 0, st, "max_partners", max_partners, ">= 0");
+  requireParam(coarse_radius > 0, st, "coarse_radius", coarse_radius, "> 0");
+  requireParam(coarse_bin > 0 && coarse_bin < coarse_radius, st, "coarse_bin", coarse_bin,
+               "in (0, coarse_radius)");
+  requireParam(coarse_prior_sigma > 0, st, "coarse_prior_sigma", coarse_prior_sigma, "> 0");
+  requireParam(coarse_neighbors >= 0, st, "coarse_neighbors", coarse_neighbors, ">= 0");
+  requireParam(constraint_min_sigma > 0, st, "constraint_min_sigma", constraint_min_sigma, "> 0");
+  requireParam(constraint_cov_scale > 0, st, "constraint_cov_scale", constraint_cov_scale, "> 0");
+  requireParam(graph_reject_chi2 > 0, st, "graph_reject_chi2", graph_reject_chi2, "> 0");
+  requireParam(graph_rejection_rounds >= 1, st, "graph_rejection_rounds", graph_rejection_rounds,
+               ">= 1");
   requireParam(min_fitness >= 0 && min_fitness <= 1, st, "min_fitness", min_fitness, "in [0, 1]");
   requireParam(max_rmse > 0, st, "max_rmse", max_rmse, "> 0");
   requireParam(max_iterations >= 1, st, "max_iterations", max_iterations, ">= 1");
@@ -38,6 +50,16 @@ fusion::AlignSettings AlignParams::settings() const {
   s.method = *fusion::alignMethodFromName(method);
   s.submap_length = submap_length;
   s.min_overlap = min_overlap;
+  s.overlap_radius = overlap_radius;
+  s.max_partners = max_partners;
+  s.coarse_radius = coarse_radius;
+  s.coarse_bin = coarse_bin;
+  s.coarse_prior_sigma = coarse_prior_sigma;
+  s.coarse_neighbors = coarse_neighbors;
+  s.constraint_min_sigma = constraint_min_sigma;
+  s.constraint_cov_scale = constraint_cov_scale;
+  s.graph_reject_chi2 = graph_reject_chi2;
+  s.graph_rejection_rounds = graph_rejection_rounds;
   s.min_fitness = min_fitness;
   s.max_rmse = max_rmse;
   s.max_iterations = max_iterations;
@@ -82,7 +104,9 @@ nlohmann::json alignInPlace(std::vector<Lsm>& lsms, const fusion::AlignSettings&
     sum["converged_gba"] = conv;
     sum["seconds_gba"] = since(t);
   }
-  int accepted = 0;
+  int accepted = 0, graph_outliers = 0;
+  for (const auto& c : cs) graph_outliers += c.graph_outlier;
+  sum["constraints_graph_outliers"] = graph_outliers;
   nlohmann::json pairs = nlohmann::json::array();
   for (const auto& c : cs) {
     accepted += c.accepted;
@@ -96,7 +120,9 @@ nlohmann::json alignInPlace(std::vector<Lsm>& lsms, const fusion::AlignSettings&
                      {"iterations", c.iterations},
                      {"converged", c.converged},
                      {"accepted", c.accepted},
-                     {"pcm_consistent", c.consistent}});
+                     {"pcm_consistent", c.consistent},
+                     {"graph_outlier", c.graph_outlier},
+                     {"graph_chi2", c.graph_chi2}});
   }
   sum["method"] = fusion::alignMethodName(s.method);
   sum["pairs"] = pairs;

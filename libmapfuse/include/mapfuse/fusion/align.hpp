@@ -24,8 +24,18 @@ const char* alignMethodName(AlignMethod m);
 struct AlignSettings {
   AlignMethod method = AlignMethod::kGbaSgicp;
   double submap_length = 60.0;  ///< m of keyframe path per submap
-  double min_overlap = 0.3;     ///< fraction of source points with a target point within 2 m
-  std::vector<double> pyramid_distances = {4.0, 2.0, 1.0};  ///< m, max correspondence per level
+  double min_overlap = 0.3;     ///< share of coarse points with a same-label point within overlap_radius
+  double overlap_radius = 4.0;  ///< m, overlap test radius (covers the GPS-level initial error)
+  int max_partners = 4;         ///< per submap, register with the best submaps of this many LSMs
+  double coarse_radius = 8.0;   ///< m, displacement-voting search radius (coarse level)
+  double coarse_bin = 0.5;      ///< m, displacement histogram bin
+  double coarse_prior_sigma = 4.0;  ///< m, Gaussian prior on the relative shift (GPS level)
+  int coarse_neighbors = 1;  ///< votes of pairs of submaps this many steps away are added
+  /// vote weight per coarse (1 m) point by CrowdClass: landmarks count like metres of line
+  std::vector<double> coarse_class_weights = {1.0, 3.0, 3.0, 1.0, 10.0, 10.0, 10.0};
+  std::vector<double> pyramid_distances = {1.5, 0.75};  ///< m, max correspondence per GICP level
+  double constraint_min_sigma = 0.05;     ///< m, floor of an InterRPC translation sigma
+  double constraint_cov_scale = 10.0;     ///< inflation of H^-1 (correlated element noise)
   std::vector<double> class_weights = {1.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0};  ///< w_l by CrowdClass
   double min_fitness = 0.3;               ///< accept a registration above this inlier fraction
   double max_rmse = 0.5;                  ///< m, and below this RMS residual
@@ -36,6 +46,8 @@ struct AlignSettings {
   double odom_min_sigma = 0.02;           ///< m / rad floor
   double prior_rotation_sigma = 0.05;     ///< rad, GPS prior on attitude (eq. 9)
   double inter_huber = 1.0;               ///< Huber delta on whitened inter-trajectory residuals
+  double graph_reject_chi2 = 100.0;       ///< drop InterRPCs this far off the graph solution
+  int graph_rejection_rounds = 3;         ///< pose-graph solves (reject, re-solve)
   double gba_association_distance = 0.5;  ///< m, element point association radius
   double gba_point_sigma = 0.05;          ///< m, point-to-line / point-to-plane sigma
   double gba_huber = 1.0;                 ///< Huber delta on whitened GBA residuals
@@ -55,6 +67,8 @@ struct InterConstraint {
   bool converged = false;
   bool accepted = false;    ///< passed the registration checks
   bool consistent = false;  ///< kept by PCM
+  bool graph_outlier = false;  ///< dropped after a pose-graph solve (chi2 > graph_reject_chi2)
+  double graph_chi2 = 0;       ///< whitened squared residual at the last pose-graph solution
 };
 
 /// @brief Element points of a keyframe range as a labelled cloud in the LSM frame, with
@@ -78,8 +92,10 @@ std::vector<int> maximumClique(const std::vector<std::vector<char>>& adjacency, 
 /// odometry between consecutive keyframes, Huber-robust InterRPCs (only `consistent` ones).
 /// Updates keyframe poses in place; `priors` holds the georeferenced (GPS) keyframes and the
 /// odometry. @return final Ceres cost.
+/// Constraints whose residual at the solution exceeds `graph_reject_chi2` are marked
+/// `graph_outlier` and the graph is solved again (up to `graph_rejection_rounds` solves).
 double solveMultiPoseGraph(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors,
-                           const std::vector<InterConstraint>& constraints, const AlignSettings& s,
+                           std::vector<InterConstraint>& constraints, const AlignSettings& s,
                            bool* converged = nullptr);
 
 /// @brief GBA, eq. (12)-(14): point-to-line (lane/stop lines, poles) and point-to-plane (arrows,

@@ -15,6 +15,12 @@ struct AlignParams {
   std::string method = "gba_sgicp";
   double submap_length = 60.0;
   double min_overlap = 0.3;
+  double overlap_radius = 4.0;
+  int max_partners = 4;
+  double coarse_radius = 8.0;
+  double coarse_bin = 0.5;
+  double coarse_prior_sigma = 4.0;
+  int coarse_neighbors = 1;
   double min_fitness = 0.3;
   double max_rmse = 0.5;
   int max_iterations = 30;
@@ -24,6 +30,10 @@ struct AlignParams {
   double odom_min_sigma = 0.02;
   double prior_rotation_sigma = 0.05;
   double inter_huber = 1.0;
+  double constraint_min_sigma = 0.05;
+  double constraint_cov_scale = 10.0;
+  double graph_reject_chi2 = 100.0;
+  int graph_rejection_rounds = 3;
   double gba_association_distance = 0.5;
   double gba_point_sigma = 0.05;
   double gba_huber = 1.0;
@@ -35,7 +45,13 @@ struct AlignParams {
   void visit(V& v) {
     v("method", method, "", "icp | sicp | sgicp | gba_sgicp");
     v("submap_length", submap_length, "m", "keyframe path length per submap");
-    v("min_overlap", min_overlap, "", "min fraction of source points near the target");
+    v("min_overlap", min_overlap, "", "min share of coarse points near the other submap");
+    v("overlap_radius", overlap_radius, "m", "overlap test radius (GPS-level initial error)");
+    v("max_partners", max_partners, "", "per submap, register with this many other LSMs (0 = all)");
+    v("coarse_radius", coarse_radius, "m", "coarse displacement-voting search radius");
+    v("coarse_bin", coarse_bin, "m", "coarse displacement histogram bin");
+    v("coarse_prior_sigma", coarse_prior_sigma, "m", "Gaussian prior on the coarse shift");
+    v("coarse_neighbors", coarse_neighbors, "", "add votes of pairs of submaps this near");
     v("min_fitness", min_fitness, "", "accept registrations with inlier fraction above");
     v("max_rmse", max_rmse, "m", "accept registrations with RMS residual below");
     v("max_iterations", max_iterations, "", "GICP iterations per pyramid level");
@@ -45,6 +61,10 @@ struct AlignParams {
     v("odom_min_sigma", odom_min_sigma, "m", "odometry sigma floor");
     v("prior_rotation_sigma", prior_rotation_sigma, "rad", "GPS prior sigma on attitude");
     v("inter_huber", inter_huber, "sigma", "Huber delta on inter-trajectory factors");
+    v("constraint_min_sigma", constraint_min_sigma, "m", "floor of an InterRPC translation sigma");
+    v("constraint_cov_scale", constraint_cov_scale, "", "inflation of the GICP inverse Hessian");
+    v("graph_reject_chi2", graph_reject_chi2, "", "drop InterRPCs this far off the graph solution");
+    v("graph_rejection_rounds", graph_rejection_rounds, "", "pose-graph solve / reject rounds");
     v("gba_association_distance", gba_association_distance, "m", "GBA association radius");
     v("gba_point_sigma", gba_point_sigma, "m", "GBA point-to-line/plane sigma");
     v("gba_huber", gba_huber, "sigma", "Huber delta on GBA residuals");
