@@ -53,11 +53,11 @@ vehicle::CameraCalib readKittiCameraCalib(const std::filesystem::path& date_dir,
   // Rectified camera 2 is rectified camera 0 shifted by the baseline in P_rect_02.
   Pose3 T_rect2_rect0 = Pose3::Identity();
   T_rect2_rect0.translation() = c.K.inverse() * kc.P_rect_02.col(3);
-  Pose3 R_rect = Pose3::Identity();
-  R_rect.linear() = kc.R_rect_00;
   c.T_cam_posecam = T_rect2_rect0;
+  c.T_posecam_velo = kc.T_rect0_velo();
+  c.has_velo = true;
   if (kc.has_imu) {
-    const Pose3 T_cam_imu = T_rect2_rect0 * R_rect * kc.T_cam0_velo * kc.T_velo_imu;
+    const Pose3 T_cam_imu = T_rect2_rect0 * c.T_posecam_velo * kc.T_velo_imu;
     c.T_body_cam = T_cam_imu.inverse();
   } else {
     c.T_body_cam.linear() = vehicle::levelCameraToBodyRotation();

@@ -26,6 +26,7 @@ void LsmBuildParams::validate() const {
   oneOf("input_kind", input_kind, {"auto", "frames", "kitti_raw"});
   oneOf("semantics", semantics, {"auto", "observations", "masks", "segmenter"});
   oneOf("egomotion", egomotion, {"auto", "imu_wheel", "poses", "oxts"});
+  oneOf("poses_frame", poses_frame, {"cam0", "velo"});
   oneOf("segmenter", segmenter, {"enet"});
   oneOf("format", format, {"json", "cbor"});
   requireParam(camera_height > 0.0, S, "camera_height", camera_height, "> 0");

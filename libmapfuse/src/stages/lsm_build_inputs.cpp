@@ -164,7 +164,16 @@ LoadedDrive loadDrive(const LsmBuildInputs& in, const LsmBuildParams& p) {
 
   if (d.egomotion == "poses") {
     if (in.poses.empty()) throw InputError("egomotion = poses needs a poses file (--poses)");
-    const auto T_world_cam0 = io::readKittiPoses(in.poses);
+    auto T_world_cam0 = io::readKittiPoses(in.poses);
+    if (p.poses_frame == "velo") {
+      // LiDAR odometry poses (lidar-semantic-map poses.txt) are T_world_velo:
+      // T_world_cam0 = T_world_velo * T_cam0_velo^-1 with T_cam0_velo = R_rect_00 T_velo_to_cam.
+      if (!d.calib.has_velo)
+        throw ConfigError("LsmBuildParams::poses_frame = \"velo\". Violated constraint: "
+                          "needs a KITTI raw drive (Velodyne calibration)");
+      const Pose3 T_velo_cam0 = d.calib.T_posecam_velo.inverse();
+      for (Pose3& T : T_world_cam0) T = T * T_velo_cam0;
+    }
     if (T_world_cam0.size() != d.stamps.size())
       throw InputError(in.poses.string() + " has " + std::to_string(T_world_cam0.size()) +
                        " poses but the drive has " + std::to_string(d.stamps.size()) + " frames");

@@ -15,6 +15,7 @@ struct LsmBuildParams {
   std::string input_kind = "auto";  ///< auto | frames | kitti_raw
   std::string semantics = "auto";   ///< auto | observations | masks | segmenter
   std::string egomotion = "auto";   ///< auto | imu_wheel | poses | oxts
+  std::string poses_frame = "cam0";  ///< cam0 (KITTI odometry) | velo (lidar-semantic-map)
   std::string segmenter = "enet";   ///< fallback perception network: enet
   std::string model;                ///< ENet model; "" = <shared>/models/enet-cityscapes/...
   double camera_height = 1.65;      ///< m, KITTI camera height (frames: from calibration)
@@ -52,6 +53,9 @@ struct LsmBuildParams {
     v("input_kind", input_kind, "", "auto, frames (simulate layout) or kitti_raw");
     v("semantics", semantics, "", "auto, observations, masks or segmenter (fallback perception)");
     v("egomotion", egomotion, "", "auto, imu_wheel, poses (needs --poses) or oxts");
+    v("poses_frame", poses_frame, "",
+      "frame of the --poses file: cam0 (KITTI odometry T_world_cam0) or velo (KITTI raw only: "
+      "T_world_velo, e.g. lidar-semantic-map poses.txt)");
     v("segmenter", segmenter, "", "fallback segmentation network (enet)");
     v("model", model, "", "segmentation model file; empty = shared models/enet-cityscapes");
     v("camera_height", camera_height, "m", "KITTI camera height above the road");

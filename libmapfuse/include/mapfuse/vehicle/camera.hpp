@@ -25,6 +25,10 @@ struct CameraCalib {
   /// Camera of a poses file (KITTI: rectified camera 0) in this camera frame; identity when
   /// the poses file describes this camera itself.
   Pose3 T_cam_posecam = Pose3::Identity();
+  /// KITTI only: the Velodyne in the poses-file camera (T_rect0_velo = R_rect_00 T_cam0_velo),
+  /// to read LiDAR (T_world_velo) poses files; unset (false) for other inputs.
+  Pose3 T_posecam_velo = Pose3::Identity();
+  bool has_velo = false;  ///< T_posecam_velo is known
 };
 
 /// @brief Rotation taking camera axes (x right, y down, z forward) to body axes
