@@ -7,13 +7,6 @@
 
 namespace mapfuse::aggregate {
 
-bool sameOrigin(const geo::GeoOrigin& a, const geo::GeoOrigin& b) {
-  constexpr double kDegTolerance = 1e-9;
-  constexpr double kAltTolerance = 1e-3;  // m
-  return std::abs(a.lat - b.lat) <= kDegTolerance && std::abs(a.lon - b.lon) <= kDegTolerance &&
-         std::abs(a.alt - b.alt) <= kAltTolerance;
-}
-
 namespace {
 std::string describe(const geo::GeoOrigin& o) {
   std::ostringstream s;
@@ -37,7 +30,7 @@ ObservationSet collectObservations(const std::vector<Lsm>& lsms,
                        "run georef or align first)");
     if (d == 0) {
       set.origin = *lsm.origin;
-    } else if (!sameOrigin(set.origin, *lsm.origin)) {
+    } else if (!geo::sameOrigin(set.origin, *lsm.origin)) {
       throw InputError(sources[d] + ": origin " + describe(*lsm.origin) + " differs from " +
                        sources[0] + " origin " + describe(set.origin) +
                        "; all LSMs must share one ENU origin");

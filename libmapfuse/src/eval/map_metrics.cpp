@@ -231,7 +231,7 @@ ClassMetrics evaluateDiscrete(const std::vector<const MapInstance*>& map,
 
 MapMetrics evaluateMap(const VectorMap& map_in, const VectorMap& truth, const MapEvalParams& p) {
   VectorMap map = map_in;
-  if (!aggregate::sameOrigin(map.origin, truth.origin)) {
+  if (!geo::sameOrigin(map.origin, truth.origin)) {
     const geo::EnuConverter from(map.origin), to(truth.origin);
     for (auto& inst : map.instances)
       for (auto& q : inst.points) q = to.toEnu(from.toWgs84(q));

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <unordered_map>
 
-#include "mapfuse/aggregate/observations.hpp"
+#include "mapfuse/geo/origin.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
@@ -38,7 +38,7 @@ TrajectoryMetrics compareTrajectory(const Lsm& lsm, const TrueTrajectory& truth,
   if (lsm.frame != LsmFrame::kEnu || !lsm.origin)
     throw InputError(source +
                      ": trajectory metrics need an LSM in frame 'enu' (georef/align output)");
-  if (!aggregate::sameOrigin(*lsm.origin, truth.origin))
+  if (!geo::sameOrigin(*lsm.origin, truth.origin))
     throw InputError(source + ": origin differs from the true trajectory of drive '" +
                      truth.drive_id + "'");
   std::unordered_map<int64_t, const TruePose*> by_id;

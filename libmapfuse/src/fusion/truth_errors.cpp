@@ -12,10 +12,6 @@ namespace mapfuse::fusion {
 
 namespace {
 
-bool sameOrigin(const geo::GeoOrigin& a, const geo::GeoOrigin& b) {
-  return a.lat == b.lat && a.lon == b.lon && a.alt == b.alt;
-}
-
 struct TrueGeom {
   std::vector<Eigen::Vector2d> pts;
   std::vector<double> arc;  // cumulative arc length (lines)
@@ -51,7 +47,7 @@ ElementTruthErrors elementTruthErrors(const std::vector<Lsm>& lsms, const Vector
     if (l.frame != LsmFrame::kEnu || !l.origin)
       throw InputError("elementTruthErrors: LSM '" + l.drive_id + "' is not in enu");
   const geo::GeoOrigin& o = *lsms.front().origin;
-  const bool convert = !sameOrigin(o, truth.origin);
+  const bool convert = !geo::sameOrigin(o, truth.origin);
   const geo::EnuConverter from(truth.origin), to(o);
 
   std::unordered_map<int64_t, TrueGeom> geom;
@@ -140,15 +136,24 @@ TrajectoryTruthErrors trajectoryTruthErrors(
   for (const auto& l : lsms) {
     const auto it = truth.find(l.drive_id);
     if (it == truth.end()) continue;
-    std::unordered_map<int64_t, const Pose3*> by_id;
-    for (const auto& p : it->second.poses) by_id[p.id] = &p.T_enu_body;
+    if (l.frame != LsmFrame::kEnu || !l.origin)
+      throw InputError("trajectoryTruthErrors: LSM '" + l.drive_id + "' is not in enu");
+    // True positions in the LSM's ENU frame (georef may have chosen another origin).
+    const geo::GeoOrigin& truth_origin = it->second.origin;
+    const bool convert = !geo::sameOrigin(*l.origin, truth_origin);
+    const geo::EnuConverter from(truth_origin), to(*l.origin);
+    std::unordered_map<int64_t, Eigen::Vector3d> by_id;
+    for (const auto& p : it->second.poses) {
+      const Eigen::Vector3d t = p.T_enu_body.translation();
+      by_id[p.id] = convert ? to.toEnu(from.toWgs84(t)) : t;
+    }
     double sq = 0;
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     int n = 0;
     for (const auto& k : l.keyframes) {
       const auto t = by_id.find(k.id);
       if (t == by_id.end()) continue;
-      const Eigen::Vector3d d = k.T_frame_body.translation() - t->second->translation();
+      const Eigen::Vector3d d = k.T_frame_body.translation() - t->second;
       sq += d.squaredNorm();
       mean += d;
       ++n;

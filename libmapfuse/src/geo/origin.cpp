@@ -13,6 +13,13 @@ bool isValid(const LatLonAlt& p) {
          std::abs(p.lat) <= 90.0 && std::abs(p.lon) <= 180.0;
 }
 
+bool sameOrigin(const GeoOrigin& a, const GeoOrigin& b) {
+  constexpr double kDegTolerance = 1e-9;
+  constexpr double kAltTolerance = 1e-3;  // m
+  return std::abs(a.lat - b.lat) <= kDegTolerance && std::abs(a.lon - b.lon) <= kDegTolerance &&
+         std::abs(a.alt - b.alt) <= kAltTolerance;
+}
+
 struct EnuConverter::Impl {
   GeographicLib::LocalCartesian lc;
 };

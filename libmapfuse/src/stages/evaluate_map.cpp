@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "mapfuse/aggregate/observations.hpp"
+#include "mapfuse/geo/origin.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/eval/map_report.hpp"
 #include "mapfuse/eval/trajectory_metrics.hpp"
@@ -78,7 +78,7 @@ nlohmann::json runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
     std::vector<Eigen::Vector3d> positions;
     for (const auto& f : files) {
       const auto t = eval::readTrueTrajectory(f);
-      if (!aggregate::sameOrigin(t.origin, truth.origin))
+      if (!geo::sameOrigin(t.origin, truth.origin))
         throw InputError(f.string() + ": origin differs from the truth map " + in.truth);
       for (const auto& p : t.poses) positions.push_back(p.T_enu_body.translation());
     }

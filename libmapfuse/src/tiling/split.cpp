@@ -8,12 +8,6 @@
 namespace mapfuse::tiling {
 namespace {
 
-bool sameOrigin(const geo::GeoOrigin& a, const geo::GeoOrigin& b) {
-  constexpr double kDegTol = 1e-9;
-  return std::abs(a.lat - b.lat) < kDegTol && std::abs(a.lon - b.lon) < kDegTol &&
-         std::abs(a.alt - b.alt) < 1e-6;
-}
-
 // Copies keyframes [first, last] of `src` with their elements and GPS fixes.
 Lsm extractRun(const Lsm& src, std::size_t first, std::size_t last, double gps_slack) {
   Lsm run;
@@ -42,7 +36,7 @@ std::map<TileKey, std::vector<Lsm>> splitIntoTiles(const std::vector<Lsm>& lsms,
   for (const auto& lsm : lsms) {
     if (lsm.frame != LsmFrame::kEnu || !lsm.origin)
       throw InputError("LSM " + lsm.drive_id + " is not georeferenced (frame must be enu)");
-    if (!sameOrigin(*lsm.origin, *lsms.front().origin))
+    if (!geo::sameOrigin(*lsm.origin, *lsms.front().origin))
       throw InputError("LSM " + lsm.drive_id + " has another ENU origin than " +
                        lsms.front().drive_id);
     // Every tile whose margin rectangle a keyframe falls in.

@@ -78,11 +78,6 @@ Eigen::Vector3d centroid(const std::vector<Eigen::Vector3d>& pts) {
   return c / double(pts.size());
 }
 
-bool sameOrigin(const geo::GeoOrigin& a, const geo::GeoOrigin& b) {
-  return std::abs(a.lat - b.lat) < 1e-9 && std::abs(a.lon - b.lon) < 1e-9 &&
-         std::abs(a.alt - b.alt) < 1e-6;
-}
-
 // Appends piece points oriented so that `first_end` comes first, merging the junction point.
 void appendOriented(std::vector<Eigen::Vector3d>& out, const std::vector<Eigen::Vector3d>& pts,
                     int first_end) {
@@ -179,7 +174,7 @@ VectorMap stitchTiles(const std::vector<std::pair<TileKey, VectorMap>>& tiles, c
   std::vector<Piece> pieces;
   for (std::size_t t = 0; t < tiles.size(); ++t) {
     const auto& [key, map] = tiles[t];
-    if (!sameOrigin(map.origin, out.origin))
+    if (!geo::sameOrigin(map.origin, out.origin))
       throw InputError("stitch: tile " + key.name() + " has another ENU origin");
     ++report.tiles;
     const Rect core = grid.core(key);

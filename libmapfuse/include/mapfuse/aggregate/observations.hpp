@@ -32,9 +32,6 @@ struct ObservationSet {
   std::vector<Observation> items;
 };
 
-/// Two origins are the same when they agree within 1e-9 deg and 1 mm.
-bool sameOrigin(const geo::GeoOrigin& a, const geo::GeoOrigin& b);
-
 /// @brief Transforms the elements of georeferenced (or aligned) LSMs into ENU observations.
 /// @param lsms LSMs in frame enu, all with the same origin.
 /// @param sources one name per LSM (file path) for error messages.

@@ -14,10 +14,10 @@
 namespace mapfuse::fusion {
 
 struct ElementTruthErrors {
-  int observations = 0;     ///< element observations with a known truth id
-  int groups = 0;           ///< true elements (or 20 m pieces of long lines) seen by >= 2 drives
-  double mean_abs = 0.0;    ///< m, mean horizontal error of an element observation vs truth
-  double spread = 0.0;      ///< m, mean over groups of the RMS spread of per-drive mean offsets
+  int observations = 0;        ///< element observations with a known truth id
+  int groups = 0;              ///< true elements (or 20 m pieces of long lines) seen by >= 2 drives
+  double mean_abs = 0.0;       ///< m, mean horizontal error of an element observation vs truth
+  double spread = 0.0;         ///< m, mean over groups of the RMS spread of per-drive mean offsets
   double spread_median = 0.0;  ///< m, median of the same
   double mean_offset = 0.0;    ///< m, norm of the mean offset over all observations (common shift)
 };
@@ -33,12 +33,14 @@ ElementTruthErrors elementTruthErrors(const std::vector<Lsm>& lsms, const Vector
 
 struct TrajectoryTruthErrors {
   int drives = 0;
-  double ate_mean = 0.0;  ///< m, mean over drives of the per-drive keyframe RMS position error
-  double ate_max = 0.0;   ///< m, worst per-drive RMS
+  double ate_mean = 0.0;   ///< m, mean over drives of the per-drive keyframe RMS position error
+  double ate_max = 0.0;    ///< m, worst per-drive RMS
   double bias_mean = 0.0;  ///< m, mean over drives of |mean keyframe error| (common drive shift)
 };
 
-/// @brief Keyframe position errors vs true trajectories matched by drive id and keyframe id.
+/// @brief Keyframe position errors vs true trajectories matched by drive id and keyframe id
+/// (true positions converted into the LSM origin when it differs). @throws InputError when an
+/// LSM is not in enu.
 TrajectoryTruthErrors trajectoryTruthErrors(
     const std::vector<Lsm>& lsms, const std::map<std::string, eval::TrueTrajectory>& truth);
 

@@ -17,6 +17,9 @@ using GeoOrigin = LatLonAlt;
 /// @brief True when lat/lon are finite and within their ranges.
 bool isValid(const LatLonAlt& p);
 
+/// @brief Two origins are the same when they agree within 1e-9 deg and 1 mm.
+bool sameOrigin(const GeoOrigin& a, const GeoOrigin& b);
+
 /// Converts between WGS84 and East-North-Up metres about one origin (GeographicLib's
 /// LocalCartesian: exact ellipsoidal transform, not a flat-earth approximation).
 class EnuConverter {
