@@ -3,10 +3,10 @@
 # Writes docs/performance-simulate.md. Usage: scripts/bench/bench_simulate.sh [build-dir]
 set -euo pipefail
 SRC="$(cd "$(dirname "$0")/../.." && pwd)"
-BUILD="${1:-$SRC/build}"
+BIN="${1:-$SRC/build/bin}"
 OUT="$(mktemp -d)"
 trap 'rm -rf "$OUT"' EXIT
-CMD=(env OMP_NUM_THREADS=1 "$BUILD/bin/simulate" --level lsm --traversals 50 --routes 10
+CMD=(env OMP_NUM_THREADS=1 "$BIN/simulate" --level lsm --traversals 50 --routes 10
      --route-length 2000 --world-grid-size 5 --world-block-length 300 -o "$OUT" -q)
 START=$(date +%s.%N)
 "${CMD[@]}" > "$OUT.summary.json"
