@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Benchmark: `simulate --level lsm`, 50 traversals over ~10 km of procedural road, one core.
-# Writes docs/performance-simulate.md. Usage: scripts/bench/bench_simulate.sh [build-dir]
+# Writes docs/performance-simulate.md. Usage: scripts/bench/bench_simulate.sh [BIN_DIR]
 set -euo pipefail
 SRC="$(cd "$(dirname "$0")/../.." && pwd)"
 BIN="${1:-$SRC/build/bin}"
