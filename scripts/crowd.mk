@@ -85,20 +85,25 @@ $(MAP_SUMMARY): $(ALIGN_SUMMARY)
 else
 # ---- tiled: tile, then align + aggregate per tile (sub-make over the tile list), stitch ----
 $(WORK)/tiles/tiles.txt: $(GEOREF)
+	@mkdir -p $(WORK)/tiles
 	$(BIN)/tile $(Q) $(call cfg,tile) --tile-size $(TILE_SIZE) --margin $(TILE_MARGIN) -o $(WORK)/tiles $(GEOREF) > $@.tmp && mv $@.tmp $@
 
 $(MAP_SUMMARY): $(WORK)/tiles/tiles.txt
 	$(MAKE) -f $(lastword $(MAKEFILE_LIST)) tiles-run TILES="$$(cat $<)"
 	$(BIN)/stitch $(Q) $(call cfg,stitch) --tiles $(WORK)/tiles/tiles.json -o $(MAP) \
-	  $(foreach t,$$(cat $<),$(WORK)/tiles/$$t/aggregate/map.cbor)
+	  $$(sed 's|.*|$(WORK)/tiles/&/aggregate/map.cbor|' $<)
 endif
 
+# Per-tile align summaries are intermediate files of pattern rules: keep them (and everything
+# else) so that a rerun does not redo finished tiles. Aligned LSMs are named like the tile's
+# inputs (a $(wildcard) of align/ would see make's stale directory cache).
+.SECONDARY:
 .PHONY: tiles-run
 tiles-run: $(foreach t,$(TILES),$(WORK)/tiles/$(t)/aggregate/aggregate.summary.json)
 $(WORK)/tiles/%/align/align.summary.json:
 	$(BIN)/align $(Q) $(call cfg,align) --method $(METHOD) -o $(WORK)/tiles/$*/align $(wildcard $(WORK)/tiles/$*/*.cbor $(WORK)/tiles/$*/*.json)
 $(WORK)/tiles/%/aggregate/aggregate.summary.json: $(WORK)/tiles/%/align/align.summary.json
-	$(BIN)/aggregate $(Q) $(call cfg,aggregate) -o $(WORK)/tiles/$*/aggregate $(filter-out %.summary.json %.config.json,$(wildcard $(WORK)/tiles/$*/align/*.cbor $(WORK)/tiles/$*/align/*.json))
+	$(BIN)/aggregate $(Q) $(call cfg,aggregate) -o $(WORK)/tiles/$*/aggregate $(patsubst $(WORK)/tiles/$*/%,$(WORK)/tiles/$*/align/%,$(wildcard $(WORK)/tiles/$*/*.cbor $(WORK)/tiles/$*/*.json))
 
 # ---- evaluate against ground truth ----
 $(EVAL_SUMMARY): $(MAP_SUMMARY) $(TRUTH)
