@@ -92,6 +92,48 @@ TEST_CASE("align: gba_sgicp shrinks element spread and beats the baselines") {
   CHECK(by["sgicp"].spread >= by["gba_sgicp"].spread);
 }
 
+TEST_CASE("align: SGICP registration converges from a bad start of 5 m and 5 degrees") {
+  constexpr double kBadShift = 5.0;             // m, issue 4: deliberately bad start
+  constexpr double kBadYaw = 5.0 * M_PI / 180;  // rad
+  constexpr double kTransTol = 0.3;             // m, recovered relative pose vs truth
+  constexpr double kRotTolDeg = 1.0;
+  const auto world = test::trueWorld();
+  test::FixtureOptions exact;  // GPS without bias: the bad start is the only large error
+  exact.gps_bias = 0.0;
+  exact.gps_white = 0.05;
+  exact.outlier_probability = 0.0;
+  std::vector<test::Traversal> trav;
+  std::vector<Lsm> lsms;
+  for (int t = 0; t < 2; ++t) {
+    trav.push_back(test::makeTraversal(world, t, exact));
+    lsms.push_back(
+        fusion::georeferenceLsm(trav[t].lsm, test::fixtureOrigin(), {}, "fixture").lsm);
+  }
+  // Traversal 1 moved rigidly by 5 m and 5 degrees about its middle keyframe.
+  const int mid = int(lsms[1].keyframes.size()) / 2;
+  const Eigen::Vector3d c = lsms[1].keyframes[mid].T_frame_body.translation();
+  Pose3 T = Pose3::Identity();
+  T.linear() = Eigen::AngleAxisd(kBadYaw, Eigen::Vector3d::UnitZ()).matrix();
+  T.translation() = c - T.linear() * c + Eigen::Vector3d(kBadShift * 0.6, kBadShift * 0.8, 0);
+  for (auto& k : lsms[1].keyframes) k.T_frame_body = T * k.T_frame_body;
+  fusion::AlignSettings s;
+  const auto cs = fusion::registerSubmaps(lsms, s);
+  // The submap of traversal 1 around the rotation centre starts exactly 5 m / 5 deg off.
+  int checked = 0;
+  for (const auto& c2 : cs) {
+    if (c2.lsm_a != 0 || c2.lsm_b != 1 || std::abs(c2.kf_b - mid) > 4 || !c2.accepted) continue;
+    const Pose3 truth = trav[0].truth[c2.kf_a].inverse() * trav[1].truth[c2.kf_b];
+    const Pose3 err = truth.inverse() * c2.T_a_b;
+    const double rot_deg = Eigen::AngleAxisd(err.linear()).angle() * 180 / M_PI;
+    WARN("bad start: pair kf " << c2.kf_a << "-" << c2.kf_b << " error " << err.translation().norm()
+                               << " m, " << rot_deg << " deg");
+    CHECK(err.translation().norm() < kTransTol);
+    CHECK(rot_deg < kRotTolDeg);
+    ++checked;
+  }
+  CHECK(checked >= 1);
+}
+
 TEST_CASE("align: PCM rejects an injected corrupted constraint") {
   const auto world = test::trueWorld();
   const std::vector<Lsm> geo = georeferenced(world, 3, {});
