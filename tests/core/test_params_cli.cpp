@@ -42,7 +42,8 @@ int runWith(std::vector<std::string> args, DemoParams& params, const std::functi
 }
 }  // namespace
 
-TEST_CASE("params serialise to JSON and back, and unknown keys are config errors", "[core][params]") {
+TEST_CASE("params serialise to JSON and back, and unknown keys are config errors",
+          "[core][params]") {
   DemoParams p;
   const auto j = paramsToJson(p);
   CHECK(j["voxel_size"] == 0.25);

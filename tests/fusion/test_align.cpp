@@ -106,8 +106,7 @@ TEST_CASE("align: SGICP registration converges from a bad start of 5 m and 5 deg
   std::vector<Lsm> lsms;
   for (int t = 0; t < 2; ++t) {
     trav.push_back(test::makeTraversal(world, t, exact));
-    lsms.push_back(
-        fusion::georeferenceLsm(trav[t].lsm, test::fixtureOrigin(), {}, "fixture").lsm);
+    lsms.push_back(fusion::georeferenceLsm(trav[t].lsm, test::fixtureOrigin(), {}, "fixture").lsm);
   }
   // Traversal 1 moved rigidly by 5 m and 5 degrees about its middle keyframe.
   const int mid = int(lsms[1].keyframes.size()) / 2;

@@ -49,8 +49,8 @@ TEST_CASE("truth errors: element spread, absolute error and common offset of kno
   const auto e = fusion::elementTruthErrors({drive("a", 0.3), drive("b", -0.1)}, truth);
   CHECK(e.observations == 4);
   CHECK(e.groups == 2);
-  CHECK(e.mean_abs == Approx(0.2).margin(kExact));      // (0.3 + 0.3 + 0.1 + 0.1) / 4
-  CHECK(e.spread == Approx(0.2).margin(kExact));        // offsets 0.3, -0.1 about their mean 0.1
+  CHECK(e.mean_abs == Approx(0.2).margin(kExact));  // (0.3 + 0.3 + 0.1 + 0.1) / 4
+  CHECK(e.spread == Approx(0.2).margin(kExact));    // offsets 0.3, -0.1 about their mean 0.1
   CHECK(e.spread_median == Approx(0.2).margin(kExact));
   CHECK(e.mean_offset == Approx(0.1).margin(kExact));
 

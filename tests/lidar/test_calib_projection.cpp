@@ -11,15 +11,21 @@
 using namespace mapfuse;
 
 namespace {
-constexpr double kPoseTol = 1e-6;       // m: same formula, evaluated independently
-constexpr double kMatrixTol = 1e-3;     // calibration R has 7 digits; the library orthonormalises
-constexpr double kPixelTol = 1e-3;      // px: hand-composed matrices vs the library
-constexpr double kFovMarginDeg = 1.0;   // projected points lie inside the camera's FOV
+constexpr double kPoseTol = 1e-6;      // m: same formula, evaluated independently
+constexpr double kMatrixTol = 1e-3;    // calibration R has 7 digits; the library orthonormalises
+constexpr double kPixelTol = 1e-3;     // px: hand-composed matrices vs the library
+constexpr double kFovMarginDeg = 1.0;  // projected points lie inside the camera's FOV
 const char* const kDrive = "data/kitti_raw/2011_09_26/2011_09_26_drive_0005_sync";
 
-Eigen::Matrix3d rz(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()).matrix(); }
-Eigen::Matrix3d ry(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitY()).matrix(); }
-Eigen::Matrix3d rx(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX()).matrix(); }
+Eigen::Matrix3d rz(double a) {
+  return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()).matrix();
+}
+Eigen::Matrix3d ry(double a) {
+  return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitY()).matrix();
+}
+Eigen::Matrix3d rx(double a) {
+  return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX()).matrix();
+}
 }  // namespace
 
 TEST_CASE("OXTS of drive 0005 frame 0 gives the devkit pose", "[lidar][poses]") {
@@ -43,7 +49,6 @@ TEST_CASE("OXTS of drive 0005 frame 0 gives the devkit pose", "[lidar][poses]") 
   REQUIRE(poses.size() == 1);
   CHECK((poses[0].matrix() - expected).cwiseAbs().maxCoeff() < kMatrixTol);
   CHECK((poses[0].translation() - expected.block<3, 1>(0, 3)).norm() < kMatrixTol);
-  CHECK(poses[0].translation().x() == Approx(t.x() + expected(0, 3) - t.x()));
   // the IMU position itself is exactly the devkit Mercator point
   const Pose3 T_w_imu_lib = poses[0] * drive.calib.T_velo_imu;
   CHECK((T_w_imu_lib.translation() - t).norm() < kPoseTol);
@@ -58,8 +63,8 @@ TEST_CASE("drive 0005 frame 0 scan projects onto image_02 as the calibration say
   const auto scan = io::readVelodyneBin(drive.frames[0].velodyne);
   // Hand-composed P_rect_02 * R_rect_00 * [R|T]_velo_to_cam, numbers typed from the files.
   Eigen::Matrix<double, 3, 4> P2;
-  P2 << 7.215377e+02, 0, 6.095593e+02, 4.485728e+01, 0, 7.215377e+02, 1.728540e+02, 2.163791e-01,
-      0, 0, 1, 2.745884e-03;
+  P2 << 7.215377e+02, 0, 6.095593e+02, 4.485728e+01, 0, 7.215377e+02, 1.728540e+02, 2.163791e-01, 0,
+      0, 1, 2.745884e-03;
   Eigen::Matrix4d Rr = Eigen::Matrix4d::Identity();
   Rr.block<3, 3>(0, 0) << 9.999239e-01, 9.837760e-03, -7.445048e-03, -9.869795e-03, 9.999421e-01,
       -4.278459e-03, 7.402527e-03, 4.351614e-03, 9.999631e-01;
@@ -69,13 +74,14 @@ TEST_CASE("drive 0005 frame 0 scan projects onto image_02 as the calibration say
   Tv.block<3, 1>(0, 3) << -4.069766e-03, -7.631618e-02, -2.717806e-01;
   const Eigen::Matrix<double, 3, 4> M = P2 * Rr * Tv;
   const auto lib = drive.calib.veloToImage2();
-  for (const Eigen::Vector3d p : {Eigen::Vector3d(10, 0, 0), Eigen::Vector3d(20, 5, -1.5),
-                                  Eigen::Vector3d(8, -3, 0.5), Eigen::Vector3d(scan.points[1000].cast<double>())}) {
+  for (const Eigen::Vector3d p :
+       {Eigen::Vector3d(10, 0, 0), Eigen::Vector3d(20, 5, -1.5), Eigen::Vector3d(8, -3, 0.5),
+        Eigen::Vector3d(scan.points[1000].cast<double>())}) {
     const Eigen::Vector3d h = M * p.homogeneous();
     double u = 0, v = 0;
     if (!lidar::projectPoint(lib, p, &u, &v)) continue;
     CHECK(std::abs(u - h.x() / h.z()) < kPixelTol);
-    CHECK(std::abs(v - h.y() / h.z()) < kPixelTol * 1e3);
+    CHECK(std::abs(v - h.y() / h.z()) < kPixelTol);
   }
   // A point 10 m straight ahead of the Velodyne lands near the principal point, slightly below
   // (the camera is 8 cm lower and 27 cm behind): u ~ 609.6 + 721.5 * (-0.004 - 0 + ...)/10.
@@ -97,7 +103,8 @@ TEST_CASE("drive 0005 frame 0 scan projects onto image_02 as the calibration say
     ++in_range;
     if (std::abs(std::atan2(p.y(), p.x()) * 180.0 / M_PI) < half_fov - kFovMarginDeg) ++in_fov;
   }
-  INFO("projected " << pr.size() << " of " << in_range << " in range; in horizontal FOV " << in_fov);
+  INFO("projected " << pr.size() << " of " << in_range << " in range; in horizontal FOV "
+                    << in_fov);
   // Every projected point is in range and within the horizontal field of view (+ margin).
   std::size_t outside = 0;
   for (std::size_t k = 0; k < pr.size(); ++k) {

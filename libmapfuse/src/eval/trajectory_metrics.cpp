@@ -3,8 +3,8 @@
 #include <cmath>
 #include <unordered_map>
 
-#include "mapfuse/geo/origin.hpp"
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/geo/origin.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
 #include "mapfuse/io/json_view.hpp"

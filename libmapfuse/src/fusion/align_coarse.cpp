@@ -70,9 +70,11 @@ CoarseResult votePeak(const VoteGrid& g, double prior_sigma) {
     for (int x = 1; x + 1 < w; ++x) {
       double v = 0;
       for (int j = -1; j <= 1; ++j)
-        for (int i = -1; i <= 1; ++i) v += k3[j + 1] * k3[i + 1] * hist[std::size_t(y + j) * w + x + i];
+        for (int i = -1; i <= 1; ++i)
+          v += k3[j + 1] * k3[i + 1] * hist[std::size_t(y + j) * w + x + i];
       const double dx = (x - half) * bin, dy = (y - half) * bin;
-      sm[std::size_t(y) * w + x] = v * std::exp(-0.5 * (dx * dx + dy * dy) / (prior_sigma * prior_sigma));
+      sm[std::size_t(y) * w + x] =
+          v * std::exp(-0.5 * (dx * dx + dy * dy) / (prior_sigma * prior_sigma));
     }
   int best = 0;
   for (int i = 1; i < int(sm.size()); ++i)
@@ -95,4 +97,3 @@ CoarseResult votePeak(const VoteGrid& g, double prior_sigma) {
 }
 
 }  // namespace mapfuse::fusion::detail
-

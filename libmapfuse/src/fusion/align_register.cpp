@@ -4,8 +4,8 @@
 #include <cmath>
 #include <map>
 
-#include "mapfuse/core/error.hpp"
 #include "align_internal.hpp"
+#include "mapfuse/core/error.hpp"
 #include "mapfuse/fusion/align.hpp"
 #include "mapfuse/fusion/gicp.hpp"
 
@@ -103,8 +103,9 @@ std::vector<InterConstraint> registerSubmaps(const std::vector<Lsm>& lsms, const
     c.T_a_b = Ta.inverse() * delta * Tb;
     Matrix6d H = r.hessian;
     H.diagonal().array() += 1e-6;
-    const double scale = gicp ? s.constraint_cov_scale * std::max(1.0, r.error / std::max(1, r.num_inliers - 6))
-                              : r.rmse * r.rmse + 1e-4;
+    const double scale =
+        gicp ? s.constraint_cov_scale * std::max(1.0, r.error / std::max(1, r.num_inliers - 6))
+             : r.rmse * r.rmse + 1e-4;
     Matrix6d cov = H.inverse() * scale;
     const Matrix6d Ad = adjoint(Tb.inverse());
     cov = Ad * cov * Ad.transpose();

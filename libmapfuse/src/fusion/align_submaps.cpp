@@ -42,7 +42,8 @@ int alignLabel(const Element& e) {
 
 std::vector<double> labelWeights(const std::vector<double>& class_weights) {
   std::vector<double> w(kNumAlignLabels, 1.0);
-  for (int c = 0; c < kNumCrowdClasses && c < int(class_weights.size()); ++c) w[c] = class_weights[c];
+  for (int c = 0; c < kNumCrowdClasses && c < int(class_weights.size()); ++c)
+    w[c] = class_weights[c];
   w[kLabelDashedLine] = w[int(CrowdClass::kLaneLine)];
   return w;
 }
@@ -72,7 +73,7 @@ Cloud elementCloud(const Lsm& lsm, int kf_begin, int kf_end, double sigma) {
         C = lineCov((pts[b] - pts[a]).normalized(), along, sigma);
       } else if (kind == GeometryKind::kPlanar) {
         C = planeCov(n, kEndSigma, sigma);  // polygon corners: located in the plane too
-      } else {  // pole / light base point: free vertically
+      } else {                              // pole / light base point: free vertically
         C = lineCov(Eigen::Vector3d::UnitZ(), kFreeSigma, sigma);
       }
       c.points.push_back(pts[i]);
@@ -171,7 +172,8 @@ std::vector<SubmapPair> selectPairs(const std::vector<Submap>& maps, const Align
     std::sort(v.begin(), v.end(), [](const auto& x, const auto& y) {
       return x.first != y.first ? x.first > y.first : x.second < y.second;
     });
-    const int take = s.max_partners > 0 ? std::min<int>(s.max_partners, int(v.size())) : int(v.size());
+    const int take =
+        s.max_partners > 0 ? std::min<int>(s.max_partners, int(v.size())) : int(v.size());
     for (int k = 0; k < take; ++k) chosen[v[k].second] = 1;
   }
   std::vector<SubmapPair> out;

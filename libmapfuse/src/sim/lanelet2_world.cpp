@@ -6,10 +6,10 @@ namespace mapfuse::sim {
 
 namespace {
 
-constexpr double kCenterlineStep = 0.5;       // m
-constexpr double kSuccessorTolerance = 0.1;   // m, shared bound end points
-constexpr double kArrowStopDistance = 1.0;  // m, centreline vertex to stop line: a crossing
-constexpr double kMinArrowLaneRoom = 2.5;   // m, the arrow must fit into the lane
+constexpr double kCenterlineStep = 0.5;      // m
+constexpr double kSuccessorTolerance = 0.1;  // m, shared bound end points
+constexpr double kArrowStopDistance = 1.0;   // m, centreline vertex to stop line: a crossing
+constexpr double kMinArrowLaneRoom = 2.5;    // m, the arrow must fit into the lane
 
 bool isDrivable(const std::string& subtype) {
   return subtype.empty() || subtype == "road" || subtype == "highway" || subtype == "exit" ||

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 
-#include "mapfuse/geo/origin.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/eval/map_report.hpp"
 #include "mapfuse/eval/trajectory_metrics.hpp"
+#include "mapfuse/geo/origin.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/lsm_io.hpp"

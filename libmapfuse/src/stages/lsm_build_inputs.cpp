@@ -169,8 +169,9 @@ LoadedDrive loadDrive(const LsmBuildInputs& in, const LsmBuildParams& p) {
       // LiDAR odometry poses (lidar-semantic-map poses.txt) are T_world_velo:
       // T_world_cam0 = T_world_velo * T_cam0_velo^-1 with T_cam0_velo = R_rect_00 T_velo_to_cam.
       if (!d.calib.has_velo)
-        throw ConfigError("LsmBuildParams::poses_frame = \"velo\". Violated constraint: "
-                          "needs a KITTI raw drive (Velodyne calibration)");
+        throw ConfigError(
+            "LsmBuildParams::poses_frame = \"velo\". Violated constraint: "
+            "needs a KITTI raw drive (Velodyne calibration)");
       const Pose3 T_velo_cam0 = d.calib.T_posecam_velo.inverse();
       for (Pose3& T : T_world_cam0) T = T * T_velo_cam0;
     }

@@ -24,18 +24,19 @@ const char* alignMethodName(AlignMethod m);
 struct AlignSettings {
   AlignMethod method = AlignMethod::kGbaSgicp;
   double submap_length = 60.0;  ///< m of keyframe path per submap
-  double min_overlap = 0.3;     ///< share of coarse points with a same-label point within overlap_radius
+  double min_overlap =
+      0.3;  ///< share of coarse points with a same-label point within overlap_radius
   double overlap_radius = 4.0;  ///< m, overlap test radius (covers the GPS-level initial error)
   int max_partners = 4;         ///< per submap, register with the best submaps of this many LSMs
   double coarse_radius = 8.0;   ///< m, displacement-voting search radius (coarse level)
   double coarse_bin = 0.5;      ///< m, displacement histogram bin
   double coarse_prior_sigma = 4.0;  ///< m, Gaussian prior on the relative shift (GPS level)
-  int coarse_neighbors = 1;  ///< votes of pairs of submaps this many steps away are added
+  int coarse_neighbors = 1;         ///< votes of pairs of submaps this many steps away are added
   /// vote weight per coarse (1 m) point by CrowdClass: landmarks count like metres of line
   std::vector<double> coarse_class_weights = {1.0, 3.0, 3.0, 1.0, 10.0, 10.0, 10.0};
   std::vector<double> pyramid_distances = {1.5, 0.75};  ///< m, max correspondence per GICP level
-  double constraint_min_sigma = 0.05;     ///< m, floor of an InterRPC translation sigma
-  double constraint_cov_scale = 10.0;     ///< inflation of H^-1 (correlated element noise)
+  double constraint_min_sigma = 0.05;  ///< m, floor of an InterRPC translation sigma
+  double constraint_cov_scale = 10.0;  ///< inflation of H^-1 (correlated element noise)
   std::vector<double> class_weights = {1.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0};  ///< w_l by CrowdClass
   double min_fitness = 0.3;               ///< accept a registration above this inlier fraction
   double max_rmse = 0.5;                  ///< m, and below this RMS residual
@@ -65,8 +66,8 @@ struct InterConstraint {
   double overlap = 0, fitness = 0, rmse = 0;
   int iterations = 0;
   bool converged = false;
-  bool accepted = false;    ///< passed the registration checks
-  bool consistent = false;  ///< kept by PCM
+  bool accepted = false;       ///< passed the registration checks
+  bool consistent = false;     ///< kept by PCM
   bool graph_outlier = false;  ///< dropped after a pose-graph solve (chi2 > graph_reject_chi2)
   double graph_chi2 = 0;       ///< whitened squared residual at the last pose-graph solution
 };

@@ -12,15 +12,15 @@
 namespace mapfuse::stages {
 
 struct LsmBuildParams {
-  std::string input_kind = "auto";  ///< auto | frames | kitti_raw
-  std::string semantics = "auto";   ///< auto | observations | masks | segmenter
-  std::string egomotion = "auto";   ///< auto | imu_wheel | poses | oxts
+  std::string input_kind = "auto";   ///< auto | frames | kitti_raw
+  std::string semantics = "auto";    ///< auto | observations | masks | segmenter
+  std::string egomotion = "auto";    ///< auto | imu_wheel | poses | oxts
   std::string poses_frame = "cam0";  ///< cam0 (KITTI odometry) | velo (lidar-semantic-map)
-  std::string segmenter = "enet";   ///< fallback perception network: enet
-  std::string model;                ///< ENet model; "" = <shared>/models/enet-cityscapes/...
-  double camera_height = 1.65;      ///< m, KITTI camera height (frames: from calibration)
-  int kitti_last_frame = -1;        ///< KITTI: last frame index used (-1 = all)
-  double wheel_scale = 1.0;         ///< multiplies wheel speeds
+  std::string segmenter = "enet";    ///< fallback perception network: enet
+  std::string model;                 ///< ENet model; "" = <shared>/models/enet-cityscapes/...
+  double camera_height = 1.65;       ///< m, KITTI camera height (frames: from calibration)
+  int kitti_last_frame = -1;         ///< KITTI: last frame index used (-1 = all)
+  double wheel_scale = 1.0;          ///< multiplies wheel speeds
   double gyro_bias_x = 0.0, gyro_bias_y = 0.0, gyro_bias_z = 0.0;  ///< rad/s
   double keyframe_spacing = 10.0;                                  ///< m
   double keyframe_max_angle = 0.3;                                 ///< rad
