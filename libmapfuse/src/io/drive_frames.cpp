@@ -53,16 +53,22 @@ std::vector<std::string> splitCsv(const std::string& line) {
   return out;
 }
 
-Csv readCsv(const fs::path& path, const std::vector<std::string>& expected_header) {
-  const std::string text = readBytes(path);
-  Csv csv;
-  csv.file = path.string();
-  std::stringstream ss(text);
+/// Calls fn(line, line_number) for every non-empty line of the file (numbers from 1).
+template <typename Fn>
+void forEachLine(const fs::path& path, Fn fn) {
+  std::stringstream ss(readBytes(path));
   std::string line;
   int n = 0;
   while (std::getline(ss, line)) {
     ++n;
-    if (line.empty() || line == "\r") continue;
+    if (!line.empty() && line != "\r") fn(line, n);
+  }
+}
+
+Csv readCsv(const fs::path& path, const std::vector<std::string>& expected_header) {
+  Csv csv;
+  csv.file = path.string();
+  forEachLine(path, [&](const std::string& line, int n) {
     auto cells = splitCsv(line);
     if (csv.header.empty()) {
       if (cells != expected_header) {
@@ -71,7 +77,7 @@ Csv readCsv(const fs::path& path, const std::vector<std::string>& expected_heade
         throw ParseError(csv.file, "header", "expected '" + want + "'");
       }
       csv.header = cells;
-      continue;
+      return;
     }
     if (cells.size() != csv.header.size())
       throw ParseError(csv.file, "line " + std::to_string(n),
@@ -79,7 +85,7 @@ Csv readCsv(const fs::path& path, const std::vector<std::string>& expected_heade
                            std::to_string(csv.header.size()));
     csv.rows.push_back(std::move(cells));
     csv.line_numbers.push_back(n);
-  }
+  });
   if (csv.header.empty()) throw ParseError(csv.file, "header", "file is empty");
   return csv;
 }
@@ -139,14 +145,8 @@ vehicle::FrameObservations parseObservation(const JsonView& v) {
 }
 
 std::vector<vehicle::FrameObservations> readObservations(const fs::path& path) {
-  const std::string text = readBytes(path);
   std::vector<vehicle::FrameObservations> out;
-  std::stringstream ss(text);
-  std::string line;
-  int n = 0;
-  while (std::getline(ss, line)) {
-    ++n;
-    if (line.empty() || line == "\r") continue;
+  forEachLine(path, [&](const std::string& line, int n) {
     Json j;
     try {
       j = Json::parse(line);
@@ -154,7 +154,7 @@ std::vector<vehicle::FrameObservations> readObservations(const fs::path& path) {
       throw ParseError(path.string(), "line " + std::to_string(n), "invalid JSON");
     }
     out.push_back(parseObservation(JsonView(j, path.string(), "line " + std::to_string(n))));
-  }
+  });
   return out;
 }
 
