@@ -9,15 +9,10 @@
 #include <boost/geometry/index/rtree.hpp>
 #include <cmath>
 #include <numeric>
-#include <optional>
-#include <cstdio>
-#include <cstdlib>
-#include <atomic>
 #include <set>
 
 #include "mapfuse/aggregate/dbscan.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
-#include "mapfuse/aggregate/polygon_overlap.hpp"
 #include "mapfuse/core/vector_map.hpp"
 
 namespace mapfuse::aggregate {
@@ -39,7 +34,6 @@ using PointValue = std::pair<P2, std::size_t>;
 struct Piece {
   std::size_t obs = 0;  ///< index into items
   int64_t tile = 0;
-  Eigen::Vector2d corner{0, 0};  ///< lower-left corner of the tile (local origin of stage 1)
   std::vector<Vec3> points;
 };
 
@@ -70,13 +64,10 @@ void cutAtTiles(const std::vector<Vec3>& pts, double size, std::size_t obs,
     std::sort(ts.begin(), ts.end());
     for (std::size_t k = 1; k < ts.size(); ++k) {
       const Vec3 p = a + ts[k - 1] * d, q = a + ts[k] * d;
-      const Vec3 mid = 0.5 * (p + q);
-      const int64_t key = tileKey(mid, size);
+      const int64_t key = tileKey(0.5 * (p + q), size);
       if (!open || key != cur.tile) {
         if (open) out.push_back(std::move(cur));
-        const Eigen::Vector2d corner(std::floor(mid.x() / size) * size,
-                                     std::floor(mid.y() / size) * size);
-        cur = Piece{obs, key, corner, {p}};
+        cur = Piece{obs, key, {p}};
         open = true;
       }
       cur.points.push_back(q);
@@ -98,34 +89,6 @@ Box2 boxOf(const std::vector<Vec3>& pts, double margin) {
   for (const auto& p : pts) bg::expand(b, P2(p.x(), p.y()));
   return Box2(P2(b.min_corner().x() - margin, b.min_corner().y() - margin),
               P2(b.max_corner().x() + margin, b.max_corner().y() + margin));
-}
-
-// The stage-1 polygon of a piece: simplified first (Douglas-Peucker, 2 cm: fewer polygon
-// vertices, same overlap areas), then buffered by +-width with flat ends and mitre joins.
-MPoly2 bufferPiece(const Piece& piece, double width) {
-  const bg::strategy::buffer::distance_symmetric<double> distance(width);
-  const bg::strategy::buffer::side_straight side;
-  const bg::strategy::buffer::join_miter join;
-  const bg::strategy::buffer::end_flat end;
-  const bg::strategy::buffer::point_circle circle(8);
-  Line2 simple;
-  bg::simplify(toLine(piece.points), simple, kSimplifyTolerance);
-  MPoly2 out;
-  bg::buffer(simple, out, distance, side, join, end, circle);
-  return out;
-}
-
-OverlapPolygon toOverlapPolygon(const MPoly2& mp, const Eigen::Vector2d& origin) {
-  std::vector<std::vector<Eigen::Vector2d>> rings;
-  auto add = [&](const auto& ring) {
-    rings.emplace_back();
-    for (const auto& q : ring) rings.back().emplace_back(bg::get<0>(q), bg::get<1>(q));
-  };
-  for (const auto& poly : mp) {
-    add(poly.outer());
-    for (const auto& inner : poly.inners()) add(inner);
-  }
-  return OverlapPolygon(rings, origin);
 }
 
 struct Fragment {
@@ -177,64 +140,37 @@ LaneInstantiation instantiateLanes(const std::vector<Observation>& items,
   if (n == 0) return result;
 
   // ---- stage 1: buffered polygons, overlap-area similarity, DBSCAN
-  std::vector<OverlapPolygon> polys(n);
+  std::vector<MPoly2> polys(n);
   std::vector<double> areas(n);
-  std::vector<Box2> boxes(n);
+  std::vector<BoxValue> boxes(n);
+  const bg::strategy::buffer::distance_symmetric<double> distance(p.buffer_width);
+  const bg::strategy::buffer::side_straight side;
+  const bg::strategy::buffer::join_miter join;
+  const bg::strategy::buffer::end_flat end;
+  const bg::strategy::buffer::point_circle circle(8);
 #pragma omp parallel for schedule(dynamic, 64)
   for (std::ptrdiff_t i = 0; i < std::ptrdiff_t(n); ++i) {
-    const MPoly2 buffered = bufferPiece(pieces[std::size_t(i)], p.buffer_width);
-    areas[i] = bg::area(buffered);
-    polys[i] = toOverlapPolygon(buffered, pieces[std::size_t(i)].corner);
-    boxes[i] = boxOf(pieces[i].points, p.buffer_width);
+    // simplified first (Douglas-Peucker, 2 cm): fewer polygon vertices, same overlap areas
+    Line2 simple;
+    bg::simplify(toLine(pieces[i].points), simple, kSimplifyTolerance);
+    bg::buffer(simple, polys[i], distance, side, join, end, circle);
+    areas[i] = bg::area(polys[i]);
+    boxes[i] = {boxOf(pieces[i].points, p.buffer_width), std::size_t(i)};
   }
-  // candidates: pieces of the same tile whose boxes intersect (touching counts)
-  std::vector<std::size_t> by_tile(n);
-  std::iota(by_tile.begin(), by_tile.end(), std::size_t(0));
-  std::stable_sort(by_tile.begin(), by_tile.end(), [&](std::size_t a, std::size_t b) {
-    return pieces[a].tile < pieces[b].tile;
-  });
-  std::vector<std::size_t> rank(n), tile_end(n);
-  for (std::size_t k = 0; k < n;) {
-    std::size_t e = k;
-    while (e < n && pieces[by_tile[e]].tile == pieces[by_tile[k]].tile) ++e;
-    for (std::size_t r = k; r < e; ++r) rank[by_tile[r]] = r, tile_end[by_tile[r]] = e;
-    k = e;
-  }
+  const bgi::rtree<BoxValue, bgi::rstar<16>> tree(boxes.begin(), boxes.end());
   std::vector<std::vector<std::size_t>> upper(n);  // neighbours j > i
 #pragma omp parallel for schedule(dynamic, 64)
-  for (std::ptrdiff_t si = 0; si < std::ptrdiff_t(n); ++si) {
-    const std::size_t i = std::size_t(si);
-    const Box2& bi = boxes[i];
-    for (std::size_t r = rank[i] + 1; r < tile_end[i]; ++r) {
-      const std::size_t j = by_tile[r];  // > i: stable order within the tile
-      const Box2& bj = boxes[j];
-      if (bj.min_corner().x() > bi.max_corner().x() || bj.max_corner().x() < bi.min_corner().x() ||
-          bj.min_corner().y() > bi.max_corner().y() || bj.max_corner().y() < bi.min_corner().y())
-        continue;
+  for (std::ptrdiff_t i = 0; i < std::ptrdiff_t(n); ++i) {
+    std::vector<BoxValue> hits;
+    tree.query(bgi::intersects(boxes[i].first), std::back_inserter(hits));
+    for (const auto& h : hits) {
+      const std::size_t j = h.second;
+      if (j <= std::size_t(i) || pieces[j].tile != pieces[i].tile) continue;
       const double smaller = std::min(areas[i], areas[j]);
       if (smaller <= 0) continue;
-      std::optional<double> inter = intersectionArea(polys[i], polys[j]);
-      if (!inter) {  // degenerate configuration (touching vertices, shared edges): overlay
-        MPoly2 both;
-        bg::intersection(bufferPiece(pieces[i], p.buffer_width),
-                         bufferPiece(pieces[j], p.buffer_width), both);
-        inter = bg::area(both);
-      }
-      if (std::getenv("AGG_CHECK")) {  // TEMPORARY
-        MPoly2 both;
-        bg::intersection(bufferPiece(pieces[i], p.buffer_width),
-                         bufferPiece(pieces[j], p.buffer_width), both);
-        const double ref = bg::area(both);
-        const bool d0 = ref >= p.min_overlap_ratio * smaller, d1 = *inter >= p.min_overlap_ratio * smaller;
-#pragma omp critical
-        {
-          static double maxdiff = 0; static long pairs = 0, flips = 0;
-          ++pairs; if (d0 != d1) ++flips;
-          if (std::abs(ref - *inter) > maxdiff) { maxdiff = std::abs(ref - *inter); }
-          if (pairs % 100000 == 0 || d0 != d1) std::fprintf(stderr, "CHECK pairs %ld flips %ld maxdiff %.3g (ref %.6f got %.6f)\n", pairs, flips, maxdiff, ref, *inter);
-        }
-      }
-      if (*inter >= p.min_overlap_ratio * smaller) upper[i].push_back(j);
+      MPoly2 inter;
+      bg::intersection(polys[i], polys[j], inter);
+      if (bg::area(inter) >= p.min_overlap_ratio * smaller) upper[i].push_back(j);
     }
   }
   std::vector<std::vector<std::size_t>> neighbours(n);
