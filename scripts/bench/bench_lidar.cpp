@@ -139,7 +139,7 @@ int main(int argc, char** argv) {
     row("synthetic street map (insertVoxel)", "&ge; 10 M voxels",
         fmt("%.0f voxels in %.1f s", n, t_build), n >= 1e7 ? "yes" : "**no**");
     row("memory: map accounting after shrinkToFit (voxel array + index)", "&le; 64 B/voxel",
-        fmt("%.1f B/voxel (%.1f before shrink, array grown by doubling)", acc_shrunk, acc_grown),
+        fmt("%.1f B/voxel (%.1f before shrink)", acc_shrunk, acc_grown),
         acc_shrunk <= 64 ? "yes" : "**no**");
     row("memory: peak-RSS delta (getrusage) building the map", "&le; 64 B/voxel",
         fmt("%.1f B/voxel (%.1f incl. shrinkToFit; current-RSS delta after it %.1f)",

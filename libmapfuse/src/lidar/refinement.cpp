@@ -1,3 +1,4 @@
+// Vehicle-trace removal (Jeong et al. 2018, §2.2); the K-nearest filter is in knn_filter.cpp.
 #include "mapfuse/lidar/refinement.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -9,70 +10,6 @@
 #include "mapfuse/core/error.hpp"
 
 namespace mapfuse::lidar {
-namespace {
-
-/// K smallest values seen so far (ascending), K <= 32.
-struct SmallestK {
-  explicit SmallestK(int k) : k(k) {}
-  void push(double v) {
-    if (n == k && v >= d[n - 1]) return;
-    int i = n < k ? n++ : n - 1;
-    while (i > 0 && d[i - 1] > v) {
-      d[i] = d[i - 1];
-      --i;
-    }
-    d[i] = v;
-  }
-  int k, n = 0;
-  double d[32];
-};
-
-}  // namespace
-
-std::vector<uint8_t> knnMeanDistanceFilter(const SemanticVoxelMap& map,
-                                           const KnnFilterSettings& s) {
-  if (s.k < 1 || s.k > 32) throw InputError("KNN filter: k must be in 1..32");
-  if (!(s.max_mean_distance > 0)) throw InputError("KNN filter: delta_d must be > 0");
-  const auto& vox = map.voxels();
-  const double vs = map.voxelSize();
-  const int K = s.k;
-  const int max_shell = static_cast<int>(std::ceil(K * s.max_mean_distance / vs)) + 1;
-  std::vector<uint8_t> keep(vox.size(), 0);
-  const long long n = static_cast<long long>(vox.size());
-#pragma omp parallel for schedule(dynamic, 4096) num_threads(std::max(1, s.num_threads))
-  for (long long i = 0; i < n; ++i) {
-    const VoxelCoord c = unpackKey(vox[i].key);
-    SmallestK best(K);
-    bool decided = false, ok = false;
-    for (int r = 1; r <= max_shell && !decided; ++r) {
-      // Visit the cells at Chebyshev distance exactly r.
-      for (int dx = -r; dx <= r; ++dx)
-        for (int dy = -r; dy <= r; ++dy) {
-          const bool edge = std::abs(dx) == r || std::abs(dy) == r;
-          for (int dz = -r; dz <= r; dz += edge ? 1 : 2 * r) {
-            const int64_t j = map.find(packKey({c.x + dx, c.y + dy, c.z + dz}));
-            if (j >= 0) best.push(vs * std::sqrt(double(dx * dx + dy * dy + dz * dz)));
-          }
-        }
-      // Unvisited voxels are at least (r + 1) voxels away.
-      const double beyond = (r + 1) * vs;
-      double lower = 0;
-      for (int j = 0; j < K; ++j) lower += j < best.n ? std::min(best.d[j], beyond) : beyond;
-      lower /= K;
-      if (lower > s.max_mean_distance) {
-        decided = true;
-        ok = false;
-      } else if (best.n == K && best.d[K - 1] <= beyond) {
-        double mean = 0;
-        for (int j = 0; j < K; ++j) mean += best.d[j];
-        decided = true;
-        ok = mean / K <= s.max_mean_distance;
-      }
-    }
-    keep[i] = ok ? 1 : 0;
-  }
-  return keep;
-}
 
 std::vector<uint8_t> vehicleTraceFilter(const SemanticVoxelMap& map, const VehicleTraceSettings& s,
                                         VehicleTraceStats* stats) {

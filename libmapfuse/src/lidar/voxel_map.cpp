@@ -118,7 +118,7 @@ void SemanticVoxelMap::filter(const std::vector<uint8_t>& keep) {
   std::size_t out = 0;
   for (std::size_t i = 0; i < voxels_.size(); ++i)
     if (keep[i]) voxels_[out++] = voxels_[i];
-  voxels_.resize(out);
+  voxels_.truncate(out);
   std::size_t cap = 1024;
   while (static_cast<double>(out) > kMaxLoad * static_cast<double>(cap)) cap *= 2;
   rehash(cap);
@@ -136,6 +136,9 @@ std::size_t SemanticVoxelMap::memoryBytes() const {
 }
 
 void SemanticVoxelMap::rehash(std::size_t capacity) {
+  // The index is rebuilt from the voxel keys: free the old table first so that the two never
+  // coexist at the memory peak.
+  std::vector<uint32_t>().swap(table_);
   table_.assign(capacity, 0);
   mask_ = capacity - 1;
   for (std::size_t i = 0; i < voxels_.size(); ++i) {

@@ -17,8 +17,11 @@ struct KnnFilterSettings {
 };
 
 /// @brief Keep mask: 1 when the mean distance from the voxel centre to its K nearest other voxel
-/// centres is <= delta_d. Exact K-nearest search over growing cube shells of the voxel hash,
-/// stopping as soon as the result is decided (all unvisited voxels are farther than the shell).
+/// centres is <= delta_d. Exact K-nearest search over growing cube shells (Chebyshev distance
+/// r = 1, 2, ... up to ceil(K delta_d / voxel size) + 1), stopping as soon as the result is
+/// decided (all unvisited voxels are farther than the shell); voxels still open at the last shell
+/// are dropped. Runs over the keys sorted in (x, y, z) order (12-24 bytes per voxel while it
+/// runs). @throws InputError when k is outside 1..32 or max_mean_distance <= 0.
 std::vector<uint8_t> knnMeanDistanceFilter(const SemanticVoxelMap& map, const KnnFilterSettings& s);
 
 struct VehicleTraceSettings {

@@ -1,14 +1,15 @@
 #pragma once
 /// @file The semantic voxel map (Jeong et al. 2018, §2.1): hashed voxels with integer keys in a
-/// flat open-addressing table (no per-voxel heap allocation, 48 bytes per voxel plus 4-8 bytes
-/// of index), each holding the normalised log posterior of the 8 LiDAR classes, fused
-/// recursively (eq. 5-6) in log space. New voxels start uniform.
+/// flat open-addressing table (no per-voxel heap allocation, 48 bytes per voxel in fixed-size
+/// pages plus 6-12 bytes of index), each holding the normalised log posterior of the 8 LiDAR
+/// classes, fused recursively (eq. 5-6) in log space. New voxels start uniform.
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <vector>
 
 #include "mapfuse/core/classes.hpp"
+#include "mapfuse/lidar/paged_array.hpp"
 
 namespace mapfuse::lidar {
 
@@ -45,7 +46,8 @@ class SemanticVoxelMap {
   double voxelSize() const { return voxel_size_; }
   std::size_t size() const { return voxels_.size(); }
   bool empty() const { return voxels_.empty(); }
-  const std::vector<Voxel>& voxels() const { return voxels_; }
+  /// Voxels in insertion order (indexable, iterable; paged, so not contiguous).
+  const PagedArray<Voxel>& voxels() const { return voxels_; }
 
   /// @brief Integer coordinates of the voxel containing p (floor(p / size)).
   VoxelCoord coordOf(const Eigen::Vector3d& p) const;
@@ -71,8 +73,8 @@ class SemanticVoxelMap {
   /// @brief Reserves storage for n voxels.
   void reserve(std::size_t n);
 
-  /// @brief Releases unused voxel-array capacity (after building the map).
-  void shrinkToFit() { voxels_.shrink_to_fit(); }
+  /// @brief Releases unused voxel-array capacity (after building the map; at most one page).
+  void shrinkToFit() { voxels_.shrinkToFit(); }
 
   /// @brief Heap bytes held (voxel array capacity + index table).
   std::size_t memoryBytes() const;
@@ -84,7 +86,7 @@ class SemanticVoxelMap {
   void rehash(std::size_t capacity);
   double voxel_size_, inv_voxel_size_;
   float min_log_prob_;
-  std::vector<Voxel> voxels_;
+  PagedArray<Voxel> voxels_;     ///< grows page by page: no old+new copy at the memory peak
   std::vector<uint32_t> table_;  ///< voxel index + 1, 0 = empty; power-of-two size
   uint64_t mask_ = 0;
 };
