@@ -9,10 +9,12 @@
 #include <boost/geometry/index/rtree.hpp>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <set>
 
 #include "mapfuse/aggregate/dbscan.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
+#include "mapfuse/aggregate/polygon_overlap.hpp"
 #include "mapfuse/core/vector_map.hpp"
 
 namespace mapfuse::aggregate {
@@ -34,6 +36,7 @@ using PointValue = std::pair<P2, std::size_t>;
 struct Piece {
   std::size_t obs = 0;  ///< index into items
   int64_t tile = 0;
+  Eigen::Vector2d corner{0, 0};  ///< lower-left corner of the tile (local origin of stage 1)
   std::vector<Vec3> points;
 };
 
@@ -64,10 +67,13 @@ void cutAtTiles(const std::vector<Vec3>& pts, double size, std::size_t obs,
     std::sort(ts.begin(), ts.end());
     for (std::size_t k = 1; k < ts.size(); ++k) {
       const Vec3 p = a + ts[k - 1] * d, q = a + ts[k] * d;
-      const int64_t key = tileKey(0.5 * (p + q), size);
+      const Vec3 mid = 0.5 * (p + q);
+      const int64_t key = tileKey(mid, size);
       if (!open || key != cur.tile) {
         if (open) out.push_back(std::move(cur));
-        cur = Piece{obs, key, {p}};
+        const Eigen::Vector2d corner(std::floor(mid.x() / size) * size,
+                                     std::floor(mid.y() / size) * size);
+        cur = Piece{obs, key, corner, {p}};
         open = true;
       }
       cur.points.push_back(q);
@@ -89,6 +95,34 @@ Box2 boxOf(const std::vector<Vec3>& pts, double margin) {
   for (const auto& p : pts) bg::expand(b, P2(p.x(), p.y()));
   return Box2(P2(b.min_corner().x() - margin, b.min_corner().y() - margin),
               P2(b.max_corner().x() + margin, b.max_corner().y() + margin));
+}
+
+// The stage-1 polygon of a piece: simplified first (Douglas-Peucker, 2 cm: fewer polygon
+// vertices, same overlap areas), then buffered by +-width with flat ends and mitre joins.
+MPoly2 bufferPiece(const Piece& piece, double width) {
+  const bg::strategy::buffer::distance_symmetric<double> distance(width);
+  const bg::strategy::buffer::side_straight side;
+  const bg::strategy::buffer::join_miter join;
+  const bg::strategy::buffer::end_flat end;
+  const bg::strategy::buffer::point_circle circle(8);
+  Line2 simple;
+  bg::simplify(toLine(piece.points), simple, kSimplifyTolerance);
+  MPoly2 out;
+  bg::buffer(simple, out, distance, side, join, end, circle);
+  return out;
+}
+
+OverlapPolygon toOverlapPolygon(const MPoly2& mp, const Eigen::Vector2d& origin) {
+  std::vector<std::vector<Eigen::Vector2d>> rings;
+  auto add = [&](const auto& ring) {
+    rings.emplace_back();
+    for (const auto& q : ring) rings.back().emplace_back(bg::get<0>(q), bg::get<1>(q));
+  };
+  for (const auto& poly : mp) {
+    add(poly.outer());
+    for (const auto& inner : poly.inners()) add(inner);
+  }
+  return OverlapPolygon(rings, origin);
 }
 
 struct Fragment {
@@ -140,37 +174,48 @@ LaneInstantiation instantiateLanes(const std::vector<Observation>& items,
   if (n == 0) return result;
 
   // ---- stage 1: buffered polygons, overlap-area similarity, DBSCAN
-  std::vector<MPoly2> polys(n);
+  // (the polygons in tile-local coordinates, prepared for the exact overlap area)
+  std::vector<OverlapPolygon> polys(n);
   std::vector<double> areas(n);
-  std::vector<BoxValue> boxes(n);
-  const bg::strategy::buffer::distance_symmetric<double> distance(p.buffer_width);
-  const bg::strategy::buffer::side_straight side;
-  const bg::strategy::buffer::join_miter join;
-  const bg::strategy::buffer::end_flat end;
-  const bg::strategy::buffer::point_circle circle(8);
+  std::vector<Box2> boxes(n);
 #pragma omp parallel for schedule(dynamic, 64)
-  for (std::ptrdiff_t i = 0; i < std::ptrdiff_t(n); ++i) {
-    // simplified first (Douglas-Peucker, 2 cm): fewer polygon vertices, same overlap areas
-    Line2 simple;
-    bg::simplify(toLine(pieces[i].points), simple, kSimplifyTolerance);
-    bg::buffer(simple, polys[i], distance, side, join, end, circle);
-    areas[i] = bg::area(polys[i]);
-    boxes[i] = {boxOf(pieces[i].points, p.buffer_width), std::size_t(i)};
+  for (std::ptrdiff_t si = 0; si < std::ptrdiff_t(n); ++si) {
+    const std::size_t i = std::size_t(si);
+    const MPoly2 buffered = bufferPiece(pieces[i], p.buffer_width);
+    areas[i] = bg::area(buffered);
+    polys[i] = toOverlapPolygon(buffered, pieces[i].corner);
+    boxes[i] = boxOf(pieces[i].points, p.buffer_width);
   }
-  const bgi::rtree<BoxValue, bgi::rstar<16>> tree(boxes.begin(), boxes.end());
+  // candidates: pieces of the same tile whose boxes intersect (touching counts); by_tile lists
+  // the pieces tile by tile, piece i at position rank[i], its tile ending at tile_end[i]
+  std::vector<std::size_t> by_tile(n);
+  std::iota(by_tile.begin(), by_tile.end(), std::size_t(0));
+  std::stable_sort(by_tile.begin(), by_tile.end(),
+                   [&](std::size_t a, std::size_t b) { return pieces[a].tile < pieces[b].tile; });
+  std::vector<std::size_t> rank(n), tile_end(n);
+  for (std::size_t k = 0; k < n;) {
+    std::size_t e = k;
+    while (e < n && pieces[by_tile[e]].tile == pieces[by_tile[k]].tile) ++e;
+    for (std::size_t r = k; r < e; ++r) rank[by_tile[r]] = r, tile_end[by_tile[r]] = e;
+    k = e;
+  }
   std::vector<std::vector<std::size_t>> upper(n);  // neighbours j > i
 #pragma omp parallel for schedule(dynamic, 64)
-  for (std::ptrdiff_t i = 0; i < std::ptrdiff_t(n); ++i) {
-    std::vector<BoxValue> hits;
-    tree.query(bgi::intersects(boxes[i].first), std::back_inserter(hits));
-    for (const auto& h : hits) {
-      const std::size_t j = h.second;
-      if (j <= std::size_t(i) || pieces[j].tile != pieces[i].tile) continue;
+  for (std::ptrdiff_t si = 0; si < std::ptrdiff_t(n); ++si) {
+    const std::size_t i = std::size_t(si);
+    for (std::size_t r = rank[i] + 1; r < tile_end[i]; ++r) {
+      const std::size_t j = by_tile[r];  // > i: stable order within the tile
+      if (!bg::intersects(boxes[i], boxes[j])) continue;
       const double smaller = std::min(areas[i], areas[j]);
       if (smaller <= 0) continue;
-      MPoly2 inter;
-      bg::intersection(polys[i], polys[j], inter);
-      if (bg::area(inter) >= p.min_overlap_ratio * smaller) upper[i].push_back(j);
+      std::optional<double> inter = intersectionArea(polys[i], polys[j]);
+      if (!inter) {  // degenerate (touching vertices, shared edges): Boost's robust overlay
+        MPoly2 both;
+        bg::intersection(bufferPiece(pieces[i], p.buffer_width),
+                         bufferPiece(pieces[j], p.buffer_width), both);
+        inter = bg::area(both);
+      }
+      if (*inter >= p.min_overlap_ratio * smaller) upper[i].push_back(j);
     }
   }
   std::vector<std::vector<std::size_t>> neighbours(n);
