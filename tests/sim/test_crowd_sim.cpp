@@ -1,5 +1,6 @@
 // The crowdsourced-drive simulator (issue 3): error statistics against the configured sigmas,
-// determinism, ground-truth round trips, LSM consistency, frames reprojection, app exit codes.
+// determinism, roads driven in both directions, ground-truth round trips, LSM consistency, frames
+// reprojection, app exit codes.
 #include <catch2/catch.hpp>
 #include <fstream>
 #include <map>
@@ -24,6 +25,13 @@ constexpr double kDriftTolerance = 0.20;         // relative, issue 3
 constexpr double kReprojectionTolerance = 0.01;  // m, issue 3
 constexpr double kMaskAgreement = 0.9;     // share of polyline pixels painted with their class
 constexpr double kLsmTruthDistance = 0.5;  // m, mean distance of a true-pose LSM point to its truth
+// "Repeated traversals of the same roads in both directions": share of true keyframes with a
+// keyframe of another traversal driving the other way (heading differs by more than
+// kOppositeHeading) within kOppositeRadius.
+constexpr double kOppositeRadius = 10.0;    // m
+constexpr double kOppositeHeading = 135.0;  // deg
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+constexpr double kMinOppositeCoverage = 0.5;  // share of keyframes
 
 stages::SimulateParams smallParams() {
   stages::SimulateParams p;
@@ -100,6 +108,43 @@ TEST_CASE("simulate: one seed gives byte-identical outputs", "[sim]") {
   const auto c = test::tempDir("sim_det_c");
   stages::runSimulate(p, c);
   CHECK(readTree(c) != ta);
+}
+
+TEST_CASE("simulate: the default config drives most roads in both directions", "[sim]") {
+  stages::SimulateParams p;  // the defaults (configs/simulate.json)
+  p.level = "truth";
+  const auto out = test::tempDir("sim_both_directions");
+  stages::runSimulate(p, out);
+  struct Keyframe {
+    int traversal;
+    Eigen::Vector2d xy, heading;  // true position, unit heading of body x
+  };
+  std::vector<Keyframe> kfs;
+  int traversals = 0;
+  for (const auto& e : fs::directory_iterator(out / "truth")) {
+    if (e.path().string().find(".trajectory.json") == std::string::npos) continue;
+    const auto traj = io::readDocument(e.path());
+    for (const auto& q : traj.at("poses")) {
+      const Pose3 T = io::readPose(io::JsonView(q.at("pose"), "traj"));
+      kfs.push_back(
+          {traversals, T.translation().head<2>(), T.linear().col(0).head<2>().normalized()});
+    }
+    ++traversals;
+  }
+  REQUIRE(traversals == p.traversals);
+  const double cos_opposite = std::cos(kOppositeHeading * kDegToRad);
+  int covered = 0;
+  for (const auto& a : kfs)
+    for (const auto& b : kfs)
+      if (b.traversal != a.traversal && (b.xy - a.xy).norm() < kOppositeRadius &&
+          a.heading.dot(b.heading) < cos_opposite) {
+        ++covered;
+        break;
+      }
+  const double share = static_cast<double>(covered) / static_cast<double>(kfs.size());
+  INFO(covered << " of " << kfs.size() << " keyframes of " << traversals
+               << " traversals have an opposite-direction keyframe nearby (" << share << ")");
+  CHECK(share >= kMinOppositeCoverage);
 }
 
 TEST_CASE("simulate: ground truth round-trips and LSMs are consistent with it", "[sim]") {

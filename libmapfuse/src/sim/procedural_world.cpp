@@ -153,7 +153,10 @@ World buildProceduralWorld(const ProceduralParams& P, const geo::GeoOrigin& orig
             const double s1 = 0.25 * L, s2 = 0.75 * L, ramp = 0.2 * L, D = 3.0 * w;
             const auto cum = arcLengths(fwd);
             Polyline branch, right_edge, left_edge;
-            for (double s = s1; s <= s2 + 1e-9; s += kSampleStep) {
+            // Samples span [s1, s2] exactly, so the branch ends where the merge lane starts.
+            const int nb = static_cast<int>(std::ceil((s2 - s1) / kSampleStep));
+            for (int k = 0; k <= nb; ++k) {
+              const double s = s1 + (s2 - s1) * k / nb;
               const Frame f = frameAt(fwd, s);
               const double d = D * (smoothstep((s - s1) / ramp) * smoothstep((s2 - s) / ramp));
               branch.push_back(f.p - d * f.n);
