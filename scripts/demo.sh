@@ -22,7 +22,7 @@ if [ ! -f "$out/sim/simulate.summary.json" ]; then
 fi
 say "lsm-build -> georef -> align -> aggregate -> evaluate (make -f scripts/crowd.mk)"
 make -s -j"$jobs" -f "$root/scripts/crowd.mk" BIN="$bin" FRAMES_DIR="$out/sim/frames" \
-  WORK="$out/crowd" TRUTH="$out/sim/truth/vector_map.json" >/dev/null
+  WORK="$out/crowd" TRUTH="$out/sim/truth/vector_map.json" TRUTH_TRAJ="$out/sim/truth" >/dev/null
 cp "$out/crowd/aggregate/map.geojson" "$out/crowd-map.geojson"
 cp "$out/crowd/aggregate/map.png" "$out/crowd-map.png"
 

@@ -3,6 +3,7 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/eval/trajectory_metrics.hpp"
+#include "mapfuse/geo/origin.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
 #include "support/test_support.hpp"
@@ -64,7 +65,7 @@ TEST_CASE("trajectory inputs are checked", "[eval][trajectory]") {
   est.frame = LsmFrame::kOdom;
   CHECK_THROWS_AS(compareTrajectory(est, truth, 10.0, "x"), InputError);
   est = estimate(truth, 0.0);
-  est.origin->lat += 0.01;
+  est.origin->lat = 95.0;  // not a WGS84 point: no conversion possible
   CHECK_THROWS_AS(compareTrajectory(est, truth, 10.0, "x"), InputError);
   est = estimate(truth, 0.0);
   for (auto& k : est.keyframes) k.id += 1000;
@@ -93,4 +94,18 @@ TEST_CASE("true trajectory files are read strictly", "[eval][trajectory]") {
     CHECK_THAT(e.what(), Catch::Contains("bad.trajectory.json"));
     CHECK_THAT(e.field(), Catch::Contains("stamp"));
   }
+}
+
+TEST_CASE("a truth about another origin is converted, not refused", "[eval][trajectory]") {
+  constexpr double kConversion = 1e-6;  // m, deg: WGS84 round trip
+  const auto truth = straightTruth();
+  Lsm est = estimate(truth, 0.0);
+  est.origin = geo::LatLonAlt{49.002, 8.403, 115.0};  // ~300 m away: the same poses about it
+  const geo::EnuConverter from(truth.origin), to(*est.origin);
+  for (auto& k : est.keyframes) k.T_frame_body = geo::reexpressPose(k.T_frame_body, from, to);
+  const auto m = compareTrajectory(est, truth, 10.0, "est.cbor");
+  CHECK(m.matched == 11);
+  CHECK(m.ate_translation.max == Approx(0.0).margin(kConversion));
+  CHECK(m.ate_rotation.max == Approx(0.0).margin(kConversion));
+  CHECK(m.rpe_translation.max == Approx(0.0).margin(kConversion));
 }

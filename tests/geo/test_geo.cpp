@@ -24,13 +24,16 @@ Eigen::Vector3d ecef(double lat_deg, double lon_deg, double h) {
   return {(N + h) * std::cos(lat) * std::cos(lon), (N + h) * std::cos(lat) * std::sin(lon),
           (N * (1 - e2) + h) * std::sin(lat)};
 }
-Eigen::Vector3d referenceEnu(const geo::LatLonAlt& o, const geo::LatLonAlt& p) {
+Eigen::Matrix3d R_enu_ecef(const geo::LatLonAlt& o) {
   const double lat = o.lat * M_PI / 180, lon = o.lon * M_PI / 180;
   Eigen::Matrix3d R;
   R << -std::sin(lon), std::cos(lon), 0, -std::sin(lat) * std::cos(lon),
       -std::sin(lat) * std::sin(lon), std::cos(lat), std::cos(lat) * std::cos(lon),
       std::cos(lat) * std::sin(lon), std::sin(lat);
-  return R * (ecef(p.lat, p.lon, p.alt) - ecef(o.lat, o.lon, o.alt));
+  return R;
+}
+Eigen::Vector3d referenceEnu(const geo::LatLonAlt& o, const geo::LatLonAlt& p) {
+  return R_enu_ecef(o) * (ecef(p.lat, p.lon, p.alt) - ecef(o.lat, o.lon, o.alt));
 }
 }  // namespace
 
@@ -55,6 +58,24 @@ TEST_CASE("ENU round trip over 10 km stays within a millimetre", "[geo]") {
        {Eigen::Vector3d(10000, -5000, 30), Eigen::Vector3d(-7000, 9000, -20)}) {
     CHECK((enu.toEnu(enu.toWgs84(p)) - p).norm() < kMm);
   }
+}
+
+TEST_CASE("a pose re-expressed about another origin turns with the ENU frames", "[geo]") {
+  constexpr double kRotationTolerance = 1e-8;                       // rad
+  const geo::LatLonAlt a{49.0, 8.0, 100.0}, b{49.03, 8.05, 120.0};  // ~5 km apart
+  const geo::EnuConverter from(a), to(b);
+  Eigen::Isometry3d T_a_body = Eigen::Isometry3d::Identity();
+  T_a_body.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T_a_body.translation() = Eigen::Vector3d(120.0, -40.0, 2.0);
+  const Eigen::Isometry3d T_b_body = geo::reexpressPose(T_a_body, from, to);
+  // Independent reference: the rotation between the two ENU frames through ECEF.
+  const Eigen::Matrix3d R_b_a = R_enu_ecef(b) * R_enu_ecef(a).transpose();
+  const Eigen::Matrix3d expected = R_b_a * T_a_body.linear();
+  CHECK(Eigen::AngleAxisd(expected.transpose() * T_b_body.linear()).angle() < kRotationTolerance);
+  CHECK(Eigen::AngleAxisd(R_b_a).angle() > 1e-4);  // the frames do differ: a real check
+  // A point 30 m ahead of the body lands on the same WGS84 point either way.
+  const Eigen::Vector3d ahead(30.0, 0.0, 0.0);
+  CHECK((to.toEnu(from.toWgs84(T_a_body * ahead)) - T_b_body * ahead).norm() < kMm);
 }
 
 TEST_CASE("an invalid origin is refused", "[geo]") {

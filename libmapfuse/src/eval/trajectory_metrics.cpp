@@ -38,15 +38,17 @@ TrajectoryMetrics compareTrajectory(const Lsm& lsm, const TrueTrajectory& truth,
   if (lsm.frame != LsmFrame::kEnu || !lsm.origin)
     throw InputError(source +
                      ": trajectory metrics need an LSM in frame 'enu' (georef/align output)");
-  if (!geo::sameOrigin(*lsm.origin, truth.origin))
-    throw InputError(source + ": origin differs from the true trajectory of drive '" +
-                     truth.drive_id + "'");
+  // The truth in the LSM's ENU frame (georef may have chosen another origin).
+  const bool convert = !geo::sameOrigin(*lsm.origin, truth.origin);
+  const geo::EnuConverter from(truth.origin), to(*lsm.origin);
   std::unordered_map<int64_t, const TruePose*> by_id;
   for (const auto& p : truth.poses) by_id[p.id] = &p;
   std::vector<std::pair<Pose3, Pose3>> pairs;  // (estimate, truth) in keyframe order
   for (const auto& k : lsm.keyframes) {
     auto it = by_id.find(k.id);
-    if (it != by_id.end()) pairs.emplace_back(k.T_frame_body, it->second->T_enu_body);
+    if (it == by_id.end()) continue;
+    const Pose3& t = it->second->T_enu_body;
+    pairs.emplace_back(k.T_frame_body, convert ? geo::reexpressPose(t, from, to) : t);
   }
   if (pairs.empty())
     throw InputError(source + ": no keyframe id matches the true trajectory of drive '" +

@@ -60,6 +60,20 @@ LatLonAlt EnuConverter::toWgs84(const Eigen::Vector3d& enu) const {
   return p;
 }
 
+Eigen::Isometry3d reexpressPose(const Eigen::Isometry3d& T_from_body, const EnuConverter& from,
+                                const EnuConverter& to) {
+  const Eigen::Vector3d p = T_from_body.translation();
+  const Eigen::Vector3d q = to.toEnu(from.toWgs84(p));
+  Eigen::Matrix3d R_to_from;  // column i: the from-frame axis i seen in the to-frame
+  for (int i = 0; i < 3; ++i)
+    R_to_from.col(i) = to.toEnu(from.toWgs84(p + Eigen::Vector3d::Unit(i))) - q;
+  const Eigen::Quaterniond rot(R_to_from);  // nearest rotation up to ~1e-9 rad
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.linear() = rot.normalized().toRotationMatrix() * T_from_body.linear();
+  out.translation() = q;
+  return out;
+}
+
 double geodesicDistance(const LatLonAlt& a, const LatLonAlt& b) {
   double s12 = 0.0;
   GeographicLib::Geodesic::WGS84().Inverse(a.lat, a.lon, b.lat, b.lon, s12);

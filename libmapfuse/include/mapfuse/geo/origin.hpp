@@ -2,6 +2,7 @@
 /// @file Geodetic origin of a local ENU frame. Every georeferenced file carries one explicitly;
 /// there is no default origin.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace mapfuse::geo {
 
@@ -39,6 +40,13 @@ class EnuConverter {
   GeoOrigin origin_;
   Impl* impl_;
 };
+
+/// @brief The same body pose expressed in the ENU frame of another origin: T_to_body from
+/// T_from_body. The position goes through WGS84; the orientation turns with the rotation
+/// between the two local ENU frames (meridian convergence and the tilt of the local vertical,
+/// ~1e-4 rad per km), taken from the converted unit axes and orthonormalised.
+Eigen::Isometry3d reexpressPose(const Eigen::Isometry3d& T_from_body, const EnuConverter& from,
+                                const EnuConverter& to);
 
 /// @brief Rotation (radians, counter-clockwise from East) between local grid north and true
 /// north is ignored by ENU; this returns the great-circle distance in metres between two points
