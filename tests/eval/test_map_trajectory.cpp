@@ -68,7 +68,7 @@ TEST_CASE("trajectory inputs are checked", "[eval][trajectory]") {
   est.origin->lat = 95.0;  // not a WGS84 point: no conversion possible
   CHECK_THROWS_AS(compareTrajectory(est, truth, 10.0, "x"), InputError);
   est = estimate(truth, 0.0);
-  for (auto& k : est.keyframes) k.id += 1000;
+  for (auto& k : est.keyframes) k.stamp += 1000.0;  // after the truth ends
   CHECK_THROWS_AS(compareTrajectory(est, truth, 10.0, "x"), InputError);
 }
 
@@ -108,4 +108,26 @@ TEST_CASE("a truth about another origin is converted, not refused", "[eval][traj
   CHECK(m.ate_translation.max == Approx(0.0).margin(kConversion));
   CHECK(m.ate_rotation.max == Approx(0.0).margin(kConversion));
   CHECK(m.rpe_translation.max == Approx(0.0).margin(kConversion));
+}
+
+TEST_CASE("keyframes are matched by stamp and the truth is interpolated between its poses",
+          "[eval][trajectory]") {
+  // lsm-build picks its own keyframes from raw frames: other ids, stamps between true poses.
+  const auto truth = straightTruth();  // 5 m per second along x
+  Lsm est = estimate(truth, 0.0);
+  est.keyframes.clear();
+  for (int i = 0; i < 8; ++i) {
+    Keyframe k;
+    k.id = 100 + i;
+    k.stamp = 0.25 + 1.3 * i;
+    k.T_frame_body = poseFromXyzRpy(5.0 * k.stamp, 0, 0, 0, 0, 0);
+    est.keyframes.push_back(k);
+  }
+  const auto m = compareTrajectory(est, truth, 10.0, "est.cbor");
+  CHECK(m.matched == 8);
+  CHECK(m.ate_translation.max == Approx(0.0).margin(kExact));
+  Keyframe late = est.keyframes.back();
+  late.stamp = 10.5;  // beyond the last true pose (stamp 10): not matched
+  est.keyframes.push_back(late);
+  CHECK(compareTrajectory(est, truth, 10.0, "est.cbor").matched == 8);
 }

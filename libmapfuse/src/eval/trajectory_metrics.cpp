@@ -1,7 +1,8 @@
 #include "mapfuse/eval/trajectory_metrics.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <unordered_map>
+#include <optional>
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/geo/origin.hpp"
@@ -31,6 +32,21 @@ namespace {
 double angleDeg(const Eigen::Matrix3d& R) {
   return Eigen::AngleAxisd(R).angle() * 180.0 / M_PI;
 }
+
+constexpr double kSameStamp = 1e-6;  // s: stamps this close are the same instant
+
+/// The true pose at `stamp` from poses sorted by stamp, or nullopt outside their span.
+std::optional<Pose3> truePoseAt(const std::vector<const TruePose*>& sorted, double stamp) {
+  auto after = std::lower_bound(sorted.begin(), sorted.end(), stamp,
+                                [](const TruePose* p, double s) { return p->stamp < s; });
+  if (after != sorted.end() && (*after)->stamp - stamp < kSameStamp) return (*after)->T_enu_body;
+  if (after != sorted.begin() && stamp - (*std::prev(after))->stamp < kSameStamp)
+    return (*std::prev(after))->T_enu_body;
+  if (after == sorted.begin() || after == sorted.end()) return std::nullopt;
+  const TruePose& a = **std::prev(after);
+  const TruePose& b = **after;
+  return interpolate(a.T_enu_body, b.T_enu_body, (stamp - a.stamp) / (b.stamp - a.stamp));
+}
 }  // namespace
 
 TrajectoryMetrics compareTrajectory(const Lsm& lsm, const TrueTrajectory& truth,
@@ -41,17 +57,21 @@ TrajectoryMetrics compareTrajectory(const Lsm& lsm, const TrueTrajectory& truth,
   // The truth in the LSM's ENU frame (georef may have chosen another origin).
   const bool convert = !geo::sameOrigin(*lsm.origin, truth.origin);
   const geo::EnuConverter from(truth.origin), to(*lsm.origin);
-  std::unordered_map<int64_t, const TruePose*> by_id;
-  for (const auto& p : truth.poses) by_id[p.id] = &p;
+  // Keyframes are matched to the truth by time stamp (ids differ when lsm-build chose its own
+  // keyframes from raw frames): the true pose at a stamp, interpolated between its two
+  // neighbours when no true pose has that stamp.
+  std::vector<const TruePose*> by_stamp;
+  for (const auto& p : truth.poses) by_stamp.push_back(&p);
+  std::sort(by_stamp.begin(), by_stamp.end(),
+            [](const TruePose* a, const TruePose* b) { return a->stamp < b->stamp; });
   std::vector<std::pair<Pose3, Pose3>> pairs;  // (estimate, truth) in keyframe order
   for (const auto& k : lsm.keyframes) {
-    auto it = by_id.find(k.id);
-    if (it == by_id.end()) continue;
-    const Pose3& t = it->second->T_enu_body;
-    pairs.emplace_back(k.T_frame_body, convert ? geo::reexpressPose(t, from, to) : t);
+    const std::optional<Pose3> t = truePoseAt(by_stamp, k.stamp);
+    if (!t) continue;
+    pairs.emplace_back(k.T_frame_body, convert ? geo::reexpressPose(*t, from, to) : *t);
   }
   if (pairs.empty())
-    throw InputError(source + ": no keyframe id matches the true trajectory of drive '" +
+    throw InputError(source + ": no keyframe stamp lies within the true trajectory of drive '" +
                      truth.drive_id + "'");
   TrajectoryMetrics m;
   m.drive_id = lsm.drive_id;

@@ -1,5 +1,6 @@
 #include "mapfuse/sim/drive.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -171,6 +172,10 @@ Drive simulateDrive(const Polyline& route, const DriveParams& P, const geo::EnuC
     d.gps.push_back(g);
   }
   return d;
+}
+
+std::size_t cameraStride(const DriveParams& DP) {
+  return std::max<std::size_t>(1, std::lround(DP.imu_rate / DP.camera_rate));
 }
 
 }  // namespace mapfuse::sim

@@ -52,7 +52,7 @@ FramesStats writeFramesDrive(const std::filesystem::path& dir, const World& worl
   std::normal_distribution<double> N01(0.0, 1.0);
   const auto& C = camera.params();
   FramesStats stats;
-  const std::size_t every = std::max<std::size_t>(1, std::lround(DP.imu_rate / DP.camera_rate));
+  const std::size_t every = cameraStride(DP);
   const int frame_count = static_cast<int>((d.stamps.size() + every - 1) / every);
 
   // Calibration and manifest.

@@ -29,6 +29,14 @@ std::string driveId(int vehicle, int traversal) {
   return buf;
 }
 
+/// Indices of the IMU-rate samples at which the camera fires (as the frames writer picks them).
+std::vector<std::size_t> cameraSamples(const sim::Drive& d, const sim::DriveParams& DP) {
+  const std::size_t every = sim::cameraStride(DP);
+  std::vector<std::size_t> samples;
+  for (std::size_t k = 0; k < d.stamps.size(); k += every) samples.push_back(k);
+  return samples;
+}
+
 nlohmann::json trajectoryJson(const sim::Drive& d, const std::vector<std::size_t>& samples,
                               const geo::GeoOrigin& origin) {
   nlohmann::json j;
@@ -149,8 +157,12 @@ SimulateResult runSimulate(const SimulateParams& P, const std::filesystem::path&
           sim::observeLsm(world, index, d, camera, P.obs, P.drive, sim::deriveSeed(s, 2));
       stats[i].add(d, od.keyframe_samples, P.drive);
       obs_stats[i] = od.stats;
-      io::writeDocument(out / "truth" / (d.drive_id + ".trajectory.json"),
-                        trajectoryJson(d, od.keyframe_samples, origin));
+      // The true trajectory at the LSM keyframes, or at every camera frame for raw frames
+      // (lsm-build then chooses its own keyframes; evaluate matches them by stamp).
+      io::writeDocument(
+          out / "truth" / (d.drive_id + ".trajectory.json"),
+          trajectoryJson(d, P.level == "frames" ? cameraSamples(d, P.drive) : od.keyframe_samples,
+                         origin));
       if (P.level == "lsm") io::writeLsm(out / "lsm" / (d.drive_id + ext), od.lsm);
       if (P.level == "frames")
         frame_stats[i] = sim::writeFramesDrive(out / "frames" / d.drive_id, world, index, d, camera,

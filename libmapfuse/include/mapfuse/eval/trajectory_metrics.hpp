@@ -1,8 +1,9 @@
 #pragma once
 /// @file Trajectory metrics of aligned (or georeferenced) LSMs against the simulator's true
 /// trajectories (docs/simulate.md "True trajectory"): absolute trajectory error (ATE) and
-/// relative pose error (RPE) over a fixed travelled distance, keyframes matched by id. Both
-/// are in the same ENU frame, so no alignment is estimated (docs/evaluate.md).
+/// relative pose error (RPE) over a fixed travelled distance, keyframes matched to the truth by
+/// time stamp (interpolated between true poses). The truth is re-expressed in the LSM's ENU
+/// frame, so no alignment is estimated (docs/evaluate.md).
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -14,7 +15,7 @@
 namespace mapfuse::eval {
 
 struct TruePose {
-  int64_t id = 0;  ///< LSM keyframe id
+  int64_t id = 0;  ///< simulator keyframe or camera frame index (informative)
   double stamp = 0.0;
   Pose3 T_enu_body = Pose3::Identity();
 };

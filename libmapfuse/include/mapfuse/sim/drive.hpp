@@ -45,6 +45,9 @@ struct DriveParams {
   double roll_frequency = 0.5;            ///< Hz
 };
 
+/// @brief IMU-rate samples between two camera frames (frame f is sample f * stride).
+std::size_t cameraStride(const DriveParams& DP);
+
 /// One GPS fix with its true error (for statistics).
 struct GpsRecord {
   GpsFix fix;
