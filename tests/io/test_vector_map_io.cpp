@@ -60,6 +60,73 @@ TEST_CASE("compact maps drop lane samples and readers re-sample the Bezier chain
   CHECK(std::filesystem::file_size(dir / "c.cbor") < std::filesystem::file_size(dir / "f.cbor"));
 }
 
+TEST_CASE("compact CBOR stores integer quanta and reads back exactly the rounded coordinates",
+          "[io][vector_map]") {
+  constexpr double kQuantum = 1.0 / 256.0;  // m, aggregate's default
+  const auto dir = test::tempDir("vm-quanta");
+  VectorMap map = test::makeVectorMap();
+  // A second segment sharing the first one's end point: a chain of 7 control points.
+  auto& lane = map.instances[0];
+  const Eigen::Vector3d end = lane.bezier.back()[3];
+  lane.bezier.push_back({end, end + Eigen::Vector3d(1.003, 0.2, 0.01),
+                         end + Eigen::Vector3d(2.5, 0.7, 0.02),
+                         end + Eigen::Vector3d(4.2, 1.1, 0)});
+  const auto json = io::vectorMapToJson(map, {true, kQuantum});
+  CHECK(json.at("quantum") == kQuantum);
+  CHECK(json["instances"][0].at("bezier_q").size() == 7 * 3);  // shared end point once
+  CHECK(json["instances"][2].contains("points_q"));
+  io::writeVectorMap(dir / "q.cbor", map, {true, kQuantum});
+  const VectorMap back = io::readVectorMap(dir / "q.cbor");
+  auto rounded = [&](const Eigen::Vector3d& p) {
+    return Eigen::Vector3d((p / kQuantum).array().round().matrix() * kQuantum);
+  };
+  REQUIRE(back.instances.size() == map.instances.size());
+  REQUIRE(back.instances[0].bezier.size() == 2);
+  for (std::size_t s = 0; s < 2; ++s)
+    for (int k = 0; k < 4; ++k)
+      CHECK((back.instances[0].bezier[s][k] - rounded(map.instances[0].bezier[s][k])).norm() <
+            kExact);
+  for (std::size_t i = 1; i < map.instances.size(); ++i) {
+    REQUIRE(back.instances[i].points.size() == map.instances[i].points.size());
+    for (std::size_t k = 0; k < map.instances[i].points.size(); ++k)
+      CHECK((back.instances[i].points[k] - rounded(map.instances[i].points[k])).norm() < kExact);
+  }
+  // Segments that do not meet are kept as separate segments ("bezier"), never joined.
+  lane.bezier[1][0] += Eigen::Vector3d(0.5, 0, 0);
+  const auto apart = io::vectorMapToJson(map, {true, kQuantum});
+  CHECK(apart["instances"][0].contains("bezier"));
+  CHECK_FALSE(apart["instances"][0].contains("bezier_q"));
+}
+
+TEST_CASE("malformed compact coordinates are refused with the field", "[io][vector_map]") {
+  const auto dir = test::tempDir("vm-quanta-bad");
+  const auto good = io::vectorMapToJson(test::makeVectorMap(), {true, 0.01});
+  auto check = [&](io::Json d, const std::string& field) {
+    io::writeDocument(dir / "bad.cbor", d);
+    try {
+      io::readVectorMap(dir / "bad.cbor");
+      FAIL("accepted a malformed map at " << field);
+    } catch (const ParseError& e) {
+      CHECK(e.field() == field);
+    }
+  };
+  auto d = good;
+  d.erase("quantum");
+  check(d, "instances[0].bezier_q");
+  d = good;
+  d["quantum"] = -1.0;
+  check(d, "quantum");
+  d = good;
+  d["instances"][0]["bezier_q"].erase(0);  // not whole points
+  check(d, "instances[0].bezier_q");
+  d = good;
+  for (int k = 0; k < 3; ++k) d["instances"][0]["bezier_q"].push_back(1);  // 5 control points
+  check(d, "instances[0].bezier_q");
+  d = good;
+  d["instances"][2]["points_q"][0] = 0.5;  // not an integer
+  check(d, "instances[2].points_q[0]");
+}
+
 TEST_CASE("Bezier evaluation matches the Bernstein form", "[io][vector_map]") {
   const BezierSegment b{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 2, 0),
                         Eigen::Vector3d(3, 2, 0), Eigen::Vector3d(4, 0, 0)};

@@ -1,9 +1,11 @@
 #include "mapfuse/io/vector_map_io.hpp"
 
 #include <cmath>
+#include <optional>
 
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
+#include "quantized_points.hpp"
 
 namespace mapfuse::io {
 namespace {
@@ -17,13 +19,19 @@ Json instanceToJson(const MapInstance& inst, const VectorMapWriteOptions& opt) {
   Json j = {{"id", inst.id}};
   writeClassAndAttributes(j, inst.cls, inst.attributes);
   const bool omit_points = opt.compact && !inst.bezier.empty();
-  if (!omit_points) {
+  const double q = opt.coordinate_quantum;
+  const bool integers = opt.compact && q > 0;  // compact encoding (quantized_points.hpp)
+  if (!omit_points && integers) {
+    j["points_q"] = quantizedPointsToJson(inst.points, q);
+  } else if (!omit_points) {
     Json pts = Json::array();
-    for (const auto& p : inst.points)
-      pts.push_back(vec3ToJson(quantize(p, opt.coordinate_quantum)));
+    for (const auto& p : inst.points) pts.push_back(vec3ToJson(quantize(p, q)));
     j["points"] = std::move(pts);
   }
-  if (!inst.bezier.empty()) {
+  const auto control = integers ? chainControlPoints(inst.bezier, q) : std::nullopt;
+  if (!inst.bezier.empty() && control) {
+    j["bezier_q"] = quantizedPointsToJson(*control, q);
+  } else if (!inst.bezier.empty()) {
     Json chain = Json::array();
     for (const auto& seg : inst.bezier) {
       Json s = Json::array();
@@ -39,13 +47,22 @@ Json instanceToJson(const MapInstance& inst, const VectorMapWriteOptions& opt) {
   return j;
 }
 
-MapInstance instanceFromJson(const JsonView& v) {
-  v.onlyKeys({"id", "class", "style", "color", "points", "bezier", "height", "support",
-              "source_ids", "note"});
+/// The map's quantum, required by the compact keys.
+double quantumFor(const JsonView& field, std::optional<double> quantum) {
+  if (!quantum) field.fail("integer coordinates need the map's top-level 'quantum'");
+  return *quantum;
+}
+
+MapInstance instanceFromJson(const JsonView& v, std::optional<double> quantum) {
+  v.onlyKeys({"id", "class", "style", "color", "points", "points_q", "bezier", "bezier_q", "height",
+              "support", "source_ids", "note"});
   MapInstance inst;
   inst.id = v.at("id").integer();
   readClassAndAttributes(v, inst.cls, inst.attributes);
-  if (auto b = v.find("bezier")) {
+  if (auto b = v.find("bezier_q")) {
+    const double q = quantumFor(*b, quantum);
+    inst.bezier = chainFromControlPoints(quantizedPointsFromJson(*b, q), *b);
+  } else if (auto b = v.find("bezier")) {
     for (std::size_t i = 0; i < b->size(); ++i) {
       const JsonView seg = b->at(i);
       if (seg.size() != 4) seg.fail("a cubic Bezier segment needs 4 control points");
@@ -54,7 +71,9 @@ MapInstance instanceFromJson(const JsonView& v) {
       inst.bezier.push_back(s);
     }
   }
-  if (auto p = v.find("points"))
+  if (auto p = v.find("points_q"))
+    inst.points = quantizedPointsFromJson(*p, quantumFor(*p, quantum));
+  else if (auto p = v.find("points"))
     inst.points = readPoints(*p);
   else if (!inst.bezier.empty())
     inst.points = sampleBezierChain(inst.bezier, kBezierSampleStep);
@@ -94,23 +113,31 @@ std::vector<Eigen::Vector3d> sampleBezierChain(const std::vector<BezierSegment>&
 Json vectorMapToJson(const VectorMap& map, const VectorMapWriteOptions& options) {
   Json inst = Json::array();
   for (const auto& i : map.instances) inst.push_back(instanceToJson(i, options));
-  return {{"format", kVectorMapFormat},
-          {"version", kVectorMapVersion},
-          {"source", map.source},
-          {"origin", originToJson(map.origin)},
-          {"instances", std::move(inst)}};
+  Json doc = {{"format", kVectorMapFormat},
+              {"version", kVectorMapVersion},
+              {"source", map.source},
+              {"origin", originToJson(map.origin)},
+              {"instances", std::move(inst)}};
+  if (options.compact && options.coordinate_quantum > 0)
+    doc["quantum"] = options.coordinate_quantum;
+  return doc;
 }
 
 VectorMap vectorMapFromJson(const Json& doc, const std::string& file) {
   const JsonView v(doc, file);
-  v.onlyKeys({"format", "version", "source", "origin", "instances"});
+  v.onlyKeys({"format", "version", "source", "origin", "quantum", "instances"});
   v.checkFormat(kVectorMapFormat, kVectorMapVersion);
   VectorMap map;
   if (auto s = v.find("source")) map.source = s->string();
   map.origin = readOrigin(v.at("origin"));
+  std::optional<double> quantum;
+  if (auto q = v.find("quantum")) {
+    quantum = q->number();
+    if (!(*quantum > 0) || !std::isfinite(*quantum)) q->fail("must be a positive number of metres");
+  }
   const JsonView inst = v.at("instances");
   for (std::size_t i = 0; i < inst.size(); ++i)
-    map.instances.push_back(instanceFromJson(inst.at(i)));
+    map.instances.push_back(instanceFromJson(inst.at(i), quantum));
   validateVectorMap(map, file);
   return map;
 }
