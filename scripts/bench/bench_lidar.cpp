@@ -146,22 +146,15 @@ int main(int argc, char** argv) {
             (peak_built - peak0) / n, (peak_shrunk - peak0) / n, (rss_shrunk - rss0) / n),
         (peak_built - peak0) / n <= 64 ? "yes" : "**no**");
     t = Clock::now();
-    lidar::KnnFilterSettings ks;
-    ks.k = p.knn_k;
-    ks.max_mean_distance = p.knn_max_mean_distance;
+    lidar::KnnFilterSettings ks = stages::detail::knnSettings(p);
     ks.num_threads = 1;
     const std::size_t before = map.size();
     map.filter(lidar::knnMeanDistanceFilter(map, ks));
     const double t_knn = since(t);
     const std::size_t knn_removed = before - map.size();
     t = Clock::now();
-    lidar::VehicleTraceSettings vs;
-    vs.eps = p.trace_eps;
-    vs.min_points = p.trace_min_points;
-    vs.max_voxels = static_cast<std::size_t>(p.trace_max_voxels);
-    vs.max_length = p.trace_max_length;
     lidar::VehicleTraceStats ts;
-    map.filter(lidar::vehicleTraceFilter(map, vs, &ts));
+    map.filter(lidar::vehicleTraceFilter(map, stages::detail::traceSettings(p), &ts));
     const double t_tr = since(t);
     row("refinement: K-nearest filter (K = 6, 0.20 m) + vehicle-trace removal", "&le; 10 s",
         fmt("%.2f s (KNN %.2f s, traces %.2f s)", t_knn + t_tr, t_knn, t_tr),

@@ -202,24 +202,15 @@ json runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,
   json refinement = {{"enabled", p.refine}};
   t = Clock::now();
   if (p.refine) {
-    lidar::KnnFilterSettings ks;
-    ks.k = p.knn_k;
-    ks.max_mean_distance = p.knn_max_mean_distance;
-    ks.num_threads = p.num_threads;
-    const auto keep = lidar::knnMeanDistanceFilter(map, ks);
+    const auto keep = lidar::knnMeanDistanceFilter(map, detail::knnSettings(p));
     const std::size_t before = map.size();
     map.filter(keep);
     refinement["knn_removed_voxels"] = before - map.size();
     timings["refinement_knn"] = since(t);
     if (p.remove_vehicle_traces) {
       const auto t2 = Clock::now();
-      lidar::VehicleTraceSettings vs;
-      vs.eps = p.trace_eps;
-      vs.min_points = p.trace_min_points;
-      vs.max_voxels = static_cast<std::size_t>(p.trace_max_voxels);
-      vs.max_length = p.trace_max_length;
       lidar::VehicleTraceStats ts;
-      map.filter(lidar::vehicleTraceFilter(map, vs, &ts));
+      map.filter(lidar::vehicleTraceFilter(map, detail::traceSettings(p), &ts));
       refinement["vehicle_voxels"] = ts.vehicle_voxels;
       refinement["vehicle_clusters"] = ts.clusters;
       refinement["trace_clusters_removed"] = ts.removed_clusters;

@@ -39,6 +39,23 @@ lidar::RTreesSettings rtreesSettings(const LidarSemanticMapParams& p) {
   return s;
 }
 
+lidar::KnnFilterSettings knnSettings(const LidarSemanticMapParams& p) {
+  lidar::KnnFilterSettings s;
+  s.k = p.knn_k;
+  s.max_mean_distance = p.knn_max_mean_distance;
+  s.num_threads = p.num_threads;
+  return s;
+}
+
+lidar::VehicleTraceSettings traceSettings(const LidarSemanticMapParams& p) {
+  lidar::VehicleTraceSettings s;
+  s.eps = p.trace_eps;
+  s.min_points = p.trace_min_points;
+  s.max_voxels = static_cast<std::size_t>(p.trace_max_voxels);
+  s.max_length = p.trace_max_length;
+  return s;
+}
+
 io::FrameRange frameRange(const LidarSemanticMapParams& p) {
   return io::FrameRange{p.first_frame, p.last_frame, p.stride};
 }

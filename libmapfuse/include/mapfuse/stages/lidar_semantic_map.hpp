@@ -52,7 +52,7 @@ struct LidarSemanticMapParams {
   bool remove_vehicle_traces = true;
   double trace_eps = 0.25;  ///< m
   int trace_min_points = 5;
-  int trace_max_voxels = 100000;  ///< paper: 500, for its coarser voxels (docs/lidar.md)
+  int trace_max_voxels = 100000;   ///< paper: 500, for its coarser voxels (docs/lidar.md)
   double trace_max_length = 10.0;  ///< m
   // outputs
   double topdown_resolution = 0.1;  ///< m/px

@@ -7,6 +7,7 @@
 #include "mapfuse/lidar/cluster_classifier.hpp"
 #include "mapfuse/lidar/frame_fusion.hpp"
 #include "mapfuse/lidar/frame_semantics.hpp"
+#include "mapfuse/lidar/refinement.hpp"
 #include "mapfuse/stages/lidar_semantic_map.hpp"
 
 namespace mapfuse::stages::detail {
@@ -21,6 +22,10 @@ lidar::FrameSemanticsSettings semanticsSettings(const LidarSemanticMapParams& p,
 
 /// @brief RTrees training settings.
 lidar::RTreesSettings rtreesSettings(const LidarSemanticMapParams& p);
+
+/// @brief Batch refinement settings (K-nearest filter, vehicle-trace removal).
+lidar::KnnFilterSettings knnSettings(const LidarSemanticMapParams& p);
+lidar::VehicleTraceSettings traceSettings(const LidarSemanticMapParams& p);
 
 /// @brief Frame selection.
 io::FrameRange frameRange(const LidarSemanticMapParams& p);
