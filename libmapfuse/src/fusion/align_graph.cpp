@@ -56,6 +56,7 @@ double solve(ceres::Problem& problem, const AlignSettings& s, bool* converged) {
   opt.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
   opt.max_num_iterations = s.solver_iterations;
   opt.num_threads = s.threads;
+  opt.function_tolerance = s.function_tolerance;
   ceres::Solver::Summary summary;
   ceres::Solve(opt, &problem, &summary);
   if (converged) *converged = summary.termination_type == ceres::CONVERGENCE;
@@ -194,19 +195,30 @@ double solveGba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const Al
         index[l] = VoxelIndex(w, std::max(0.1, s.gba_association_distance));
       }
       const double r2 = s.gba_association_distance * s.gba_association_distance;
-      for (int i = 0; i < int(pts.size()); ++i)
+      std::vector<std::pair<int, int>> partners;  // (lsm, point index)
+      for (int i = 0; i < int(pts.size()); ++i) {
+        partners.clear();
         for (int l = 0; l < int(lsms.size()); ++l) {
           if (l == pts[i].lsm || members[l].empty()) continue;
           const int j0 = index[l].nearest(world[i], r2, nullptr);
-          if (j0 < 0) continue;
+          if (j0 >= 0) partners.emplace_back(l, members[l][j0]);
+        }
+        // With many traversals, every point is tied to an evenly spread subset of the others
+        // (offset rotating with the point), so that each pair of traversals stays coupled while
+        // the residual count grows linearly, not quadratically, with the traversals.
+        const int n = int(partners.size());
+        const int keep = s.gba_max_partners > 0 ? std::min(n, s.gba_max_partners) : n;
+        for (int k = 0; k < keep; ++k) {
+          const auto [l, j] = partners[(i + k * n / keep) % n];
           const ElementPoint& a = pts[i];
-          const ElementPoint& b = pts[members[l][j0]];
+          const ElementPoint& b = pts[j];
           auto* f = new ElementFactor{a.body, b.body, b.dir, b.plane, 1.0 / s.gba_point_sigma};
           problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ElementFactor, 3, 3, 4, 3, 4>(f),
                                    new ceres::HuberLoss(s.gba_huber), P[a.lsm][a.kf].t,
                                    P[a.lsm][a.kf].q, P[b.lsm][b.kf].t, P[b.lsm][b.kf].q);
           ++count;
         }
+      }
     }
     if (residuals) *residuals = count;
     cost = solve(problem, s, converged);

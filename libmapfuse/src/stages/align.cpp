@@ -41,6 +41,9 @@ void AlignParams::validate() const {
   requireParam(gba_point_sigma > 0, st, "gba_point_sigma", gba_point_sigma, "> 0");
   requireParam(gba_huber > 0, st, "gba_huber", gba_huber, "> 0");
   requireParam(gba_rounds >= 1, st, "gba_rounds", gba_rounds, ">= 1");
+  requireParam(gba_max_partners >= 0, st, "gba_max_partners", gba_max_partners, ">= 0");
+  requireParam(function_tolerance > 0 && function_tolerance < 1, st, "function_tolerance",
+               function_tolerance, "in (0, 1)");
   requireParam(solver_iterations >= 1, st, "solver_iterations", solver_iterations, ">= 1");
   requireParam(threads >= 1, st, "threads", threads, ">= 1");
 }
@@ -73,6 +76,8 @@ fusion::AlignSettings AlignParams::settings() const {
   s.gba_point_sigma = gba_point_sigma;
   s.gba_huber = gba_huber;
   s.gba_rounds = gba_rounds;
+  s.gba_max_partners = gba_max_partners;
+  s.function_tolerance = function_tolerance;
   s.solver_iterations = solver_iterations;
   s.threads = threads;
   return s;

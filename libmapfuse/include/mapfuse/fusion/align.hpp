@@ -53,7 +53,9 @@ struct AlignSettings {
   double gba_point_sigma = 0.05;          ///< m, point-to-line / point-to-plane sigma
   double gba_huber = 1.0;                 ///< Huber delta on whitened GBA residuals
   int gba_rounds = 2;                     ///< association / solve rounds
+  int gba_max_partners = 2;               ///< other traversals tied to each point (0 = all)
   int solver_iterations = 100;            ///< Levenberg-Marquardt iterations per solve
+  double function_tolerance = 1e-4;       ///< LM stops when |cost change| / cost falls below
   int threads = 2;                        ///< OpenMP threads over pairs
 };
 

@@ -38,7 +38,9 @@ struct AlignParams {
   double gba_point_sigma = 0.05;
   double gba_huber = 1.0;
   int gba_rounds = 2;
+  int gba_max_partners = 2;
   int solver_iterations = 100;
+  double function_tolerance = 1e-4;
   int threads = 2;
 
   template <class V>
@@ -69,7 +71,10 @@ struct AlignParams {
     v("gba_point_sigma", gba_point_sigma, "m", "GBA point-to-line/plane sigma");
     v("gba_huber", gba_huber, "sigma", "Huber delta on GBA residuals");
     v("gba_rounds", gba_rounds, "", "GBA association / solve rounds");
+    v("gba_max_partners", gba_max_partners, "",
+      "other traversals each element point is tied to (0 = all)");
     v("solver_iterations", solver_iterations, "", "Levenberg-Marquardt iterations per solve");
+    v("function_tolerance", function_tolerance, "", "LM stop: relative cost change below");
     v("threads", threads, "", "OpenMP threads over pairs / Ceres threads");
   }
   void validate() const;
