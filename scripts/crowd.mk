@@ -105,9 +105,10 @@ $(WORK)/tiles/%/align/align.summary.json:
 $(WORK)/tiles/%/aggregate/aggregate.summary.json: $(WORK)/tiles/%/align/align.summary.json
 	$(BIN)/aggregate $(Q) $(call cfg,aggregate) -o $(WORK)/tiles/$*/aggregate $(patsubst $(WORK)/tiles/$*/%,$(WORK)/tiles/$*/align/%,$(wildcard $(WORK)/tiles/$*/*.cbor $(WORK)/tiles/$*/*.json))
 
-# ---- evaluate against ground truth ----
+# ---- evaluate against ground truth (trajectory metrics untiled only: a tiled run has no single
+# aligned copy of each drive) ----
 $(EVAL_SUMMARY): $(MAP_SUMMARY) $(TRUTH)
-	$(BIN)/evaluate map $(Q) --map $(MAP) --truth $(TRUTH) $(if $(TRUTH_TRAJ),--truth-trajectories $(TRUTH_TRAJ) --lsm $(ALIGNED)) -o $(WORK)/evaluate
+	$(BIN)/evaluate map $(Q) --map $(MAP) --truth $(TRUTH) $(if $(TRUTH_TRAJ),--truth-trajectories $(TRUTH_TRAJ) $(if $(TILE_SIZE),,--lsm $(ALIGNED))) -o $(WORK)/evaluate
 
 clean:
 	rm -rf $(WORK)
