@@ -1,0 +1,120 @@
+#!/usr/bin/env bash
+# The crowd chain (georef -> align -> aggregate -> evaluate, scripts/crowd.mk, -j2) in km of road
+# per hour, peak memory and map size per km: on the Karlsruhe Lanelet2 map at 10 / 25 / 50
+# traversals, on the procedural world at route lengths 1 / 2 / 5 / 10 km (10 traversals), and
+# tiled (150 m tiles: the drives cover a few hundred metres of the map's patches) against untiled
+# on Karlsruhe at 50 traversals. The chain is timed up to the map (`make map`); evaluate runs
+# afterwards, untimed. -> docs/performance-chain.md
+# usage: scripts/bench/bench_chain.sh [BIN_DIR=<root>/build/bin]   (about 10 minutes)
+set -euo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+bin=$(cd "${1:-$root/build/bin}" && pwd)
+shared=$(realpath -m "${MAPFUSE_SHARED:-$root/../shared}")
+osm="$shared/data/maps/lanelet2_karlsruhe_mapping_example.osm"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+load=$(cut -d' ' -f1-3 /proc/loadavg)
+rows="$tmp/rows.jsonl"
+: > "$rows"
+
+# run NAME SIM_ARGS... : simulate, then the chain through crowd.mk, timed; one JSON row.
+run() {
+  local name=$1 tile=$2; shift 2
+  local sim="$tmp/$name.sim" work="$tmp/$name.work"
+  "$bin/simulate" -q "$@" -o "$sim" > /dev/null
+  local mk=(make -s -j2 -f "$root/scripts/crowd.mk" BIN="$bin" LSM_DIR="$sim/lsm" WORK="$work"
+    TRUTH="$sim/truth/vector_map.json" TRUTH_TRAJ="$sim/truth" ${tile:+TILE_SIZE=$tile})
+  local t0; t0=$(date +%s.%N)
+  /usr/bin/time -f '%M' -o "$tmp/$name.rss" "${mk[@]}" map > /dev/null
+  local t1; t1=$(date +%s.%N)
+  "${mk[@]}" > /dev/null
+  python3 - "$name" "$*" "$tile" "$sim" "$work" "$t0" "$t1" "$(cat "$tmp/$name.rss")" >> "$rows" <<'PY'
+import glob, json, sys
+name, args, tile, sim, work, t0, t1, rss = sys.argv[1:]
+driven_km = json.load(open(f"{sim}/simulate.summary.json"))["km_driven"]
+ev = json.load(open(f"{work}/evaluate/evaluate.summary.json"))
+def summary(stage):
+    return json.load(open(f"{work}/{stage}/{stage}.summary.json"))
+agg = summary("stitch" if tile else "aggregate")
+size = agg.get("size", {})
+print(json.dumps({"name": name, "args": args, "tile": tile, "seconds": float(t1) - float(t0),
+                  "rss_mb": int(rss) / 1024, "road_km": size.get("road_km"),
+                  "kb_per_km": size.get("kb_per_km"), "tiles": len(glob.glob(f"{work}/tiles/*/")),
+                  "driven_km": driven_km,
+                  "eval": ev}))
+PY
+  echo "bench_chain: $name done" >&2
+}
+
+if [[ -f "$osm" ]]; then
+  for t in 10 25 50; do run "karlsruhe-$t" "" --map "$osm" --traversals "$t"; done
+  run "karlsruhe-50-tiled" 150 --map "$osm" --traversals 50
+else
+  echo "bench_chain: $osm absent, Karlsruhe rows skipped" >&2
+fi
+# Road length: one route of L km driven 10 times, on a procedural world big enough that the route
+# need not repeat itself (grid 3: 2.3 km of road, 4: 4.5 km, 6: 11.5 km).
+for spec in 1:3 2:3 5:4 10:6; do
+  km=${spec%:*} grid=${spec#*:}
+  run "procedural-${km}km" "" --traversals 10 --routes 1 --route-length "${km}000" \
+    --world-grid-size "$grid"
+done
+
+python3 - "$rows" "$root/docs/performance-chain.md" "$bin" "$load" <<'PY'
+import json, subprocess, sys, datetime
+rows_file, out, bin_dir, load = sys.argv[1:]
+rows = [json.loads(l) for l in open(rows_file)]
+cpu = subprocess.run("lscpu | sed -n 's/^Model name: *//p'", shell=True, capture_output=True,
+                     text=True).stdout.strip()
+def metrics(ev):
+    """Per-class evaluate results of the (first) map."""
+    return {c["class"]: c for c in ev["maps"][0]["classes"]}
+def absmean(c):
+    v = c.get("absolute_error", {}).get("mean")
+    return float("nan") if v is None else v
+lines = ["# Performance: the crowd chain (georef -> align -> aggregate)", "",
+         f"Produced by `scripts/bench/bench_chain.sh` on {datetime.date.today()} (issue 9 target:"
+         " >= 1000 km of road per hour with 50 traversals on the Karlsruhe map; paper 17.7 km/h).", "",
+         f"- machine: 2 cores, {cpu}, load average at start {load}",
+         "- command per row: `simulate --traversals N [--map karlsruhe.osm | --routes 1 --route-length L"
+         " --world-grid-size G]`, then `make -j2 -f scripts/crowd.mk LSM_DIR=... map [TILE_SIZE=150]`"
+         " (georef per drive, align gba_sgicp, aggregate [tile, stitch]), timed from make's start to the"
+         " map; simulate and evaluate (run afterwards for the quality columns) are not included.",
+         "- road km: aggregate's `size.road_km`, the length of road the drives covered (trajectories"
+         " merged within 4 m); driven km: the sum over all drives (simulate's `km_driven`). Road km/h"
+         " is the issue's figure; driven km/h is the volume of crowd data the chain digests per hour.",
+         "- peak MB: the largest single process of the chain (GNU time over make).", "",
+         "| run | traversals | road km | driven km | chain s | road km/h | driven km/h | peak MB | MB per road km | map KB/km | lane completeness | lane abs. error m |",
+         "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+by = {r["name"]: r for r in rows}
+for r in rows:  # stitch reports no size: the tiled run covers the road of its untiled twin
+    twin = by.get(r["name"].replace("-tiled", ""))
+    if r["road_km"] is None and twin:
+        r["road_km"] = twin["road_km"]
+for r in rows:
+    per = metrics(r["eval"])
+    lane = per.get("lane_line", {})
+    km = r["road_km"] or float("nan")
+    trav = r["args"].split("--traversals ")[1].split()[0]
+    lines.append(f"| {r['name']}{' (%d tiles)' % r['tiles'] if r['tile'] else ''} | {trav} | {km:.2f} |"
+                 f" {r['driven_km']:.1f} | {r['seconds']:.1f} | {3600 * km / r['seconds']:.0f} |"
+                 f" {3600 * r['driven_km'] / r['seconds']:.0f} | {r['rss_mb']:.0f} |"
+                 f" {r['rss_mb'] / km:.0f} | {r['kb_per_km'] or float('nan'):.1f} |"
+                 f" {lane.get('completeness', float('nan')):.3f} | {absmean(lane):.3f} |")
+if "karlsruhe-50" in by and "karlsruhe-50-tiled" in by:
+    a, b = metrics(by["karlsruhe-50"]["eval"]), metrics(by["karlsruhe-50-tiled"]["eval"])
+    lines += ["", f"Tiled ({by['karlsruhe-50-tiled']['tiles']} tiles of 150 m, 50 m margins, stitch)"
+              " against untiled, Karlsruhe, 50 traversals (issue 9: metrics within 5 %, no duplicate"
+              " or missing instance at tile borders: instance counts and redundancy equal):", "",
+              "| class | instances untiled | tiled | completeness untiled | tiled | redundancy untiled | tiled | abs. error untiled m | tiled m |",
+              "|---|---|---|---|---|---|---|---|---|"]
+    f = lambda c, k: c.get(k) if c.get(k) is not None else float("nan")
+    for c in a:
+        if c in b:
+            lines.append(f"| {c} | {a[c].get('map_count')} | {b[c].get('map_count')} |"
+                         f" {f(a[c], 'completeness'):.3f} | {f(b[c], 'completeness'):.3f} |"
+                         f" {f(a[c], 'redundancy'):.3f} | {f(b[c], 'redundancy'):.3f} |"
+                         f" {absmean(a[c]):.3f} | {absmean(b[c]):.3f} |")
+open(out, "w").write("\n".join(lines) + "\n")
+print(f"bench_chain: wrote {out}", file=sys.stderr)
+PY
