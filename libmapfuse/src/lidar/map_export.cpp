@@ -24,15 +24,25 @@ LabeledCloud toLabeledCloud(const SemanticVoxelMap& map) {
 }
 
 std::vector<uint32_t> scanLabels(const SemanticVoxelMap& map, const Pose3& T_map_velo,
-                                 const std::vector<Eigen::Vector3f>& points_velo) {
+                                 const std::vector<Eigen::Vector3f>& points_velo,
+                                 const RemovedVoxelLabels* removed) {
+  constexpr uint32_t kMovingCar = 252;  // SemanticKITTI
   std::vector<uint32_t> out(points_velo.size(), 0);
   for (std::size_t i = 0; i < points_velo.size(); ++i) {
     const Eigen::Vector3d p = T_map_velo * points_velo[i].cast<double>();
     const VoxelCoord c = map.coordOf(p);
     constexpr int32_t kLim = (1 << 20) - 1;
     if (std::abs(c.x) > kLim || std::abs(c.y) > kLim || std::abs(c.z) > kLim) continue;
-    const int64_t j = map.find(packKey(c));
-    if (j >= 0) out[i] = semanticKittiId(static_cast<LidarClass>(map.voxels()[j].label));
+    const uint64_t key = packKey(c);
+    const int64_t j = map.find(key);
+    if (j >= 0) {
+      out[i] = semanticKittiId(static_cast<LidarClass>(map.voxels()[j].label));
+    } else if (removed) {
+      const auto it = removed->find(key);
+      if (it == removed->end()) continue;
+      const auto cls = static_cast<LidarClass>(it->second);
+      out[i] = cls == LidarClass::kVehicle ? kMovingCar : semanticKittiId(cls);
+    }
   }
   return out;
 }

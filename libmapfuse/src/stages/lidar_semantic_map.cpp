@@ -18,6 +18,7 @@
 #include "mapfuse/lidar/map_export.hpp"
 #include "mapfuse/lidar/refinement.hpp"
 #include "mapfuse/lidar/scan_odometry.hpp"
+#include "mapfuse/lidar/seen_through_filter.hpp"
 #include "mapfuse/stages/lidar_semantic_map_detail.hpp"
 
 namespace mapfuse::stages {
@@ -131,6 +132,15 @@ void LidarSemanticMapParams::validate() const {
   requireParam(trace_min_points >= 1, s, "trace_min_points", trace_min_points, ">= 1");
   requireParam(trace_max_voxels >= 1, s, "trace_max_voxels", trace_max_voxels, ">= 1");
   requireParam(trace_max_length > 0, s, "trace_max_length", trace_max_length, "> 0");
+  requireParam(seen_through_margin > 0, s, "seen_through_margin", seen_through_margin, "> 0");
+  requireParam(seen_through_window >= 0 && seen_through_window <= 5, s, "seen_through_window",
+               seen_through_window, "in [0, 5]");
+  requireParam(seen_through_window_thin >= 0 && seen_through_window_thin <= 5, s,
+               "seen_through_window_thin", seen_through_window_thin, "in [0, 5]");
+  requireParam(seen_through_min_scans >= 1, s, "seen_through_min_scans", seen_through_min_scans,
+               ">= 1");
+  requireParam(seen_through_min_ratio >= 0 && seen_through_min_ratio <= 1, s,
+               "seen_through_min_ratio", seen_through_min_ratio, "in [0, 1]");
   requireParam(topdown_resolution > 0, s, "topdown_resolution", topdown_resolution, "> 0");
   requireParam(num_threads >= 1, s, "num_threads", num_threads, ">= 1");
 }
@@ -200,6 +210,12 @@ json runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,
 
   // Batch refinement (§2.2).
   json refinement = {{"enabled", p.refine}};
+  lidar::RemovedVoxelLabels removed;  // traces: out of the map, still labelled in the scans
+  auto removeTraces = [&](const std::vector<uint8_t>& keep) {
+    for (std::size_t i = 0; i < keep.size(); ++i)
+      if (!keep[i]) removed[map.voxels()[i].key] = map.voxels()[i].label;
+    map.filter(keep);
+  };
   t = Clock::now();
   if (p.refine) {
     const auto keep = lidar::knnMeanDistanceFilter(map, detail::knnSettings(p));
@@ -207,10 +223,21 @@ json runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,
     map.filter(keep);
     refinement["knn_removed_voxels"] = before - map.size();
     timings["refinement_knn"] = since(t);
+    if (p.remove_vehicle_traces && p.trace_seen_through) {
+      const auto t2 = Clock::now();
+      lidar::SeenThroughFilter seen(map, detail::seenThroughSettings(p));
+      for (std::size_t i = 0; i < drive.frames.size(); ++i)
+        seen.addScan(io::readVelodyneBin(drive.frames[i].velodyne).points, poses[i]);
+      lidar::SeenThroughStats ss;
+      removeTraces(seen.keepMask(&ss));
+      refinement["seen_through_tested_voxels"] = ss.tested_voxels;
+      refinement["seen_through_removed_voxels"] = ss.removed_voxels;
+      timings["refinement_seen_through"] = since(t2);
+    }
     if (p.remove_vehicle_traces) {
       const auto t2 = Clock::now();
       lidar::VehicleTraceStats ts;
-      map.filter(lidar::vehicleTraceFilter(map, detail::traceSettings(p), &ts));
+      removeTraces(lidar::vehicleTraceFilter(map, detail::traceSettings(p), &ts));
       refinement["vehicle_voxels"] = ts.vehicle_voxels;
       refinement["vehicle_clusters"] = ts.clusters;
       refinement["trace_clusters_removed"] = ts.removed_clusters;
@@ -236,7 +263,7 @@ json runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,
     for (std::size_t i = 0; i < drive.frames.size(); ++i) {
       const auto& f = drive.frames[i];
       const auto scan = io::readVelodyneBin(f.velodyne);
-      const auto labels = lidar::scanLabels(map, poses[i], scan.points);
+      const auto labels = lidar::scanLabels(map, poses[i], scan.points, &removed);
       for (uint32_t l : labels) labelled_points += l != 0;
       scan_points += labels.size();
       io::writeSemanticKittiLabels(output / "labels" / (f.name + ".label"), labels);

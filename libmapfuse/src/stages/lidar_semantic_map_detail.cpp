@@ -56,6 +56,19 @@ lidar::VehicleTraceSettings traceSettings(const LidarSemanticMapParams& p) {
   return s;
 }
 
+lidar::SeenThroughSettings seenThroughSettings(const LidarSemanticMapParams& p) {
+  lidar::SeenThroughSettings s;
+  s.margin = p.seen_through_margin;
+  s.window = p.seen_through_window;
+  s.window_thin = p.seen_through_window_thin;
+  s.num_threads = p.num_threads;
+  s.min_range = p.min_range;
+  s.max_range = p.max_range;
+  s.min_seen_through = p.seen_through_min_scans;
+  s.min_free_ratio = p.seen_through_min_ratio;
+  return s;
+}
+
 io::FrameRange frameRange(const LidarSemanticMapParams& p) {
   return io::FrameRange{p.first_frame, p.last_frame, p.stride};
 }

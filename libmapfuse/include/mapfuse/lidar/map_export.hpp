@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <opencv2/core.hpp>
+#include <unordered_map>
 #include <vector>
 
 #include "mapfuse/core/se3.hpp"
@@ -15,10 +16,16 @@ namespace mapfuse::lidar {
 /// @brief Voxel centres with their argmax label and its posterior probability.
 LabeledCloud toLabeledCloud(const SemanticVoxelMap& map);
 
+/// Labels of the voxels refinement removed as traces of moving objects, by voxel key.
+using RemovedVoxelLabels = std::unordered_map<uint64_t, uint8_t>;
+
 /// @brief SemanticKITTI label word per scan point: the semantic id of the label of the voxel the
-/// point falls in (T_map_velo applied), 0 (unlabeled) where the map has no voxel.
+/// point falls in (T_map_velo applied), 0 (unlabeled) where the map has no voxel. With `removed`,
+/// a point in a voxel removed as a moving object's trace keeps that voxel's label, vehicles as
+/// SemanticKITTI's moving-car (252): the static map leaves them out, the scan still shows them.
 std::vector<uint32_t> scanLabels(const SemanticVoxelMap& map, const Pose3& T_map_velo,
-                                 const std::vector<Eigen::Vector3f>& points_velo);
+                                 const std::vector<Eigen::Vector3f>& points_velo,
+                                 const RemovedVoxelLabels* removed = nullptr);
 
 /// @brief Top-down picture (BGR, north/+y up): each pixel shows the class colour of the highest
 /// voxel in its column; `resolution` m per pixel; white where the map is empty.

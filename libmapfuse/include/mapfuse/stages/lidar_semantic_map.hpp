@@ -52,8 +52,14 @@ struct LidarSemanticMapParams {
   bool remove_vehicle_traces = true;
   double trace_eps = 0.25;  ///< m
   int trace_min_points = 5;
-  int trace_max_voxels = 100000;   ///< paper: 500, for its coarser voxels (docs/lidar.md)
-  double trace_max_length = 10.0;  ///< m
+  int trace_max_voxels = 100000;     ///< paper: 500, for its coarser voxels (docs/lidar.md)
+  double trace_max_length = 10.0;    ///< m
+  bool trace_seen_through = true;    ///< drop voxels that other scans see through
+  double seen_through_margin = 0.5;  ///< m
+  int seen_through_window = 0;       ///< pixels (half size)
+  int seen_through_window_thin = 1;  ///< pixels, road / sidewalk / fence / pole / vegetation
+  int seen_through_min_scans = 2;
+  double seen_through_min_ratio = 0.5;
   // outputs
   double topdown_resolution = 0.1;  ///< m/px
   bool write_scan_labels = true;
@@ -107,6 +113,18 @@ struct LidarSemanticMapParams {
     v("trace_max_voxels", trace_max_voxels, "",
       "eta_d: clusters with more vehicle voxels are traces");
     v("trace_max_length", trace_max_length, "m", "eta_l: clusters longer than this are traces");
+    v("trace_seen_through", trace_seen_through, "",
+      "also drop voxels that other scans see through (free-space test)");
+    v("seen_through_margin", seen_through_margin, "m",
+      "a return this far beyond a voxel means the ray passed it");
+    v("seen_through_window", seen_through_window, "px",
+      "half size of the range-image window whose nearest return must lie beyond");
+    v("seen_through_window_thin", seen_through_window_thin, "px",
+      "the same for road, sidewalk, fence, pole and vegetation voxels");
+    v("seen_through_min_scans", seen_through_min_scans, "",
+      "scans that must see through a voxel before it goes");
+    v("seen_through_min_ratio", seen_through_min_ratio, "",
+      "and their share among the scans that saw the voxel");
     v("topdown_resolution", topdown_resolution, "m", "top-down PNG pixel size");
     v("write_scan_labels", write_scan_labels, "",
       "write labels/<frame>.label for every input scan");

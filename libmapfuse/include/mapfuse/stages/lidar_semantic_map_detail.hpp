@@ -8,6 +8,7 @@
 #include "mapfuse/lidar/frame_fusion.hpp"
 #include "mapfuse/lidar/frame_semantics.hpp"
 #include "mapfuse/lidar/refinement.hpp"
+#include "mapfuse/lidar/seen_through_filter.hpp"
 #include "mapfuse/stages/lidar_semantic_map.hpp"
 
 namespace mapfuse::stages::detail {
@@ -26,6 +27,7 @@ lidar::RTreesSettings rtreesSettings(const LidarSemanticMapParams& p);
 /// @brief Batch refinement settings (K-nearest filter, vehicle-trace removal).
 lidar::KnnFilterSettings knnSettings(const LidarSemanticMapParams& p);
 lidar::VehicleTraceSettings traceSettings(const LidarSemanticMapParams& p);
+lidar::SeenThroughSettings seenThroughSettings(const LidarSemanticMapParams& p);
 
 /// @brief Frame selection.
 io::FrameRange frameRange(const LidarSemanticMapParams& p);
