@@ -2,8 +2,8 @@
 # The crowd chain (georef -> align -> aggregate -> evaluate, scripts/crowd.mk, -j2) in km of road
 # per hour, peak memory and map size per km: on the Karlsruhe Lanelet2 map at 10 / 25 / 50
 # traversals, on the procedural world at route lengths 1 / 2 / 5 / 10 km (10 traversals), and
-# tiled (150 m tiles: the drives cover a few hundred metres of the map's patches) against untiled
-# on Karlsruhe at 50 traversals. The chain is timed up to the map (`make map`); evaluate runs
+# tiled against untiled: Karlsruhe at 50 traversals (150 m tiles: the drives cover a few hundred
+# metres of the map's patches) and the 2 km procedural route (500 m tiles). The chain is timed up to the map (`make map`); evaluate runs
 # afterwards, untimed. -> docs/performance-chain.md
 # usage: scripts/bench/bench_chain.sh [BIN_DIR=<root>/build/bin]   (about 10 minutes)
 set -euo pipefail
@@ -59,6 +59,7 @@ for spec in 1:3 2:3 5:4 10:6; do
   run "procedural-${km}km" "" --traversals 10 --routes 1 --route-length "${km}000" \
     --world-grid-size "$grid"
 done
+run "procedural-2km-tiled" 500 --traversals 10 --routes 1 --route-length 2000 --world-grid-size 3
 
 python3 - "$rows" "$root/docs/performance-chain.md" "$bin" "$load" <<'PY'
 import json, subprocess, sys, datetime
@@ -77,7 +78,7 @@ lines = ["# Performance: the crowd chain (georef -> align -> aggregate)", "",
          " >= 1000 km of road per hour with 50 traversals on the Karlsruhe map; paper 17.7 km/h).", "",
          f"- machine: 2 cores, {cpu}, load average at start {load}",
          "- command per row: `simulate --traversals N [--map karlsruhe.osm | --routes 1 --route-length L"
-         " --world-grid-size G]`, then `make -j2 -f scripts/crowd.mk LSM_DIR=... map [TILE_SIZE=150]`"
+         " --world-grid-size G]`, then `make -j2 -f scripts/crowd.mk LSM_DIR=... map [TILE_SIZE=150 / 500]`"
          " (georef per drive, align gba_sgicp, aggregate [tile, stitch]), timed from make's start to the"
          " map; simulate and evaluate (run afterwards for the quality columns) are not included.",
          "- road km: aggregate's `size.road_km`, the length of road the drives covered (trajectories"
@@ -101,11 +102,14 @@ for r in rows:
                  f" {3600 * r['driven_km'] / r['seconds']:.0f} | {r['rss_mb']:.0f} |"
                  f" {r['rss_mb'] / km:.0f} | {r['kb_per_km'] or float('nan'):.1f} |"
                  f" {lane.get('completeness', float('nan')):.3f} | {absmean(lane):.3f} |")
-if "karlsruhe-50" in by and "karlsruhe-50-tiled" in by:
-    a, b = metrics(by["karlsruhe-50"]["eval"]), metrics(by["karlsruhe-50-tiled"]["eval"])
-    lines += ["", f"Tiled ({by['karlsruhe-50-tiled']['tiles']} tiles of 150 m, 50 m margins, stitch)"
-              " against untiled, Karlsruhe, 50 traversals (issue 9: metrics within 5 %, no duplicate"
-              " or missing instance at tile borders: instance counts and redundancy equal):", "",
+for untiled, tiled in [("karlsruhe-50", "karlsruhe-50-tiled"), ("procedural-2km", "procedural-2km-tiled")]:
+    if untiled not in by or tiled not in by:
+        continue
+    a, b = metrics(by[untiled]["eval"]), metrics(by[tiled]["eval"])
+    size = by[tiled]["tile"]
+    lines += ["", f"Tiled ({by[tiled]['tiles']} tiles of {size} m, 50 m margins, stitch) against"
+              f" untiled, {untiled} (issue 9: metrics within 5 %, no duplicate or missing instance at"
+              " tile borders):", "",
               "| class | instances untiled | tiled | completeness untiled | tiled | redundancy untiled | tiled | abs. error untiled m | tiled m |",
               "|---|---|---|---|---|---|---|---|---|"]
     f = lambda c, k: c.get(k) if c.get(k) is not None else float("nan")
