@@ -105,7 +105,7 @@ for r in rows:
     lines.append(f"| {r['name']}{' (%d tiles)' % r['tiles'] if r['tile'] else ''} | {trav} | {km:.2f} |"
                  f" {r['driven_km']:.1f} | {r['seconds']:.1f} | {3600 * km / r['seconds']:.0f} |"
                  f" {3600 * r['driven_km'] / r['seconds']:.0f} | {r['rss_mb']:.0f} |"
-                 f" {r['rss_mb'] / km:.0f} | {r['kb_per_km'] or float('nan'):.1f} |"
+                 f" {r['rss_mb'] / km:.0f} | {'%.1f' % r['kb_per_km'] if r['kb_per_km'] else '–'} |"
                  f" {lane.get('completeness', float('nan')):.3f} | {absmean(lane):.3f} |")
 for untiled, tiled in [("karlsruhe-50", "karlsruhe-50-tiled"), ("procedural-2km", "procedural-2km-tiled")]:
     if untiled not in by or tiled not in by:
