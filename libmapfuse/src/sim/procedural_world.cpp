@@ -151,7 +151,6 @@ World buildProceduralWorld(const ProceduralParams& P, const geo::GeoOrigin& orig
             // Bypass lane: forks off the outer forward lane and merges back (a fork + a merge).
             fork_done = true;
             const double s1 = 0.25 * L, s2 = 0.75 * L, ramp = 0.2 * L, D = 3.0 * w;
-            const auto cum = arcLengths(fwd);
             Polyline branch, right_edge, left_edge;
             // Samples span [s1, s2] exactly, so the branch ends where the merge lane starts.
             const int nb = static_cast<int>(std::ceil((s2 - s1) / kSampleStep));
@@ -171,7 +170,6 @@ World buildProceduralWorld(const ProceduralParams& P, const geo::GeoOrigin& orig
             arm_b.in_lanes.push_back(B.world.lanes.size() - 1);
             B.addLine(right_edge, LineStyle::kSolid);
             if (left_edge.size() >= 2) B.addLine(left_edge, LineStyle::kSolid);
-            (void)cum;
           } else {
             B.addLane(fwd, w);
             arm_a.out_lanes.push_back(B.world.lanes.size() - 1);
