@@ -70,7 +70,7 @@ $(WORK)/origin.txt: | $(firstword $(LSMS))
 # ---- georef: one rule per drive, all sharing origin.txt ----
 define GEOREF_RULE
 $(WORK)/georef/$(notdir $(1)).d/$(notdir $(1)): $(1) $(WORK)/origin.txt
-	$(BIN)/georef $(Q) $(call cfg,georef) --origin $$$$(cat $(WORK)/origin.txt) -o $(WORK)/georef/$(notdir $(1)).d $(1)
+	$(BIN)/georef $(Q) $(call cfg,georef) --origin $$(file <$(WORK)/origin.txt) -o $(WORK)/georef/$(notdir $(1)).d $(1)
 endef
 $(foreach l,$(LSMS),$(eval $(call GEOREF_RULE,$(l))))
 

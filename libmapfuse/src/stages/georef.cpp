@@ -88,7 +88,9 @@ nlohmann::json runGeoref(const std::vector<std::string>& inputs,
   std::vector<fusion::GeorefResult> results(n);
   std::vector<double> seconds(n);
   std::vector<std::exception_ptr> errors(n);
-#pragma omp parallel for schedule(dynamic) num_threads(params.threads)
+  // One thread per input at most: a per-drive batch job (one LSM) must not start and spin an
+  // idle OpenMP worker (it doubled the CPU time of such jobs).
+#pragma omp parallel for schedule(dynamic) num_threads(std::max(1, std::min(params.threads, n)))
   for (int i = 0; i < n; ++i) {
     try {
       const auto t = Clock::now();
