@@ -9,7 +9,7 @@ PACKAGES=(
   libopencv-dev
   libboost-dev libgeographiclib-dev
   libcli11-dev nlohmann-json3-dev catch2
-  libpugixml-dev
+  libpugixml-dev zlib1g-dev
   libopenmpi-dev
   gdal-bin snakemake
 )

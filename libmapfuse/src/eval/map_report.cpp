@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <set>
 #include <sstream>
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/png_writer.hpp"
 
 namespace mapfuse::eval {
 namespace {
@@ -29,9 +29,7 @@ cv::Scalar bgr(CrowdClass c) {
 }
 
 void savePng(const std::filesystem::path& path, const cv::Mat& img) {
-  std::vector<uchar> png;
-  if (!cv::imencode(".png", img, png)) throw IoError(path.string(), "PNG encoding failed");
-  io::writeBytesAtomic(path, std::string(png.begin(), png.end()));
+  io::writePng(path, img);
 }
 
 struct Axes {  // plot area and value mapping

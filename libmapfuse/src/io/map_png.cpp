@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/png_writer.hpp"
 
 namespace mapfuse::io {
 
@@ -70,9 +70,7 @@ void writeMapPng(const std::filesystem::path& path, const VectorMap& map,
   const int bar = int(std::lround(10.0 / res));  // 10 m scale bar
   cv::line(img, {10, h - 10}, {10 + bar, h - 10}, cv::Scalar(0, 0, 0), 2);
   cv::putText(img, "10 m", {10, h - 16}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 0), 1);
-  std::vector<uchar> png;
-  if (!cv::imencode(".png", img, png)) throw IoError(path.string(), "PNG encoding failed");
-  writeBytesAtomic(path, std::string(png.begin(), png.end()));
+  writePng(path, img);
 }
 
 }  // namespace mapfuse::io

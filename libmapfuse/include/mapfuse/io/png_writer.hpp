@@ -1,0 +1,20 @@
+#pragma once
+/// @file PNG encoding with zlib alone. The tools that only write pictures (aggregate, evaluate,
+/// stitch) use it instead of OpenCV's imgcodecs, whose Debian build links GDAL and ~140 shared
+/// libraries: 0.12 s of dynamic loading at every start of a per-drive or per-tile job.
+#include <filesystem>
+#include <opencv2/core.hpp>
+#include <string>
+
+namespace mapfuse::io {
+
+/// @brief PNG bytes of an 8-bit image: CV_8UC1 (grey), CV_8UC3 (BGR, OpenCV's order) or CV_8UC4
+/// (BGRA). Each row gets the PNG filter (None, Sub, Up or Paeth) with the smallest sum of
+/// absolute filtered bytes, then the image is deflated. @throws InputError on an empty image or
+/// another type.
+std::string encodePng(const cv::Mat& image);
+
+/// @brief encodePng, written atomically to `path`. @throws IoError when the write fails.
+void writePng(const std::filesystem::path& path, const cv::Mat& image);
+
+}  // namespace mapfuse::io
