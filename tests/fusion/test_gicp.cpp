@@ -1,6 +1,7 @@
 // GICP core: voxel hash, downsampling, covariances, registration against known transforms on a
 // synthetic structured scene and on real KITTI odometry scans.
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
@@ -96,6 +97,17 @@ TEST_CASE("voxel index finds the same nearest neighbour as brute force") {
     REQUIRE(k == 5);  // 3000 points in 1000 m^3: always >= 5 within the 27 cells
     for (int i = 1; i < k; ++i) CHECK(dd[i - 1] <= dd[i]);
     if (best >= 0) CHECK(idx[0] == best);
+    // Radius visits: exactly the points nearer than the radius, each once.
+    const double r2 = 0.6 * 0.6;
+    std::vector<int> visited, expected;
+    index.forEachWithin(x, r2, [&](int i, double d) {
+      visited.push_back(i);
+      CHECK(d == Approx((pts[i] - x).squaredNorm()));
+    });
+    for (int i = 0; i < int(pts.size()); ++i)
+      if ((pts[i] - x).squaredNorm() < r2) expected.push_back(i);
+    std::sort(visited.begin(), visited.end());
+    CHECK(visited == expected);
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstdlib>
@@ -32,6 +33,20 @@ int paeth(int a, int b, int c) {
   return pa <= pb && pa <= pc ? a : pb <= pc ? b : c;
 }
 
+// The five PNG filter types (none, sub, up, average, paeth) of one row, each in its own loop.
+void filterCandidates(const std::vector<uint8_t>& cur, const std::vector<uint8_t>& prev, int bpp,
+                      std::array<std::vector<uint8_t>, 5>& cand) {
+  const int n = int(cur.size());
+  for (int i = 0; i < n; ++i) cand[0][i] = cur[i];
+  for (int i = 0; i < n; ++i) cand[1][i] = uint8_t(cur[i] - (i >= bpp ? cur[i - bpp] : 0));
+  for (int i = 0; i < n; ++i) cand[2][i] = uint8_t(cur[i] - prev[i]);
+  for (int i = 0; i < n; ++i)
+    cand[3][i] = uint8_t(cur[i] - ((i >= bpp ? cur[i - bpp] : 0) + prev[i]) / 2);
+  for (int i = 0; i < n; ++i)
+    cand[4][i] = uint8_t(
+        cur[i] - (i >= bpp ? paeth(cur[i - bpp], prev[i], prev[i - bpp]) : paeth(0, prev[i], 0)));
+}
+
 }  // namespace
 
 std::string encodePng(const cv::Mat& image) {
@@ -40,9 +55,27 @@ std::string encodePng(const cv::Mat& image) {
   if (image.depth() != CV_8U || (channels != 1 && channels != 3 && channels != 4))
     throw InputError("PNG encoding: 8-bit images with 1, 3 or 4 channels only");
   const int w = image.cols, h = image.rows, stride = w * channels;
-  // Rows in PNG channel order (RGB / RGBA), each behind its filter-type byte.
-  std::vector<uint8_t> raw(static_cast<std::size_t>(h) * (stride + 1));
-  std::vector<uint8_t> prev(stride, 0), cur(stride);
+  // Rows in PNG channel order (RGB / RGBA), each behind its filter-type byte, streamed through
+  // deflate a row at a time (no whole-image buffers: a map PNG is megabytes raw, kilobytes packed).
+  z_stream z{};
+  if (deflateInit(&z, 6) != Z_OK) throw IoError("PNG encoding", "deflate init failed");
+  std::string packed;
+  std::array<Bytef, 1 << 16> buf;
+  auto feed = [&](const uint8_t* data, std::size_t n, int flush) {
+    z.next_in = const_cast<Bytef*>(data);
+    z.avail_in = static_cast<uInt>(n);
+    do {
+      z.next_out = buf.data();
+      z.avail_out = static_cast<uInt>(buf.size());
+      const int rc = deflate(&z, flush);
+      if (rc == Z_STREAM_ERROR) {
+        deflateEnd(&z);
+        throw IoError("PNG encoding", "deflate failed");
+      }
+      packed.append(reinterpret_cast<const char*>(buf.data()), buf.size() - z.avail_out);
+    } while (z.avail_out == 0 || (flush == Z_FINISH && z.avail_in > 0));
+  };
+  std::vector<uint8_t> prev(stride, 0), cur(stride), row(stride + 1);
   std::array<std::vector<uint8_t>, 5> cand;
   for (auto& c : cand) c.resize(stride);
   for (int y = 0; y < h; ++y) {
@@ -52,35 +85,26 @@ std::string encodePng(const cv::Mat& image) {
         const int from = channels >= 3 && k < 3 ? 2 - k : k;  // BGR(A) -> RGB(A)
         cur[x * channels + k] = src[x * channels + from];
       }
-    long best_cost = -1;
-    int best = 0;
-    for (int f = 0; f < 5; ++f) {
-      long cost = 0;
-      for (int i = 0; i < stride; ++i) {
-        const int a = i >= channels ? cur[i - channels] : 0, b = prev[i];
-        const int c = i >= channels ? prev[i - channels] : 0;
-        const int pred = f == 0   ? 0
-                         : f == 1 ? a
-                         : f == 2 ? b
-                         : f == 3 ? (a + b) / 2
-                                  : paeth(a, b, c);
-        const auto v = static_cast<uint8_t>(cur[i] - pred);
-        cand[f][i] = v;
-        cost += v < 128 ? v : 256 - v;
+    if (y > 0 && std::equal(cur.begin(), cur.end(), prev.begin())) {
+      row[0] = 2;  // "Up" on a repeated row (most of a map's background): all zero, no search
+      std::fill(row.begin() + 1, row.end(), uint8_t(0));
+    } else {
+      filterCandidates(cur, prev, channels, cand);
+      long best_cost = -1;
+      int best = 0;
+      for (int f = 0; f < 5; ++f) {
+        long cost = 0;
+        for (const uint8_t v : cand[f]) cost += v < 128 ? v : 256 - v;
+        if (best_cost < 0 || cost < best_cost) best_cost = cost, best = f;
       }
-      if (best_cost < 0 || cost < best_cost) best_cost = cost, best = f;
+      row[0] = static_cast<uint8_t>(best);
+      std::copy(cand[best].begin(), cand[best].end(), row.begin() + 1);
     }
-    uint8_t* row = raw.data() + static_cast<std::size_t>(y) * (stride + 1);
-    row[0] = static_cast<uint8_t>(best);
-    std::copy(cand[best].begin(), cand[best].end(), row + 1);
+    feed(row.data(), row.size(), Z_NO_FLUSH);
     std::swap(prev, cur);
   }
-  uLongf packed_size = compressBound(static_cast<uLong>(raw.size()));
-  std::string packed(packed_size, '\0');
-  if (compress2(reinterpret_cast<Bytef*>(packed.data()), &packed_size, raw.data(),
-                static_cast<uLong>(raw.size()), 6) != Z_OK)
-    throw IoError("PNG encoding", "deflate failed");
-  packed.resize(packed_size);
+  feed(nullptr, 0, Z_FINISH);
+  deflateEnd(&z);
 
   std::string out("\x89PNG\r\n\x1a\n", 8);
   std::string ihdr;

@@ -3,6 +3,7 @@
 /// flat open-addressing table, points stored contiguously per voxel, queries visit the 27 voxels
 /// around the query. Exact for radii up to the cell size.
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -29,6 +30,10 @@ class VoxelIndex {
   /// @return number found (<= k); idx / dist_sq must hold k entries.
   int knn(const Eigen::Vector3d& q, int k, int* idx, double* dist_sq) const;
 
+  /// @brief Calls f(original index, squared distance) for every point nearer than
+  /// sqrt(max_dist_sq) (<= cell size for completeness) of q, in no particular order.
+  template <class F>
+  void forEachWithin(const Eigen::Vector3d& q, double max_dist_sq, F&& f) const;
   double cellSize() const { return cell_size_; }
   std::size_t size() const { return points_.size(); }
 
@@ -45,5 +50,22 @@ class VoxelIndex {
   std::vector<Slot> table_;
   uint64_t mask_ = 0;
 };
+
+template <class F>
+void VoxelIndex::forEachWithin(const Eigen::Vector3d& q, double max_dist_sq, F&& f) const {
+  const int64_t cx = static_cast<int64_t>(std::floor(q.x() * inv_cell_size_));
+  const int64_t cy = static_cast<int64_t>(std::floor(q.y() * inv_cell_size_));
+  const int64_t cz = static_cast<int64_t>(std::floor(q.z() * inv_cell_size_));
+  for (int64_t dx = -1; dx <= 1; ++dx)
+    for (int64_t dy = -1; dy <= 1; ++dy)
+      for (int64_t dz = -1; dz <= 1; ++dz) {
+        const Slot* s = find(packVoxelKey(cx + dx, cy + dy, cz + dz));
+        if (!s) continue;
+        for (uint32_t i = s->begin; i < s->end; ++i) {
+          const double d = (points_[i] - q).squaredNorm();
+          if (d < max_dist_sq) f(original_[i], d);
+        }
+      }
+}
 
 }  // namespace mapfuse::fusion
