@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -160,4 +161,55 @@ TEST_CASE("maps with another origin are converted to the truth's ENU", "[eval][m
     CHECK(c.completeness == Approx(1.0).margin(kExact));
     CHECK(c.absolute.max < kConversion);
   }
+}
+
+TEST_CASE("coverage keeps what is beside or ahead of a drive, not what lies behind its start",
+          "[eval][map]") {
+  // A drive along +x from x = 0 to x = 100 (poses every 1 m, heading east), radius 12 m.
+  std::vector<Pose3> poses;
+  for (int i = 0; i <= 100; ++i) poses.push_back(Pose3(Eigen::Translation3d(i, 0.0, 0.0)));
+  VectorMap t;
+  t.origin = {49.0, 8.4, 110.0};
+  std::vector<Vec3> long_line;
+  for (int x = -30; x <= 130; x += 10) long_line.push_back({double(x), 3.0, 0.0});
+  t.instances = {inst(1, CrowdClass::kLaneLine, long_line),
+                 inst(2, CrowdClass::kStopLine, {{-5, -2, 0}, {-5, 2, 0}}),    // behind the start
+                 inst(3, CrowdClass::kStopLine, {{105, -2, 0}, {105, 2, 0}}),  // ahead of the end
+                 inst(4, CrowdClass::kPole, {{50, 11, 0}}, 6),                 // beside, in range
+                 inst(5, CrowdClass::kPole, {{50, 13, 0}}, 6)};                // beside, too far
+  const VectorMap c = clipToCoverage(t, poses, CoverageWedge{12.0, 12.0, M_PI / 2});
+  std::vector<int64_t> ids;
+  double lane_length = 0;
+  for (const auto& m : c.instances) {
+    ids.push_back(m.id);
+    if (m.cls == CrowdClass::kLaneLine) {
+      lane_length += polylineLength(m.points);
+      CHECK(m.points.front().x() == Approx(0.0).margin(0.5));  // cut at the start's normal
+    }
+  }
+  CHECK(std::count(ids.begin(), ids.end(), 2) == 0);
+  CHECK(std::count(ids.begin(), ids.end(), 3) == 1);
+  CHECK(std::count(ids.begin(), ids.end(), 4) == 1);
+  CHECK(std::count(ids.begin(), ids.end(), 5) == 0);
+  // ahead of the end the line stays covered out to sqrt(12^2 - 3^2) = 11.6 m
+  CHECK(lane_length == Approx(100.0 + std::sqrt(12.0 * 12.0 - 9.0)).margin(0.6));
+}
+
+TEST_CASE("the coverage wedge follows the camera's field of view and reach", "[eval][map]") {
+  // One pose at the origin heading north (body x = ENU y); wedge 22 m ahead, 12 m wide, 31 deg.
+  const Pose3 pose(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+  const CoverageWedge wedge{12.0, 22.0, 31.0 * M_PI / 180.0};  // tan 31 deg = 0.601
+  auto seen = [&](double ahead, double left) {
+    VectorMap t;
+    t.instances = {inst(1, CrowdClass::kPole, {{-left, ahead, 0}}, 6)};
+    return clipToCoverage(t, {pose}, wedge).instances.size() == 1;
+  };
+  CHECK(seen(10, 5));        // 5 <= 10 tan 31
+  CHECK(seen(10, -5));       // both sides
+  CHECK_FALSE(seen(5, 5));   // beside the car, outside the image
+  CHECK_FALSE(seen(-1, 0));  // behind
+  CHECK(seen(21.5, 0));
+  CHECK_FALSE(seen(22.5, 0));  // beyond the reach
+  CHECK(seen(20.5, 11.9));
+  CHECK_FALSE(seen(21, 12.5));  // wider than the lateral limit
 }

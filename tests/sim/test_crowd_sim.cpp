@@ -179,8 +179,11 @@ TEST_CASE("simulate: ground truth round-trips and LSMs are consistent with it", 
       const MapInstance& m = *by_id[el.truth_id];
       CHECK(el.cls == m.cls);
       if (m.cls != CrowdClass::kLaneLine) continue;
-      if (m.attributes.style == LineStyle::kDashed)  // one dash per element
-        CHECK(polylineLength(el.points_body) < 3.0 + 0.5);
+      // One dash (3 m) per element; dashes beside the road are observed up to 22 m ahead, where
+      // the along-ray sigma is 0.18 m per point: their length may grow by 3 sigma * sqrt(2).
+      constexpr double kDashLength = 3.0, kFarDashNoise = 0.8;
+      if (m.attributes.style == LineStyle::kDashed)
+        CHECK(polylineLength(el.points_body) < kDashLength + kFarDashNoise);
       for (const auto& pb : el.points_body) {
         sum += sim::distanceToPolyline(m.points, T_true.at(el.anchor) * pb);
         ++n;

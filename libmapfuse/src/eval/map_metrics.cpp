@@ -253,20 +253,27 @@ MapMetrics evaluateMap(const VectorMap& map_in, const VectorMap& truth, const Ma
   return out;
 }
 
-VectorMap clipToCoverage(const VectorMap& truth, const std::vector<Vec3>& trajectory,
-                         double radius) {
+VectorMap clipToCoverage(const VectorMap& truth, const std::vector<Pose3>& poses,
+                         const CoverageWedge& wedge) {
+  const double cell = std::hypot(wedge.range, wedge.lateral);  // farthest covered point
+  const double tan_fov = wedge.half_fov < M_PI / 2 ? std::tan(wedge.half_fov) : 1e18;
   auto key = [&](double x, double y) {
-    return (int64_t(std::floor(x / radius)) << 32) ^
-           (int64_t(std::floor(y / radius)) & 0xffffffffLL);
+    return (int64_t(std::floor(x / cell)) << 32) ^ (int64_t(std::floor(y / cell)) & 0xffffffffLL);
   };
-  std::unordered_multimap<int64_t, Vec3> grid;
-  for (const auto& p : trajectory) grid.emplace(key(p.x(), p.y()), p);
+  std::unordered_multimap<int64_t, const Pose3*> grid;
+  for (const auto& p : poses) grid.emplace(key(p.translation().x(), p.translation().y()), &p);
   auto covered = [&](const Vec3& q) {
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy) {
-        auto r = grid.equal_range(key(q.x() + dx * radius, q.y() + dy * radius));
-        for (auto it = r.first; it != r.second; ++it)
-          if ((it->second - q).head<2>().norm() <= radius) return true;
+        auto r = grid.equal_range(key(q.x() + dx * cell, q.y() + dy * cell));
+        for (auto it = r.first; it != r.second; ++it) {
+          const Eigen::Matrix3d R = it->second->rotation();
+          const Vec3 d = q - it->second->translation();
+          const double bx = R.col(0).head<2>().dot(d.head<2>()),
+                       by = std::abs(R.col(1).head<2>().dot(d.head<2>()));
+          if (bx >= 0 && bx <= wedge.range && by <= wedge.lateral && by <= bx * tan_fov)
+            return true;
+        }
       }
     return false;
   };

@@ -93,6 +93,14 @@ ObservedDrive observeLsm(const World& world, const PieceIndex& index, const Driv
   const Eigen::Vector3d cam = camera.T_body_cam().translation();
   const double frame_step = d.speed / DP.camera_rate;  // m between camera frames
   const double x_near = cam.x() + camera.params().min_range;
+  // Start of the ground window for a point at lateral offset y: x_near, or, beside the road, the
+  // distance at which the image first holds it (pinhole: |y - y_cam| / depth <= half width / fx).
+  const CameraParams& cp = camera.params();
+  const double edge_slope = (0.5 * cp.width - P.ground_edge_margin_px) / cp.fx;
+  auto groundStart = [&](double y) {
+    if (P.ground_edge_margin_px <= 0 || edge_slope <= 0) return x_near;
+    return std::max(x_near, cam.x() + std::abs(y - cam.y()) / edge_slope);
+  };
   const auto& inst = world.truth.instances;
   int64_t next_element = 0;
 
@@ -142,8 +150,9 @@ ObservedDrive observeLsm(const World& world, const PieceIndex& index, const Driv
         j + 1 < kfs.size() ? d.distance[kfs[j + 1]] - d.distance[k] : P.keyframe_spacing;
     const double x0 = x_near, x1 = x_near + win;
     const double a0 = x_near + P.aerial_window_offset, a1 = a0 + win;
-    const Eigen::Vector3d centre = T * Eigen::Vector3d(0.5 * (x0 + a1), 0, 0);
-    const double radius = std::hypot(0.5 * (a1 - x0), P.lateral_range) + 2.0;
+    const double x_far = std::max(a1, groundStart(P.lateral_range + std::abs(cam.y())) + win);
+    const Eigen::Vector3d centre = T * Eigen::Vector3d(0.5 * (x0 + x_far), 0, 0);
+    const double radius = std::hypot(0.5 * (x_far - x0), P.lateral_range) + 2.0;
     for (int pi : index.near(centre, radius)) {
       const auto& piece = index.pieces()[pi];
       const MapInstance& m = inst[piece.instance];
@@ -161,7 +170,8 @@ ObservedDrive observeLsm(const World& world, const PieceIndex& index, const Driv
         std::vector<Eigen::Vector3d> run;
         for (const auto& q : piece.points) {
           const Eigen::Vector3d b = Tinv * q;
-          if (b.x() >= x0 && b.x() < x1 && std::abs(b.y()) <= P.lateral_range &&
+          const double g0 = groundStart(b.y());
+          if (b.x() >= g0 && b.x() < g0 + win && std::abs(b.y()) <= P.lateral_range &&
               camera.sees(b, 1.0)) {
             run.push_back(b);
           } else if (!run.empty()) {
@@ -173,7 +183,7 @@ ObservedDrive observeLsm(const World& world, const PieceIndex& index, const Driv
       } else {
         const Eigen::Vector3d c = Tinv * piece.centroid;
         const bool aerial = kind == GeometryKind::kPoint || m.cls == CrowdClass::kTrafficSign;
-        const double lo = aerial ? a0 : x0, hi = aerial ? a1 : x1;
+        const double lo = aerial ? a0 : groundStart(c.y()), hi = lo + win;
         if (c.x() < lo || c.x() >= hi || std::abs(c.y()) > P.lateral_range) continue;
         std::vector<Eigen::Vector3d> pts;
         for (const auto& q : piece.points) pts.push_back(Tinv * q);

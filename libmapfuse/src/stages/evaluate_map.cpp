@@ -27,6 +27,9 @@ void EvaluateMapParams::validate() const {
   requireParam(neighbour_max_distance > 0, s, "neighbour_max_distance", neighbour_max_distance,
                "neighbour_max_distance > 0");
   requireParam(coverage_radius >= 0, s, "coverage_radius", coverage_radius, "coverage_radius >= 0");
+  requireParam(coverage_range > 0, s, "coverage_range", coverage_range, "coverage_range > 0");
+  requireParam(coverage_half_fov_deg > 0 && coverage_half_fov_deg <= 90, s, "coverage_half_fov_deg",
+               coverage_half_fov_deg, "0 < coverage_half_fov_deg <= 90");
   requireParam(rpe_distance > 0, s, "rpe_distance", rpe_distance, "rpe_distance > 0");
 }
 
@@ -75,15 +78,17 @@ nlohmann::json runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
         files.push_back(e.path());
     }
     std::sort(files.begin(), files.end());
-    std::vector<Eigen::Vector3d> positions;
+    std::vector<Pose3> poses;
     for (const auto& f : files) {
       const auto t = eval::readTrueTrajectory(f);
       if (!geo::sameOrigin(t.origin, truth.origin))
         throw InputError(f.string() + ": origin differs from the truth map " + in.truth);
-      for (const auto& p : t.poses) positions.push_back(p.T_enu_body.translation());
+      for (const auto& p : t.poses) poses.push_back(p.T_enu_body);
     }
     coverage_files = files.size();
-    truth = eval::clipToCoverage(truth, positions, params.coverage_radius);
+    truth = eval::clipToCoverage(truth, poses,
+                                 eval::CoverageWedge{params.coverage_radius, params.coverage_range,
+                                                     params.coverage_half_fov_deg * M_PI / 180.0});
   }
   std::vector<eval::MapReportEntry> entries;
   VectorMap last_map;

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "mapfuse/core/se3.hpp"
 #include "mapfuse/core/vector_map.hpp"
 #include "mapfuse/eval/error_stats.hpp"
 
@@ -43,11 +44,20 @@ struct MapMetrics {
 /// origins differ).
 MapMetrics evaluateMap(const VectorMap& map, const VectorMap& truth, const MapEvalParams& params);
 
-/// @brief The part of a truth map that drives could observe: lane lines cut to their pieces
-/// within `radius` (horizontal) of a trajectory point (sampled every 0.5 m, pieces shorter than
-/// 1 m dropped), other instances kept when their centre is within `radius`.
-VectorMap clipToCoverage(const VectorMap& truth, const std::vector<Eigen::Vector3d>& trajectory,
-                         double radius);
+/// What a forward camera at a pose sees of the ground: body x in [0, range], |y| <= lateral and
+/// |y| <= x tan(half_fov).
+struct CoverageWedge {
+  double lateral = 12.0;    ///< m
+  double range = 22.0;      ///< m
+  double half_fov = 0.541;  ///< rad (31 deg); >= pi/2: everything ahead
+};
+
+/// @brief The part of a truth map that forward-looking drives could observe: lane lines cut to
+/// their pieces (sampled every 0.5 m, pieces shorter than 1 m dropped), other instances kept by
+/// their centre, where a point is covered when it lies in the wedge of some pose (what lies
+/// behind a drive's start or beside it outside the field of view was never in view).
+VectorMap clipToCoverage(const VectorMap& truth, const std::vector<Pose3>& poses,
+                         const CoverageWedge& wedge);
 
 nlohmann::json toJson(const ClassMetrics& m);
 nlohmann::json toJson(const MapMetrics& m);

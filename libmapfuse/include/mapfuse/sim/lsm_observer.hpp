@@ -16,10 +16,14 @@
 namespace mapfuse::sim {
 
 struct ObservationParams {
-  double keyframe_spacing = 8.0;          ///< m of odometry between keyframes
-  double point_spacing = 0.75;            ///< m between lane-line points
-  double lateral_range = 12.0;            ///< m, |y| limit of observed elements (body)
-  double aerial_window_offset = 6.0;      ///< m, aerial elements are assigned further ahead
+  double keyframe_spacing = 8.0;      ///< m of odometry between keyframes
+  double point_spacing = 0.75;        ///< m between lane-line points
+  double lateral_range = 12.0;        ///< m, |y| limit of observed elements (body)
+  double aerial_window_offset = 6.0;  ///< m, aerial elements are assigned further ahead
+  /// Ground points beside the road, outside the image at x_near, are observed farther ahead,
+  /// where the field of view first holds them with this many pixels to spare at the image edge
+  /// (0 = off: the fixed window [x_near, x_near + spacing) for every lateral offset).
+  double ground_edge_margin_px = 40.0;
   double ground_sigma_base = 0.03;        ///< m, ground point noise floor
   double ground_sigma_range_quad = 3e-4;  ///< 1/m, along-ray sigma grows as k r^2 (eq. 1)
   double ground_sigma_angular = 0.002;    ///< rad, across-ray sigma grows as k r

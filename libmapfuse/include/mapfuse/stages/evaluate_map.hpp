@@ -21,6 +21,8 @@ struct EvaluateMapParams {
   double neighbour_max_distance = 100.0;  ///< m
   double rpe_distance = 10.0;             ///< m
   double coverage_radius = 12.0;          ///< m, 0 = evaluate against the whole truth
+  double coverage_range = 22.0;           ///< m, forward reach of the coverage wedge
+  double coverage_half_fov_deg = 31.0;    ///< deg, half opening of the coverage wedge
 
   template <class V>
   void visit(V& v) {
@@ -36,6 +38,11 @@ struct EvaluateMapParams {
     v("coverage_radius", coverage_radius, "m",
       "with --truth-trajectories: score only truth within this distance of a true trajectory "
       "(0 = whole truth)");
+    v("coverage_range", coverage_range, "m",
+      "with --truth-trajectories: how far ahead of a true pose the truth counts as seen");
+    v("coverage_half_fov_deg", coverage_half_fov_deg, "deg",
+      "with --truth-trajectories: half opening of the seen wedge ahead of a true pose (the "
+      "camera's field of view; 90 = everything ahead)");
   }
   /// @throws ConfigError naming the field, the value and the rule.
   void validate() const;

@@ -111,6 +111,9 @@ struct SimulateParams {
     v("lateral_range", obs.lateral_range, "m", "max |y| of observed elements");
     v("aerial_window_offset", obs.aerial_window_offset, "m",
       "aerial elements are anchored this much further ahead");
+    v("ground_edge_margin_px", obs.ground_edge_margin_px, "px",
+      "ground points beside the road are observed where the image first holds them with this "
+      "margin (0: fixed window at camera_min_range)");
     v("ground_sigma_base", obs.ground_sigma_base, "m", "ground point noise floor");
     v("ground_sigma_range_quad", obs.ground_sigma_range_quad, "1/m",
       "along-ray ground sigma k r^2");
