@@ -58,7 +58,7 @@ Command: `/usr/bin/time -v aggregate -q -o OUT LSM...`
 | native CBOR map | {s['size']['cbor_kb']:.1f} KB = {s['size']['kb_per_km']:.1f} KB/km (target 20) |
 | lane pieces / fragments / instances | {s['lane_instantiation']['pieces']} / {s['lane_instantiation']['fragments']} / {s['classes']['lane_line']['instances']} |
 
-Map quality of the same run (`evaluate map`, truth clipped to 12 m around the true trajectories):
+Map quality of the same run (`evaluate map`, truth clipped to the camera view wedge of the true poses, docs/evaluate.md):
 
 {md}
 """)
