@@ -13,6 +13,18 @@ using namespace mapfuse;
 namespace {
 constexpr double kExact = 1e-12;
 constexpr double kGeoJsonTolerance = 0.02;  // m: 7 decimals of a degree is ~1 cm
+
+// Writes `doc` to `path` and requires readVectorMap to refuse it naming `field`.
+void expectRefusedAt(const std::filesystem::path& path, const io::Json& doc,
+                     const std::string& field) {
+  io::writeDocument(path, doc);
+  try {
+    io::readVectorMap(path);
+    FAIL("accepted a malformed map at " << field);
+  } catch (const ParseError& e) {
+    CHECK(e.field() == field);
+  }
+}
 }  // namespace
 
 TEST_CASE("vector map round-trips through JSON and CBOR", "[io][vector_map]") {
@@ -101,14 +113,8 @@ TEST_CASE("compact CBOR stores integer quanta and reads back exactly the rounded
 TEST_CASE("malformed compact coordinates are refused with the field", "[io][vector_map]") {
   const auto dir = test::tempDir("vm-quanta-bad");
   const auto good = io::vectorMapToJson(test::makeVectorMap(), {true, 0.01});
-  auto check = [&](io::Json d, const std::string& field) {
-    io::writeDocument(dir / "bad.cbor", d);
-    try {
-      io::readVectorMap(dir / "bad.cbor");
-      FAIL("accepted a malformed map at " << field);
-    } catch (const ParseError& e) {
-      CHECK(e.field() == field);
-    }
+  auto check = [&](const io::Json& d, const std::string& field) {
+    expectRefusedAt(dir / "bad.cbor", d, field);
   };
   auto d = good;
   d.erase("quantum");
@@ -139,14 +145,8 @@ TEST_CASE("Bezier evaluation matches the Bernstein form", "[io][vector_map]") {
 TEST_CASE("malformed vector maps are refused", "[io][vector_map]") {
   const auto dir = test::tempDir("vm-malformed");
   const auto good = io::vectorMapToJson(test::makeVectorMap());
-  auto check = [&](io::Json d, const std::string& field) {
-    io::writeDocument(dir / "bad.json", d);
-    try {
-      io::readVectorMap(dir / "bad.json");
-      FAIL("accepted a malformed map at " << field);
-    } catch (const ParseError& e) {
-      CHECK(e.field() == field);
-    }
+  auto check = [&](const io::Json& d, const std::string& field) {
+    expectRefusedAt(dir / "bad.json", d, field);
   };
   auto d = good;
   d["instances"][1]["bezier"] = io::Json::array({io::Json::array({{0, 0, 0}, {1, 1, 1}})});

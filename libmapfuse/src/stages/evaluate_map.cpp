@@ -44,6 +44,10 @@ eval::MapEvalParams EvaluateMapParams::toEval() const {
   return p;
 }
 
+eval::CoverageWedge EvaluateMapParams::coverageWedge() const {
+  return eval::CoverageWedge{coverage_radius, coverage_range, coverage_half_fov_deg * M_PI / 180.0};
+}
+
 int traversalsOf(const std::filesystem::path& map_file, const VectorMap& map) {
   const auto summary = map_file.parent_path() / "aggregate.summary.json";
   if (std::filesystem::exists(summary)) {
@@ -86,9 +90,7 @@ nlohmann::json runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
       for (const auto& p : t.poses) poses.push_back(p.T_enu_body);
     }
     coverage_files = files.size();
-    truth = eval::clipToCoverage(truth, poses,
-                                 eval::CoverageWedge{params.coverage_radius, params.coverage_range,
-                                                     params.coverage_half_fov_deg * M_PI / 180.0});
+    truth = eval::clipToCoverage(truth, poses, params.coverageWedge());
   }
   std::vector<eval::MapReportEntry> entries;
   VectorMap last_map;

@@ -47,6 +47,7 @@ struct EvaluateMapParams {
   /// @throws ConfigError naming the field, the value and the rule.
   void validate() const;
   eval::MapEvalParams toEval() const;
+  eval::CoverageWedge coverageWedge() const;
 };
 
 struct EvaluateMapInputs {
