@@ -47,6 +47,19 @@ TEST_CASE("configs/evaluate.json mirrors the evaluate map defaults", "[eval][con
         paramsToJson(defaults));
 }
 
+TEST_CASE("evaluate map refuses a coverage wedge that cannot see", "[eval][config]") {
+  stages::EvaluateMapParams p;
+  p.coverage_half_fov_deg = 0.0;
+  CHECK_THROWS_AS(p.validate(), ConfigError);
+  p.coverage_half_fov_deg = 91.0;
+  CHECK_THROWS_AS(p.validate(), ConfigError);
+  p = stages::EvaluateMapParams();
+  p.coverage_range = 0.0;
+  CHECK_THROWS_AS(p.validate(), ConfigError);
+  p.coverage_range = 22.0;
+  CHECK_NOTHROW(p.validate());
+}
+
 TEST_CASE("evaluate map app: outputs, several maps and exit codes", "[eval][app]") {
   const auto dir = test::tempDir("eval-app");
   io::writeVectorMap(dir / "truth.json", simpleMap(0.0));
