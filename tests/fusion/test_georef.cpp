@@ -53,6 +53,36 @@ TEST_CASE("georef puts keyframes at GPS level and rejects multipath fixes") {
   CHECK(injected > 0);
 }
 
+TEST_CASE("georef keeps the odometry's tilt: a near-straight drive gets no spurious roll") {
+  // GPS positions along a (near) line do not fix the rotation about that line; the odometry's
+  // gravity (its z is up) does. Fixture odometry has exact roll / pitch, so the tilt error after
+  // georef is what the GPS pose graph adds.
+  constexpr double kTiltTolDeg = 0.5;  // deg, keyframe up-axis vs truth with the tilt prior
+  const auto world = test::trueWorld();
+  test::FixtureOptions o;
+  o.gps_white = 1.5;  // m, noisy heights (and positions) as from a phone-grade receiver
+  auto worstTiltDeg = [&](const fusion::GeorefSettings& s) {
+    double worst = 0;
+    for (int t = 0; t < 4; ++t) {
+      const auto tr = test::makeTraversal(world, t, o);
+      const auto r = fusion::georeferenceLsm(tr.lsm, test::fixtureOrigin(), s, "fixture");
+      for (std::size_t k = 0; k < tr.truth.size(); ++k) {
+        const Eigen::Vector3d up_est =
+            r.lsm.keyframes[k].T_frame_body.linear().transpose() * Eigen::Vector3d::UnitZ();
+        const Eigen::Vector3d up_true = tr.truth[k].linear().transpose() * Eigen::Vector3d::UnitZ();
+        worst = std::max(worst, std::acos(std::min(1.0, up_est.dot(up_true))) * 180.0 / M_PI);
+      }
+    }
+    return worst;
+  };
+  fusion::GeorefSettings with, without;
+  without.gravity_sigma = 0;
+  const double tilt_with = worstTiltDeg(with), tilt_without = worstTiltDeg(without);
+  INFO("worst tilt error: with prior " << tilt_with << " deg, without " << tilt_without << " deg");
+  CHECK(tilt_with < kTiltTolDeg);
+  CHECK(tilt_without > 2 * kTiltTolDeg);  // the failure the prior exists for
+}
+
 TEST_CASE("georef rejects LSMs it cannot georeference") {
   const auto world = test::trueWorld();
   auto tr = test::makeTraversal(world, 0, {});

@@ -114,6 +114,27 @@ struct PosePriorFactor {
   Matrix6d L;
 };
 
+/// Gravity (tilt) prior on one pose: the world's up axis seen in the body frame, R^T e_z, equals
+/// the one the odometry measured (its frame has z up: IMU-aided odometry observes gravity, so
+/// roll and pitch do not drift). Without it a straight drive's roll about its direction of travel
+/// is free in the GPS pose graph (positions on a line fix no rotation about that line).
+/// r = (R^T e_z - up_body) / sigma; 3 residuals of rank 2, yaw is left free.
+struct GravityFactor {
+  GravityFactor(const Eigen::Vector3d& up_body, double sigma) : up(up_body), inv_sigma(1 / sigma) {}
+  template <class T>
+  bool operator()(const T* q, T* res) const {
+    Eigen::Map<const Eigen::Quaternion<T>> Q(q);
+    const Eigen::Matrix<T, 3, 1> e = Q.conjugate() * Eigen::Matrix<T, 3, 1>(T(0), T(0), T(1));
+    for (int i = 0; i < 3; ++i) res[i] = T(inv_sigma) * (e[i] - T(up[i]));
+    return true;
+  }
+  static ceres::CostFunction* create(const Eigen::Vector3d& up_body, double sigma) {
+    return new ceres::AutoDiffCostFunction<GravityFactor, 3, 4>(new GravityFactor(up_body, sigma));
+  }
+  Eigen::Vector3d up;
+  double inv_sigma;
+};
+
 /// @brief Adds a pose's two parameter blocks with the quaternion manifold.
 inline void addPose(ceres::Problem& problem, PoseParams& p) {
   problem.AddParameterBlock(p.t, 3);

@@ -141,6 +141,14 @@ GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin, const
     for (int i = 0; i + 1 < nk; ++i)
       problem.AddResidualBlock(detail::RelativePoseFactor::create(rel[i], rel_L[i]), nullptr,
                                poses[i].t, poses[i].q, poses[i + 1].t, poses[i + 1].q);
+    // Tilt from the odometry (its z is up), the same assumption as the yaw-only initial fit.
+    if (s.gravity_sigma > 0)
+      for (int i = 0; i < nk; ++i)
+        problem.AddResidualBlock(
+            detail::GravityFactor::create(
+                kfs[i].T_frame_body.linear().transpose() * Eigen::Vector3d::UnitZ(),
+                s.gravity_sigma),
+            nullptr, poses[i].q);
     // eq. (6): GPS position factors, Cauchy-robust in the first round.
     int active = 0;
     for (const auto& o : obs) {

@@ -21,6 +21,7 @@ void GeorefParams::validate() const {
                odom_min_sigma_translation, "> 0");
   requireParam(odom_min_sigma_rotation > 0, st, "odom_min_sigma_rotation", odom_min_sigma_rotation,
                "> 0");
+  requireParam(gravity_sigma >= 0, st, "gravity_sigma", gravity_sigma, ">= 0");
   requireParam(gps_max_extrapolation >= 0, st, "gps_max_extrapolation", gps_max_extrapolation,
                ">= 0");
   requireParam(cauchy_scale > 0, st, "cauchy_scale", cauchy_scale, "> 0");
@@ -37,6 +38,7 @@ fusion::GeorefSettings GeorefParams::settings() const {
   s.odom_sigma_rotation_per_m = odom_sigma_rotation_per_m;
   s.odom_min_sigma_translation = odom_min_sigma_translation;
   s.odom_min_sigma_rotation = odom_min_sigma_rotation;
+  s.gravity_sigma = gravity_sigma;
   s.gps_time_offset = gps_time_offset;
   s.gps_max_extrapolation = gps_max_extrapolation;
   s.cauchy_scale = cauchy_scale;

@@ -1,7 +1,8 @@
 #pragma once
 /// @file Georeferencing of one LSM (§4.1, eq. (4)-(6), Song et al. 2023): a Ceres pose graph over
 /// its keyframes with odometry relative-pose factors and GPS position factors, robust to multipath
-/// (Cauchy loss, then explicit chi-square rejection and re-solve).
+/// (Cauchy loss, then explicit chi-square rejection and re-solve), with a tilt (gravity) prior per
+/// keyframe from the odometry, whose frame has z up.
 #include <string>
 #include <vector>
 
@@ -15,6 +16,9 @@ struct GeorefSettings {
   double odom_sigma_rotation_per_m = 0.001;    ///< rad per metre travelled
   double odom_min_sigma_translation = 0.02;    ///< m, floor of the relative sigma
   double odom_min_sigma_rotation = 0.002;      ///< rad, floor of the relative sigma
+  /// rad, tilt prior per keyframe: roll and pitch as the odometry measured them (odom z is up);
+  /// 0 leaves them to the GPS heights alone (a straight drive's roll is then unobservable)
+  double gravity_sigma = 0.01;
   double gps_time_offset = 0.0;  ///< s, added to GPS stamps before association (receiver latency)
   double gps_max_extrapolation = 0.5;  ///< s, fixes further outside the keyframe span are dropped
   double cauchy_scale = 2.0;           ///< Cauchy loss scale on whitened GPS residuals (sigmas)

@@ -17,6 +17,7 @@ struct GeorefParams {
   double odom_sigma_rotation_per_m = 0.001;
   double odom_min_sigma_translation = 0.02;
   double odom_min_sigma_rotation = 0.002;
+  double gravity_sigma = 0.01;
   double gps_time_offset = 0.0;
   double gps_max_extrapolation = 0.5;
   double cauchy_scale = 2.0;
@@ -34,6 +35,8 @@ struct GeorefParams {
       "relative odometry rotation sigma per metre travelled");
     v("odom_min_sigma_translation", odom_min_sigma_translation, "m", "floor of odometry sigma");
     v("odom_min_sigma_rotation", odom_min_sigma_rotation, "rad", "floor of odometry sigma");
+    v("gravity_sigma", gravity_sigma, "rad",
+      "tilt prior per keyframe from the odometry, whose z is up (0: none)");
     v("gps_time_offset", gps_time_offset, "s", "added to GPS stamps before association");
     v("gps_max_extrapolation", gps_max_extrapolation, "s",
       "fixes further outside the keyframe span are dropped");
