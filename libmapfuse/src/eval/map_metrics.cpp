@@ -229,13 +229,18 @@ ClassMetrics evaluateDiscrete(const std::vector<const MapInstance*>& map,
 
 }  // namespace
 
-MapMetrics evaluateMap(const VectorMap& map_in, const VectorMap& truth, const MapEvalParams& p) {
+VectorMap inOrigin(const VectorMap& map_in, const geo::GeoOrigin& origin) {
   VectorMap map = map_in;
-  if (!geo::sameOrigin(map.origin, truth.origin)) {
-    const geo::EnuConverter from(map.origin), to(truth.origin);
-    for (auto& inst : map.instances)
-      for (auto& q : inst.points) q = to.toEnu(from.toWgs84(q));
-  }
+  if (geo::sameOrigin(map.origin, origin)) return map;
+  const geo::EnuConverter from(map.origin), to(origin);
+  for (auto& inst : map.instances)
+    for (auto& q : inst.points) q = to.toEnu(from.toWgs84(q));
+  map.origin = origin;
+  return map;
+}
+
+MapMetrics evaluateMap(const VectorMap& map_in, const VectorMap& truth, const MapEvalParams& p) {
+  const VectorMap map = inOrigin(map_in, truth.origin);
   MapMetrics out;
   for (int c = 0; c < kNumCrowdClasses; ++c) {
     const CrowdClass cls = CrowdClass(c);

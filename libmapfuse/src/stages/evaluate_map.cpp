@@ -138,7 +138,8 @@ nlohmann::json runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
   {  // the (last) map in colour over the truth in grey
     std::vector<std::vector<Eigen::Vector3d>> background;
     for (const auto& t : truth.instances) background.push_back(t.points);
-    io::writeMapPng(out_dir / "map_over_truth.png", last_map, background);
+    io::writeMapPng(out_dir / "map_over_truth.png", eval::inOrigin(last_map, truth.origin),
+                    background);
   }
   if (entries.size() > 1)
     eval::writeErrorVsTraversalsPng(out_dir / "error_vs_traversals.png", entries);

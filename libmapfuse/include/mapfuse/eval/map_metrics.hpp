@@ -40,6 +40,9 @@ struct MapMetrics {
   std::vector<ClassMetrics> classes;  ///< classes present in the truth or the map, enum order
 };
 
+/// @brief The map with its points re-expressed in ENU of `origin` (unchanged when it is the map's).
+VectorMap inOrigin(const VectorMap& map, const geo::GeoOrigin& origin);
+
 /// @brief Compares `map` with `truth` (map coordinates are converted to the truth's ENU when the
 /// origins differ).
 MapMetrics evaluateMap(const VectorMap& map, const VectorMap& truth, const MapEvalParams& params);
