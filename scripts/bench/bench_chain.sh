@@ -28,9 +28,21 @@ run() {
   /usr/bin/time -f '%M' -o "$tmp/$name.rss" "${mk[@]}" map > /dev/null
   local t1; t1=$(date +%s.%N)
   "${mk[@]}" > /dev/null
-  python3 - "$name" "$*" "$tile" "$sim" "$work" "$t0" "$t1" "$(cat "$tmp/$name.rss")" >> "$rows" <<'PY'
+  # The same chain as three commands, one process per stage (as typed in a shell): no per-drive
+  # georef processes (each costs ~12 ms of start-up on this VM, see docs/performance-chain.md).
+  local direct=0
+  if [[ -z $tile ]]; then
+    local d="$tmp/$name.direct" d0 d1
+    d0=$(date +%s.%N)
+    "$bin/georef" -q --origin "$(cat "$work/origin.txt")" -o "$d/georef" "$sim"/lsm/*.cbor > /dev/null
+    "$bin/align" -q -o "$d/align" "$d"/georef/*.cbor > /dev/null
+    "$bin/aggregate" -q -o "$d/aggregate" "$d"/align/*.cbor > /dev/null
+    d1=$(date +%s.%N)
+    direct=$(awk "BEGIN { print $d1 - $d0 }")
+  fi
+  python3 - "$name" "$*" "$tile" "$sim" "$work" "$t0" "$t1" "$(cat "$tmp/$name.rss")" "$direct" >> "$rows" <<'PY'
 import glob, json, sys
-name, args, tile, sim, work, t0, t1, rss = sys.argv[1:]
+name, args, tile, sim, work, t0, t1, rss, direct = sys.argv[1:]
 driven_km = json.load(open(f"{sim}/simulate.summary.json"))["km_driven"]
 ev = json.load(open(f"{work}/evaluate/evaluate.summary.json"))
 def summary(stage):
@@ -38,6 +50,7 @@ def summary(stage):
 agg = summary("stitch" if tile else "aggregate")
 size = agg.get("size", {})
 print(json.dumps({"name": name, "args": args, "tile": tile, "seconds": float(t1) - float(t0),
+                  "direct_seconds": float(direct),
                   "rss_mb": int(rss) / 1024, "road_km": size.get("road_km"),
                   "kb_per_km": size.get("kb_per_km"), "tiles": len(glob.glob(f"{work}/tiles/*/")),
                   "driven_km": driven_km,
@@ -84,14 +97,18 @@ lines = ["# Performance: the crowd chain (georef -> align -> aggregate)", "",
          "- road km: aggregate's `size.road_km`, the length of road the drives covered (trajectories"
          " merged within 4 m); driven km: the sum over all drives (simulate's `km_driven`). Road km/h"
          " is the issue's figure; driven km/h is the volume of crowd data the chain digests per hour.",
+         "- direct s: the same chain as three commands, `georef -o geo/ lsm/*.cbor && align -o al/"
+         " geo/*.cbor && aggregate -o map/ al/*.cbor` (one process per stage; the make batch starts one"
+         " georef process per drive, ~12 ms of start-up each on this VM: 27 shared libraries through"
+         " Ceres, page faults that do not overlap under -j2). Same outputs.",
          "- peak MB: the largest single process of the chain (GNU time over make).",
          "- quality columns: `evaluate map` with its defaults (lane samples match within 0.5 m)."
          " With 10 traversals the drives' GPS biases (1-3 m each) average to a common offset of"
          " about 0.6-0.8 m (see the discrete elements' absolute error in evaluate.summary.json), so"
          " many lane lines fall outside the 0.5 m tolerance: completeness here measures absolute"
          " placement more than coverage. Relative precision of lane widths is 0.03 m.", "",
-         "| run | traversals | road km | driven km | chain s | road km/h | driven km/h | peak MB | MB per road km | map KB/km | lane completeness | lane abs. error m |",
-         "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+         "| run | traversals | road km | driven km | chain s (make) | road km/h (make) | direct s | road km/h (direct) | driven km/h (make) | peak MB | MB per road km | map KB/km | lane completeness | lane abs. error m |",
+         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
 by = {r["name"]: r for r in rows}
 for r in rows:  # stitch reports no size: the tiled run covers the road of its untiled twin
     twin = by.get(r["name"].replace("-tiled", ""))
@@ -104,6 +121,8 @@ for r in rows:
     trav = r["args"].split("--traversals ")[1].split()[0]
     lines.append(f"| {r['name']}{' (%d tiles)' % r['tiles'] if r['tile'] else ''} | {trav} | {km:.2f} |"
                  f" {r['driven_km']:.1f} | {r['seconds']:.1f} | {3600 * km / r['seconds']:.0f} |"
+                 + (f" {r['direct_seconds']:.1f} | {3600 * km / r['direct_seconds']:.0f} |"
+                    if r['direct_seconds'] > 0 else " – | – |") +
                  f" {3600 * r['driven_km'] / r['seconds']:.0f} | {r['rss_mb']:.0f} |"
                  f" {r['rss_mb'] / km:.0f} | {'%.1f' % r['kb_per_km'] if r['kb_per_km'] else '–'} |"
                  f" {lane.get('completeness', float('nan')):.3f} | {absmean(lane):.3f} |")

@@ -1,7 +1,9 @@
 // Multi-trajectory pose graph (eq. (8)-(11)) and GBA (eq. (12)-(14)), Song et al. 2023, in Ceres.
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cmath>
 
+#include "element_factor.hpp"
 #include "factors.hpp"
 #include "mapfuse/fusion/align.hpp"
 #include "mapfuse/fusion/voxel_hash.hpp"
@@ -25,11 +27,11 @@ PoseSet makePoses(const std::vector<Lsm>& lsms) {
 
 // eq. (9) priors and eq. (10) odometry, both from the georeferenced keyframes.
 void addPriorsAndOdometry(ceres::Problem& problem, PoseSet& P, const std::vector<Lsm>& priors,
-                          const AlignSettings& s) {
+                          const AlignSettings& s, bool yaw_only = false) {
   for (std::size_t l = 0; l < P.size(); ++l) {
     const auto& kfs = priors[l].keyframes;
     for (std::size_t k = 0; k < P[l].size(); ++k) {
-      detail::addPose(problem, P[l][k]);
+      detail::addPose(problem, P[l][k], yaw_only);
       Matrix6d cov = Matrix6d::Zero();
       cov.topLeftCorner<3, 3>() = kfs[k].covariance.topLeftCorner<3, 3>();
       cov.diagonal().tail<3>().setConstant(s.prior_rotation_sigma * s.prior_rotation_sigma);
@@ -50,7 +52,12 @@ void addPriorsAndOdometry(ceres::Problem& problem, PoseSet& P, const std::vector
   }
 }
 
-double solve(ceres::Problem& problem, const AlignSettings& s, bool* converged) {
+// cg_iterations > 0: inexact Gauss-Newton steps by conjugate gradients on the normal equations
+// (CGNR, Jacobi preconditioner): GBA's normal equations hold a dense clique of every traversal's
+// keyframes at each place, which a sparse Cholesky factorizes at O((traversals * dof)^3) per
+// place; CG costs O(nonzeros of J) per iteration.
+double solve(ceres::Problem& problem, const AlignSettings& s, bool* converged,
+             int cg_iterations = 0) {
   ceres::Solver::Options opt;
   opt.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   opt.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
@@ -64,6 +71,11 @@ double solve(ceres::Problem& problem, const AlignSettings& s, bool* converged) {
   if (ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::CX_SPARSE))
     opt.sparse_linear_algebra_library_type = ceres::CX_SPARSE;
 #endif
+  if (cg_iterations > 0) {
+    opt.linear_solver_type = ceres::CGNR;
+    opt.preconditioner_type = ceres::JACOBI;
+    opt.max_linear_solver_iterations = cg_iterations;
+  }
   ceres::Solver::Summary summary;
   ceres::Solve(opt, &problem, &summary);
   if (converged) *converged = summary.termination_type == ceres::CONVERGENCE;
@@ -75,38 +87,18 @@ void writeBack(std::vector<Lsm>& lsms, const PoseSet& P) {
     for (std::size_t k = 0; k < P[l].size(); ++k) lsms[l].keyframes[k].T_frame_body = P[l][k].get();
 }
 
-// Point-to-line (n_dirs = 1, d = line direction) or point-to-plane residual between a point of
-// LSM A and a point of LSM B, both in their anchors' body frames: eq. (13) / (14).
-struct ElementFactor {
-  Eigen::Vector3d pa, qb, dir_b;  // dir_b: line direction or plane normal in body b
-  bool plane;
-  double inv_sigma;
-  template <class T>
-  bool operator()(const T* ta, const T* qa, const T* tb, const T* qbq, T* res) const {
-    Eigen::Map<const Eigen::Matrix<T, 3, 1>> TA(ta), TB(tb);
-    Eigen::Map<const Eigen::Quaternion<T>> QA(qa), QB(qbq);
-    const Eigen::Matrix<T, 3, 1> d = QA * pa.cast<T>() + TA - (QB * qb.cast<T>() + TB);
-    const Eigen::Matrix<T, 3, 1> u = QB * dir_b.cast<T>();
-    if (plane) {
-      res[0] = T(inv_sigma) * u.dot(d);
-      res[1] = T(0);
-      res[2] = T(0);
-    } else {
-      const Eigen::Matrix<T, 3, 1> perp = d - u * u.dot(d);
-      for (int i = 0; i < 3; ++i) res[i] = T(inv_sigma) * perp[i];
-    }
-    return true;
-  }
-};
-
 struct ElementPoint {
   int lsm, kf;
   Eigen::Vector3d body;  // point in anchor body frame
   Eigen::Vector3d dir;   // line direction / plane normal in anchor body frame
   bool plane;
+  double weight;  // sqrt of the number of line points it stands for (thinned lines)
 };
 
-std::vector<ElementPoint> elementPoints(const std::vector<Lsm>& lsms, CrowdClass cls) {
+// Every `line_stride`-th point of a line element (its neighbours add little to a point-to-line
+// constraint), weighted so that the line keeps its information; all points of other elements.
+std::vector<ElementPoint> elementPoints(const std::vector<Lsm>& lsms, CrowdClass cls,
+                                        int line_stride) {
   std::vector<ElementPoint> out;
   for (int l = 0; l < int(lsms.size()); ++l)
     for (const Element& e : lsms[l].elements) {
@@ -123,8 +115,10 @@ std::vector<ElementPoint> elementPoints(const std::vector<Lsm>& lsms, CrowdClass
         for (const auto& p : pts) C += (p - m) * (p - m).transpose();
         normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(C).eigenvectors().col(0);
       }
-      for (std::size_t i = 0; i < pts.size(); ++i) {
-        ElementPoint ep{l, k, pts[i], Eigen::Vector3d::UnitZ(), kind == GeometryKind::kPlanar};
+      const std::size_t stride = kind == GeometryKind::kLine ? std::max(1, line_stride) : 1;
+      for (std::size_t i = 0; i < pts.size(); i += stride) {
+        ElementPoint ep{l, k, pts[i], Eigen::Vector3d::UnitZ(), kind == GeometryKind::kPlanar,
+                        std::sqrt(double(std::min(stride, pts.size() - i)))};
         if (kind == GeometryKind::kLine && pts.size() >= 2) {
           const std::size_t a = i == 0 ? 0 : i - 1, b = std::min(pts.size() - 1, i + 1);
           ep.dir = (pts[b] - pts[a]).normalized();
@@ -142,10 +136,9 @@ std::vector<ElementPoint> elementPoints(const std::vector<Lsm>& lsms, CrowdClass
 double solveMultiPoseGraph(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors,
                            std::vector<InterConstraint>& constraints, const AlignSettings& s,
                            bool* converged) {
-  const std::vector<Lsm> start = lsms;
   double cost = 0;
   for (int round = 0; round < std::max(1, s.graph_rejection_rounds); ++round) {
-    lsms = start;
+    // Later rounds start from the previous solution: only the dropped constraints changed.
     PoseSet P = makePoses(lsms);
     ceres::Problem problem;
     addPriorsAndOdometry(problem, P, priors, s);
@@ -183,11 +176,13 @@ double solveGba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const Al
   for (int round = 0; round < std::max(1, s.gba_rounds); ++round) {
     PoseSet P = makePoses(lsms);
     ceres::Problem problem;
-    addPriorsAndOdometry(problem, P, priors, s);
+    // 4 DOF: roll and pitch are held where georef's gravity prior put them; the normal equations
+    // (dense cliques of every traversal's keyframes at one place) shrink from 6 to 4 per pose.
+    addPriorsAndOdometry(problem, P, priors, s, s.gba_dof == 4);
     int count = 0;
     for (int c = 0; c < kNumCrowdClasses; ++c) {
       const auto cls = CrowdClass(c);
-      const std::vector<ElementPoint> pts = elementPoints(lsms, cls);
+      const std::vector<ElementPoint> pts = elementPoints(lsms, cls, s.gba_line_stride);
       if (pts.empty()) continue;
       std::vector<Eigen::Vector3d> world(pts.size());
       for (std::size_t i = 0; i < pts.size(); ++i)
@@ -223,8 +218,8 @@ double solveGba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const Al
           const int j = partners[(i + k * n / keep) % n].point;
           const ElementPoint& a = pts[i];
           const ElementPoint& b = pts[j];
-          auto* f = new ElementFactor{a.body, b.body, b.dir, b.plane, 1.0 / s.gba_point_sigma};
-          problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ElementFactor, 3, 3, 4, 3, 4>(f),
+          problem.AddResidualBlock(new detail::ElementCost(detail::ElementResidual{
+                                       a.body, b.body, b.dir, b.plane, a.weight / s.gba_point_sigma}),
                                    new ceres::HuberLoss(s.gba_huber), P[a.lsm][a.kf].t,
                                    P[a.lsm][a.kf].q, P[b.lsm][b.kf].t, P[b.lsm][b.kf].q);
           ++count;
@@ -232,7 +227,7 @@ double solveGba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const Al
       }
     }
     if (residuals) *residuals = count;
-    cost = solve(problem, s, converged);
+    cost = solve(problem, s, converged, s.gba_cg_iterations);
     writeBack(lsms, P);
   }
   return cost;

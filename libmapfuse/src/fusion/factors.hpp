@@ -3,6 +3,7 @@
 /// libmapfuse/src/fusion; Ceres stays out of public headers). A pose is two parameter blocks:
 /// translation t[3] (Euclidean) and unit quaternion q[4] (Eigen order x, y, z, w, with
 /// ceres::EigenQuaternionManifold), meaning T_world_body.
+#include <ceres/autodiff_manifold.h>
 #include <ceres/ceres.h>
 #include <ceres/rotation.h>
 
@@ -135,10 +136,35 @@ struct GravityFactor {
   double inv_sigma;
 };
 
-/// @brief Adds a pose's two parameter blocks with the quaternion manifold.
-inline void addPose(ceres::Problem& problem, PoseParams& p) {
+/// Heading-only update of a unit quaternion (Eigen order x, y, z, w): q <- Rz(delta) q, a
+/// rotation about the world's up axis. Roll and pitch stay as they are (observed by gravity: the
+/// 4-DOF pose graph of VINS-Mono, Qin et al. 2018); tangent size 1.
+struct YawPlus {
+  template <class T>
+  bool Plus(const T* x, const T* delta, T* x_plus) const {
+    const Eigen::Quaternion<T> dq(ceres::cos(delta[0] / T(2)), T(0), T(0),
+                                  ceres::sin(delta[0] / T(2)));
+    Eigen::Map<Eigen::Quaternion<T>> out(x_plus);
+    out = dq * Eigen::Map<const Eigen::Quaternion<T>>(x);
+    return true;
+  }
+  template <class T>
+  bool Minus(const T* y, const T* x, T* delta) const {
+    const Eigen::Quaternion<T> dq = Eigen::Map<const Eigen::Quaternion<T>>(y) *
+                                    Eigen::Map<const Eigen::Quaternion<T>>(x).conjugate();
+    delta[0] = T(2) * ceres::atan2(dq.z(), dq.w());
+    return true;
+  }
+};
+
+/// @brief Adds a pose's two parameter blocks: the full quaternion manifold (6 DOF) or, with
+/// `yaw_only`, heading only (4 DOF: x, y, z, yaw).
+inline void addPose(ceres::Problem& problem, PoseParams& p, bool yaw_only = false) {
   problem.AddParameterBlock(p.t, 3);
-  problem.AddParameterBlock(p.q, 4, new ceres::EigenQuaternionManifold);
+  if (yaw_only)
+    problem.AddParameterBlock(p.q, 4, new ceres::AutoDiffManifold<YawPlus, 4, 1>);
+  else
+    problem.AddParameterBlock(p.q, 4, new ceres::EigenQuaternionManifold);
 }
 
 }  // namespace mapfuse::fusion::detail

@@ -42,6 +42,9 @@ void AlignParams::validate() const {
   requireParam(gba_huber > 0, st, "gba_huber", gba_huber, "> 0");
   requireParam(gba_rounds >= 1, st, "gba_rounds", gba_rounds, ">= 1");
   requireParam(gba_max_partners >= 0, st, "gba_max_partners", gba_max_partners, ">= 0");
+  requireParam(gba_dof == 4 || gba_dof == 6, st, "gba_dof", gba_dof, "4 or 6");
+  requireParam(gba_line_stride >= 1, st, "gba_line_stride", gba_line_stride, ">= 1");
+  requireParam(gba_cg_iterations >= 0, st, "gba_cg_iterations", gba_cg_iterations, ">= 0");
   requireParam(function_tolerance > 0 && function_tolerance < 1, st, "function_tolerance",
                function_tolerance, "in (0, 1)");
   requireParam(solver_iterations >= 1, st, "solver_iterations", solver_iterations, ">= 1");
@@ -77,6 +80,9 @@ fusion::AlignSettings AlignParams::settings() const {
   s.gba_huber = gba_huber;
   s.gba_rounds = gba_rounds;
   s.gba_max_partners = gba_max_partners;
+  s.gba_dof = gba_dof;
+  s.gba_line_stride = gba_line_stride;
+  s.gba_cg_iterations = gba_cg_iterations;
   s.function_tolerance = function_tolerance;
   s.solver_iterations = solver_iterations;
   s.threads = threads;

@@ -39,6 +39,9 @@ struct AlignParams {
   double gba_huber = 1.0;
   int gba_rounds = 2;
   int gba_max_partners = 2;
+  int gba_dof = 6;
+  int gba_line_stride = 2;
+  int gba_cg_iterations = 50;
   int solver_iterations = 100;
   double function_tolerance = 1e-4;
   int threads = 2;
@@ -73,6 +76,12 @@ struct AlignParams {
     v("gba_rounds", gba_rounds, "", "GBA association / solve rounds");
     v("gba_max_partners", gba_max_partners, "",
       "other traversals each element point is tied to (0 = all)");
+    v("gba_dof", gba_dof, "",
+      "GBA pose freedom: 4 (x, y, z, yaw; roll and pitch held from georef) or 6");
+    v("gba_line_stride", gba_line_stride, "",
+      "GBA uses every n-th point of a line element, weighted by sqrt(n)");
+    v("gba_cg_iterations", gba_cg_iterations, "",
+      "GBA linear solves: conjugate gradients (at most n iterations), 0 = sparse Cholesky");
     v("solver_iterations", solver_iterations, "", "Levenberg-Marquardt iterations per solve");
     v("function_tolerance", function_tolerance, "", "LM stop: relative cost change below");
     v("threads", threads, "", "OpenMP threads over pairs / Ceres threads");
