@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <random>
 
 #include "mapfuse/aggregate/bezier_fit.hpp"
 #include "mapfuse/aggregate/dbscan.hpp"
@@ -66,6 +67,41 @@ TEST_CASE("Bezier chain fits a straight line with one segment and an arc within 
     const Vec3 t_out = (fit.chain[i][1] - fit.chain[i][0]).normalized();
     CHECK(t_in.dot(t_out) > std::cos(1e-6));
   }
+}
+
+TEST_CASE("Bezier handles stay bounded when the end tangents disagree with the data",
+          "[aggregate][bezier]") {
+  // A short kinked piece whose end tangents (from the neighbouring metres) point across it: the
+  // least-squares handle lengths explode (a 1.6 m piece of a Karlsruhe lane got handles of 150 m
+  // and a 144 m ghost line). Handles longer than the chord fall back to chord / 3, and the
+  // chain splits until it holds the data.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  BezierFitParams params;
+  int exploded_before_bound = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<Vec3> p = {
+        {0, 0, 0}, {0.8 + 0.5 * uni(rng), 0.6 * uni(rng), 0}, {1.5, 0.3 * uni(rng), 0}};
+    const double chord = (p.back() - p.front()).norm();
+    const Vec3 t0 = Vec3(uni(rng), uni(rng), 0).normalized();
+    const Vec3 t1 = Vec3(uni(rng), uni(rng), 0).normalized();
+    std::vector<double> u = {
+        0.0, (p[1] - p[0]).norm() / ((p[1] - p[0]).norm() + (p[2] - p[1]).norm()), 1.0};
+    const BezierSegment seg = fitCubicBezier(p, u, t0, t1, params.reparam_iterations);
+    const double a = (seg[1] - seg[0]).norm(), b = (seg[2] - seg[3]).norm();
+    CHECK(a <= chord + 1e-9);
+    CHECK(b <= chord + 1e-9);
+    if (std::max(a, b) > 0.99 * chord / 3 && std::max(a, b) < 1.01 * chord / 3)
+      ++exploded_before_bound;
+    // the whole chain through the same points stays near them
+    const auto fit = fitBezierChain(p, params);
+    for (const auto& q : io::sampleBezierChain(fit.chain, 0.05)) {
+      double near = 1e9;
+      for (const auto& r : p) near = std::min(near, (q - r).norm());
+      CHECK(near <= chord);
+    }
+  }
+  CHECK(exploded_before_bound > 0);  // the fallback was exercised
 }
 
 TEST_CASE("polygon IoU and rectangles", "[aggregate][geometry]") {

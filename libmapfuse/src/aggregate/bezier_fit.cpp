@@ -62,7 +62,7 @@ struct Fitter {
       err[i] = (io::bezierPoint(seg, u[i]) - q[i]).norm();
       if (err[i] > worst) worst = err[i], worst_i = i;
     }
-    if (worst <= params.max_deviation || q.size() <= 3) {
+    if (worst <= params.max_deviation || q.size() <= 2) {
       chain.push_back(seg);
       max_dev = std::max(max_dev, worst);
       for (double e : err) sum_sq += e * e;
@@ -107,8 +107,11 @@ BezierSegment fitCubicBezier(const std::vector<Vec3>& p, std::vector<double>& u,
     const double det = C.determinant();
     if (std::abs(det) > 1e-12) {
       const Eigen::Vector2d ab = C.inverse() * X;
-      // Schneider's fallback when the solution degenerates (tiny or negative handles)
-      if (ab(0) > 1e-3 * chord && ab(1) > 1e-3 * chord) a = ab(0), b = ab(1);
+      // Schneider's fallback when the solution degenerates: tiny or negative handles, or handles
+      // longer than the chord (end tangents at odds with the data; the curve would swing metres
+      // away from a short piece)
+      if (ab(0) > 1e-3 * chord && ab(1) > 1e-3 * chord && ab(0) <= chord && ab(1) <= chord)
+        a = ab(0), b = ab(1);
     }
     seg = {P0, P0 + a * t0, P3 + b * t1, P3};
     if (it == iterations) break;
