@@ -10,7 +10,7 @@
 using namespace mapfuse::fusion::detail;
 
 namespace {
-constexpr double kStep = 1e-6;       // finite-difference step (tangent units)
+constexpr double kStep = 1e-6;         // finite-difference step (tangent units)
 constexpr double kJacobianTol = 1e-5;  // abs, residuals are O(10) (1/sigma = 20, d ~ 1 m)
 
 struct Setup {
@@ -120,7 +120,8 @@ TEST_CASE("yaw-only manifold turns about the world's up axis and keeps roll and 
   const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
   // the body's view of "up" (its tilt) is unchanged, its heading turned by delta
   CHECK((out.conjugate() * up - q.conjugate() * up).norm() < 1e-12);
-  const Eigen::Vector3d fwd_q = q * Eigen::Vector3d::UnitX(), fwd_o = out * Eigen::Vector3d::UnitX();
+  const Eigen::Vector3d fwd_q = q * Eigen::Vector3d::UnitX(),
+                        fwd_o = out * Eigen::Vector3d::UnitX();
   CHECK(std::atan2(fwd_o.y(), fwd_o.x()) - std::atan2(fwd_q.y(), fwd_q.x()) ==
         Approx(delta).margin(1e-12));
   double back = 0;

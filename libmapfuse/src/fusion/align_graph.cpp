@@ -117,7 +117,11 @@ std::vector<ElementPoint> elementPoints(const std::vector<Lsm>& lsms, CrowdClass
       }
       const std::size_t stride = kind == GeometryKind::kLine ? std::max(1, line_stride) : 1;
       for (std::size_t i = 0; i < pts.size(); i += stride) {
-        ElementPoint ep{l, k, pts[i], Eigen::Vector3d::UnitZ(), kind == GeometryKind::kPlanar,
+        ElementPoint ep{l,
+                        k,
+                        pts[i],
+                        Eigen::Vector3d::UnitZ(),
+                        kind == GeometryKind::kPlanar,
                         std::sqrt(double(std::min(stride, pts.size() - i)))};
         if (kind == GeometryKind::kLine && pts.size() >= 2) {
           const std::size_t a = i == 0 ? 0 : i - 1, b = std::min(pts.size() - 1, i + 1);
@@ -218,10 +222,11 @@ double solveGba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const Al
           const int j = partners[(i + k * n / keep) % n].point;
           const ElementPoint& a = pts[i];
           const ElementPoint& b = pts[j];
-          problem.AddResidualBlock(new detail::ElementCost(detail::ElementResidual{
-                                       a.body, b.body, b.dir, b.plane, a.weight / s.gba_point_sigma}),
-                                   new ceres::HuberLoss(s.gba_huber), P[a.lsm][a.kf].t,
-                                   P[a.lsm][a.kf].q, P[b.lsm][b.kf].t, P[b.lsm][b.kf].q);
+          problem.AddResidualBlock(
+              new detail::ElementCost(detail::ElementResidual{a.body, b.body, b.dir, b.plane,
+                                                              a.weight / s.gba_point_sigma}),
+              new ceres::HuberLoss(s.gba_huber), P[a.lsm][a.kf].t, P[a.lsm][a.kf].q,
+              P[b.lsm][b.kf].t, P[b.lsm][b.kf].q);
           ++count;
         }
       }
