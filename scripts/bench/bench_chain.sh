@@ -29,7 +29,7 @@ run() {
   local t1; t1=$(date +%s.%N)
   "${mk[@]}" > /dev/null
   # The same chain as three commands, one process per stage (as typed in a shell): no per-drive
-  # georef processes (each costs ~12 ms of start-up on this VM, see docs/performance-chain.md).
+  # georef processes (see docs/performance-chain.md).
   local direct=0
   if [[ -z $tile ]]; then
     local d="$tmp/$name.direct" d0 d1
@@ -99,8 +99,8 @@ lines = ["# Performance: the crowd chain (georef -> align -> aggregate)", "",
          " is the issue's figure; driven km/h is the volume of crowd data the chain digests per hour.",
          "- direct s: the same chain as three commands, `georef -o geo/ lsm/*.cbor && align -o al/"
          " geo/*.cbor && aggregate -o map/ al/*.cbor` (one process per stage; the make batch starts one"
-         " georef process per drive, ~12 ms of start-up each on this VM: 27 shared libraries through"
-         " Ceres, page faults that do not overlap under -j2). Same outputs.",
+         " georef process per drive, 15-17 ms each on this VM, most of it loading the executable:"
+         " page faults that do not overlap under -j2). Same outputs.",
          "- peak MB: the largest single process of the chain (GNU time over make).",
          "- quality columns: `evaluate map` with its defaults (lane samples match within 0.5 m)."
          " With 10 traversals the drives' GPS biases (1-3 m each) average to a common offset of"
