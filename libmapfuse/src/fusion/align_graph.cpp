@@ -232,7 +232,10 @@ double solveGba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const Al
       }
     }
     if (residuals) *residuals = count;
-    cost = solve(problem, s, converged, s.gba_cg_iterations);
+    // Rounds before the last only feed the next association: a looser stop suffices.
+    AlignSettings rs = s;
+    if (round + 1 < s.gba_rounds) rs.function_tolerance = s.gba_early_round_tolerance;
+    cost = solve(problem, rs, converged, s.gba_cg_iterations);
     writeBack(lsms, P);
   }
   return cost;

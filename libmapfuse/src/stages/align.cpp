@@ -45,6 +45,8 @@ void AlignParams::validate() const {
   requireParam(gba_dof == 4 || gba_dof == 6, st, "gba_dof", gba_dof, "4 or 6");
   requireParam(gba_line_stride >= 1, st, "gba_line_stride", gba_line_stride, ">= 1");
   requireParam(gba_cg_iterations >= 0, st, "gba_cg_iterations", gba_cg_iterations, ">= 0");
+  requireParam(gba_early_round_tolerance > 0 && gba_early_round_tolerance < 1, st,
+               "gba_early_round_tolerance", gba_early_round_tolerance, "in (0, 1)");
   requireParam(function_tolerance > 0 && function_tolerance < 1, st, "function_tolerance",
                function_tolerance, "in (0, 1)");
   requireParam(solver_iterations >= 1, st, "solver_iterations", solver_iterations, ">= 1");
@@ -83,6 +85,7 @@ fusion::AlignSettings AlignParams::settings() const {
   s.gba_dof = gba_dof;
   s.gba_line_stride = gba_line_stride;
   s.gba_cg_iterations = gba_cg_iterations;
+  s.gba_early_round_tolerance = gba_early_round_tolerance;
   s.function_tolerance = function_tolerance;
   s.solver_iterations = solver_iterations;
   s.threads = threads;

@@ -55,7 +55,8 @@ struct AlignSettings {
   int gba_rounds = 2;                     ///< association / solve rounds
   int gba_max_partners = 2;               ///< other traversals tied to each point (0 = all)
   int gba_dof = 6;  ///< 6: full pose; 4: x, y, z, yaw (roll / pitch held where georef put them)
-  int gba_line_stride = 2;      ///< GBA uses every n-th point of a line element, weighted sqrt(n)
+  int gba_line_stride = 2;  ///< GBA uses every n-th point of a line element, weighted sqrt(n)
+  double gba_early_round_tolerance = 1e-3;  ///< LM stop of GBA rounds before the last
   int gba_cg_iterations = 50;   ///< > 0: GBA steps by CGNR (at most this many); 0: sparse Cholesky
   int solver_iterations = 100;  ///< Levenberg-Marquardt iterations per solve
   double function_tolerance = 1e-4;  ///< LM stops when |cost change| / cost falls below

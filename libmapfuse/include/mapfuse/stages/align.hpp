@@ -42,6 +42,7 @@ struct AlignParams {
   int gba_dof = 6;
   int gba_line_stride = 2;
   int gba_cg_iterations = 50;
+  double gba_early_round_tolerance = 1e-3;
   int solver_iterations = 100;
   double function_tolerance = 1e-4;
   int threads = 2;
@@ -82,6 +83,8 @@ struct AlignParams {
       "GBA uses every n-th point of a line element, weighted by sqrt(n)");
     v("gba_cg_iterations", gba_cg_iterations, "",
       "GBA linear solves: conjugate gradients (at most n iterations), 0 = sparse Cholesky");
+    v("gba_early_round_tolerance", gba_early_round_tolerance, "",
+      "LM stop (relative cost change) of the GBA rounds before the last");
     v("solver_iterations", solver_iterations, "", "Levenberg-Marquardt iterations per solve");
     v("function_tolerance", function_tolerance, "", "LM stop: relative cost change below");
     v("threads", threads, "", "OpenMP threads over pairs / Ceres threads");
