@@ -70,16 +70,22 @@ TEST_CASE("truth errors: keyframe ATE with a true trajectory in another ENU orig
   eval::TrueTrajectory t;
   t.drive_id = "a";
   t.origin = truth_origin;
-  for (int k = 0; k < 5; ++k) {
-    Keyframe kf;
-    kf.id = k;
-    kf.T_frame_body.translation() = Eigen::Vector3d(10.0 * k, 0.0, 0.0);
-    l.keyframes.push_back(kf);
+  // Keyframes are matched by stamp, not id (lsm-build numbers its own keyframes): ids here are
+  // offset by 100, and keyframe 4 lies halfway between the true poses at 4 s and 5 s.
+  for (int k = 0; k < 6; ++k) {
     eval::TruePose p;
     p.id = k;
+    p.stamp = double(k);
     p.T_enu_body.translation() =
         truth_enu.toEnu(lsm_enu.toWgs84(Eigen::Vector3d(10.0 * k, -0.5, 0.0)));
     t.poses.push_back(p);
+  }
+  for (int k = 0; k < 5; ++k) {
+    Keyframe kf;
+    kf.id = 100 + k;
+    kf.stamp = k < 4 ? double(k) : 4.5;
+    kf.T_frame_body.translation() = Eigen::Vector3d(10.0 * kf.stamp, 0.0, 0.0);
+    l.keyframes.push_back(kf);
   }
   const auto r = fusion::trajectoryTruthErrors({l}, {{"a", t}});
   CHECK(r.drives == 1);

@@ -34,8 +34,16 @@ double angleDeg(const Eigen::Matrix3d& R) {
 }
 
 constexpr double kSameStamp = 1e-6;  // s: stamps this close are the same instant
+}  // namespace
 
-/// The true pose at `stamp` from poses sorted by stamp, or nullopt outside their span.
+std::vector<const TruePose*> sortedByStamp(const TrueTrajectory& truth) {
+  std::vector<const TruePose*> by_stamp;
+  for (const auto& p : truth.poses) by_stamp.push_back(&p);
+  std::sort(by_stamp.begin(), by_stamp.end(),
+            [](const TruePose* a, const TruePose* b) { return a->stamp < b->stamp; });
+  return by_stamp;
+}
+
 std::optional<Pose3> truePoseAt(const std::vector<const TruePose*>& sorted, double stamp) {
   auto after = std::lower_bound(sorted.begin(), sorted.end(), stamp,
                                 [](const TruePose* p, double s) { return p->stamp < s; });
@@ -47,7 +55,6 @@ std::optional<Pose3> truePoseAt(const std::vector<const TruePose*>& sorted, doub
   const TruePose& b = **after;
   return interpolate(a.T_enu_body, b.T_enu_body, (stamp - a.stamp) / (b.stamp - a.stamp));
 }
-}  // namespace
 
 TrajectoryMetrics compareTrajectory(const Lsm& lsm, const TrueTrajectory& truth,
                                     double rpe_distance, const std::string& source) {
@@ -60,10 +67,7 @@ TrajectoryMetrics compareTrajectory(const Lsm& lsm, const TrueTrajectory& truth,
   // Keyframes are matched to the truth by time stamp (ids differ when lsm-build chose its own
   // keyframes from raw frames): the true pose at a stamp, interpolated between its two
   // neighbours when no true pose has that stamp.
-  std::vector<const TruePose*> by_stamp;
-  for (const auto& p : truth.poses) by_stamp.push_back(&p);
-  std::sort(by_stamp.begin(), by_stamp.end(),
-            [](const TruePose* a, const TruePose* b) { return a->stamp < b->stamp; });
+  const std::vector<const TruePose*> by_stamp = sortedByStamp(truth);
   std::vector<std::pair<Pose3, Pose3>> pairs;  // (estimate, truth) in keyframe order
   for (const auto& k : lsm.keyframes) {
     const std::optional<Pose3> t = truePoseAt(by_stamp, k.stamp);

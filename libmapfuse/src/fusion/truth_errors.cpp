@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <unordered_map>
 
 #include "mapfuse/core/error.hpp"
@@ -142,18 +143,17 @@ TrajectoryTruthErrors trajectoryTruthErrors(
     const geo::GeoOrigin& truth_origin = it->second.origin;
     const bool convert = !geo::sameOrigin(*l.origin, truth_origin);
     const geo::EnuConverter from(truth_origin), to(*l.origin);
-    std::unordered_map<int64_t, Eigen::Vector3d> by_id;
-    for (const auto& p : it->second.poses) {
-      const Eigen::Vector3d t = p.T_enu_body.translation();
-      by_id[p.id] = convert ? to.toEnu(from.toWgs84(t)) : t;
-    }
+    // matched by stamp, as evaluate does (lsm-build's keyframe ids are not the simulator's)
+    const std::vector<const eval::TruePose*> by_stamp = eval::sortedByStamp(it->second);
     double sq = 0;
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     int n = 0;
     for (const auto& k : l.keyframes) {
-      const auto t = by_id.find(k.id);
-      if (t == by_id.end()) continue;
-      const Eigen::Vector3d d = k.T_frame_body.translation() - t->second;
+      const std::optional<Pose3> T = eval::truePoseAt(by_stamp, k.stamp);
+      if (!T) continue;
+      const Eigen::Vector3d t = T->translation();
+      const Eigen::Vector3d d =
+          k.T_frame_body.translation() - (convert ? to.toEnu(from.toWgs84(t)) : t);
       sq += d.squaredNorm();
       mean += d;
       ++n;

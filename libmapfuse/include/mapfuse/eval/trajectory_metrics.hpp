@@ -6,6 +6,7 @@
 /// frame, so no alignment is estimated (docs/evaluate.md).
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,14 @@ struct TrueTrajectory {
   geo::GeoOrigin origin;
   std::vector<TruePose> poses;
 };
+
+/// @brief The poses of `truth` ordered by stamp (pointers into it), for truePoseAt.
+std::vector<const TruePose*> sortedByStamp(const TrueTrajectory& truth);
+
+/// @brief The true pose at `stamp` from poses sorted by stamp: the pose with that stamp, else
+/// interpolated between its two neighbours; nullopt outside their span. Keyframes are matched
+/// to the truth by stamp because ids differ when lsm-build chose its own keyframes.
+std::optional<Pose3> truePoseAt(const std::vector<const TruePose*>& sorted, double stamp);
 
 /// @brief Reads a `mapfuse.trajectory` file (JSON or CBOR). @throws IoError, ParseError.
 TrueTrajectory readTrueTrajectory(const std::filesystem::path& path);
