@@ -6,8 +6,6 @@
 #include <set>
 #include <sstream>
 
-#include "mapfuse/core/error.hpp"
-#include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/png_writer.hpp"
 
 namespace mapfuse::eval {
@@ -26,10 +24,6 @@ std::string orDash(const ErrorStats& s, double v, int decimals = 3) {
 cv::Scalar bgr(CrowdClass c) {
   const auto rgb = crowdClassColor(c);
   return cv::Scalar(rgb[2], rgb[1], rgb[0]);
-}
-
-void savePng(const std::filesystem::path& path, const cv::Mat& img) {
-  io::writePng(path, img);
 }
 
 struct Axes {  // plot area and value mapping
@@ -127,7 +121,7 @@ void writeErrorPerClassPng(const std::filesystem::path& path, const MapReportEnt
     cv::putText(ax.img, crowdClassName(c.cls), {x - slot / 8, ax.area.y + ax.area.height + 18},
                 cv::FONT_HERSHEY_SIMPLEX, 0.38, cv::Scalar(0, 0, 0));
   }
-  savePng(path, ax.img);
+  io::writePng(path, ax.img);
 }
 
 void writeErrorVsTraversalsPng(const std::filesystem::path& path,
@@ -168,7 +162,7 @@ void writeErrorVsTraversalsPng(const std::filesystem::path& path,
                 cv::FONT_HERSHEY_SIMPLEX, 0.4, col);
     legend_y += 15;
   }
-  savePng(path, ax.img);
+  io::writePng(path, ax.img);
 }
 
 }  // namespace mapfuse::eval

@@ -56,14 +56,14 @@ void addPriorsAndOdometry(ceres::Problem& problem, PoseSet& P, const std::vector
 // (CGNR, Jacobi preconditioner): GBA's normal equations hold a dense clique of every traversal's
 // keyframes at each place, which a sparse Cholesky factorizes at O((traversals * dof)^3) per
 // place; CG costs O(nonzeros of J) per iteration.
-double solve(ceres::Problem& problem, const AlignSettings& s, bool* converged,
-             int cg_iterations = 0) {
+double solve(ceres::Problem& problem, const AlignSettings& s, double function_tolerance,
+             int cg_iterations, bool* converged) {
   ceres::Solver::Options opt;
   opt.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   opt.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
   opt.max_num_iterations = s.solver_iterations;
   opt.num_threads = s.threads;
-  opt.function_tolerance = s.function_tolerance;
+  opt.function_tolerance = function_tolerance;
 #if CERES_VERSION_MAJOR == 2 && CERES_VERSION_MINOR < 2
   // CXSparse's simplicial Cholesky beats CHOLMOD's supernodal one (with Debian's ATLAS) on these
   // graphs of small dense cliques (every traversal's keyframes at one place): GBA over 50
@@ -153,7 +153,7 @@ double solveMultiPoseGraph(std::vector<Lsm>& lsms, const std::vector<Lsm>& prior
           new ceres::HuberLoss(s.inter_huber), P[c.lsm_a][c.kf_a].t, P[c.lsm_a][c.kf_a].q,
           P[c.lsm_b][c.kf_b].t, P[c.lsm_b][c.kf_b].q);
     }
-    cost = solve(problem, s, converged);
+    cost = solve(problem, s, s.function_tolerance, 0, converged);
     writeBack(lsms, P);
     // Constraints far off the joint solution (lane / dash aliases that PCM could not see because
     // they were consistent within their LSM pair) are dropped and the graph re-solved.
@@ -233,9 +233,9 @@ double solveGba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const Al
     }
     if (residuals) *residuals = count;
     // Rounds before the last only feed the next association: a looser stop suffices.
-    AlignSettings rs = s;
-    if (round + 1 < s.gba_rounds) rs.function_tolerance = s.gba_early_round_tolerance;
-    cost = solve(problem, rs, converged, s.gba_cg_iterations);
+    const bool last = round + 1 >= s.gba_rounds;
+    cost = solve(problem, s, last ? s.function_tolerance : s.gba_early_round_tolerance,
+                 s.gba_cg_iterations, converged);
     writeBack(lsms, P);
   }
   return cost;

@@ -95,7 +95,8 @@ nlohmann::json runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
   std::vector<eval::MapReportEntry> entries;
   VectorMap last_map;
   for (std::size_t i = 0; i < in.maps.size(); ++i) {
-    const VectorMap map = io::readVectorMap(in.maps[i]);
+    // in the truth's ENU once, for the metrics and the picture
+    const VectorMap map = eval::inOrigin(io::readVectorMap(in.maps[i]), truth.origin);
     last_map = map;
     eval::MapReportEntry e;
     e.name = std::filesystem::path(in.maps[i]).filename().string();
@@ -138,8 +139,7 @@ nlohmann::json runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
   {  // the (last) map in colour over the truth in grey
     std::vector<std::vector<Eigen::Vector3d>> background;
     for (const auto& t : truth.instances) background.push_back(t.points);
-    io::writeMapPng(out_dir / "map_over_truth.png", eval::inOrigin(last_map, truth.origin),
-                    background);
+    io::writeMapPng(out_dir / "map_over_truth.png", last_map, background);
   }
   if (entries.size() > 1)
     eval::writeErrorVsTraversalsPng(out_dir / "error_vs_traversals.png", entries);

@@ -13,7 +13,7 @@
 namespace mapfuse::io {
 
 /// @brief PNG bytes of an 8-bit image: CV_8UC1 (grey), CV_8UC3 (BGR, OpenCV's order) or CV_8UC4
-/// (BGRA). Each row gets the PNG filter (None, Sub, Up or Paeth) with the smallest sum of
+/// (BGRA). Each row gets the PNG filter (None, Sub, Up, Average or Paeth) with the smallest sum of
 /// absolute filtered bytes, then the image is deflated. @throws InputError on an empty image or
 /// another type.
 std::string encodePng(const cv::Mat& image);
