@@ -188,6 +188,26 @@ TEST_CASE("align: traversals on roads that share nothing are not pulled together
   CHECK(std::abs(d1 - d_true) < kGpsBias);
 }
 
+TEST_CASE("align: GBA solver parameters out of range are refused by name") {
+  auto refused = [](auto set, const char* field) {
+    stages::AlignParams p;
+    set(p);
+    INFO(field);
+    CHECK_THROWS_AS(p.validate(), ConfigError);
+    CHECK_THROWS_WITH(p.validate(), Catch::Contains(field));
+  };
+  refused([](stages::AlignParams& p) { p.gba_dof = 5; }, "gba_dof");
+  refused([](stages::AlignParams& p) { p.gba_line_stride = 0; }, "gba_line_stride");
+  refused([](stages::AlignParams& p) { p.gba_cg_iterations = -1; }, "gba_cg_iterations");
+  refused([](stages::AlignParams& p) { p.gba_early_round_tolerance = 0; },
+          "gba_early_round_tolerance");
+  refused([](stages::AlignParams& p) { p.gba_early_round_tolerance = 1; },
+          "gba_early_round_tolerance");
+  stages::AlignParams four;
+  four.gba_dof = 4;
+  CHECK_NOTHROW(four.validate());
+}
+
 TEST_CASE("align app: outputs, summary, exit codes, and configs/align.json mirrors defaults") {
   const auto j = nlohmann::json::parse(
       test::readText(std::filesystem::path(MAPFUSE_SOURCE_DIR) / "configs/align.json"));

@@ -100,6 +100,10 @@ TEST_CASE("configs/georef.json mirrors GeorefParams defaults") {
       test::readText(std::filesystem::path(MAPFUSE_SOURCE_DIR) / "configs/georef.json"));
   CHECK(j == paramsToJson(stages::GeorefParams{}));
   CHECK_NOTHROW(stages::GeorefParams{}.validate());
+  stages::GeorefParams bad;
+  bad.gravity_sigma = -0.01;
+  CHECK_THROWS_AS(bad.validate(), ConfigError);
+  CHECK_THROWS_WITH(bad.validate(), Catch::Contains("gravity_sigma"));
 }
 
 TEST_CASE("georef app: shared origin, summary, exit codes") {
