@@ -85,6 +85,7 @@ TEST_CASE("seen-through: min_seen_through and min_free_ratio decide", "[lidar][r
   auto run = [&](int through, int hit, int min_scans, double ratio) {
     SeenThroughSettings s;
     s.min_seen_through = min_scans;
+    s.vehicle_vote_radius = 0.0;  // this voxel's own verdict
     s.min_free_ratio = ratio;
     SeenThroughFilter f(map, s);
     for (int k = 0; k < through; ++k) f.addScan({returnToward(o, v, r + 3.0)}, at(o));
@@ -97,6 +98,47 @@ TEST_CASE("seen-through: min_seen_through and min_free_ratio decide", "[lidar][r
                                   // stood still for a while, then left, stays)
   CHECK(run(3, 3, 2, 0.5) == 0);
   CHECK(run(2, 3, 2, 0.4) == 0);
+}
+
+TEST_CASE("seen-through: vehicle voxels go by their neighbourhood's vote", "[lidar][refinement]") {
+  // A 5 x 5 block of vehicle voxels 10 m ahead (columns 0.1 m apart, so that each voxel has its
+  // own range-image pixel), 3 scans from the origin. `through(i)` says which voxels the rays pass.
+  const Eigen::Vector3d o = Eigen::Vector3d::Zero();
+  auto run = [&](auto through, double vote_radius) {
+    SemanticVoxelMap map(kVoxel);
+    std::vector<std::size_t> ids;
+    std::vector<Eigen::Vector3d> at_;
+    for (int iy = 0; iy < 5; ++iy)
+      for (int iz = 0; iz < 5; ++iz) {
+        const Eigen::Vector3d p(10.025, 0.025 + 0.1 * iy, -1.675 + 0.25 * iz);
+        ids.push_back(addVoxel(map, p, LidarClass::kVehicle));
+        at_.push_back(p);
+      }
+    SeenThroughSettings s;
+    s.vehicle_vote_radius = vote_radius;
+    SeenThroughFilter f(map, s);
+    for (int scan = 0; scan < 3; ++scan) {
+      std::vector<Eigen::Vector3f> pts;
+      for (std::size_t i = 0; i < at_.size(); ++i) {
+        const double r = (at_[i] - o).norm();
+        pts.push_back(returnToward(o, at_[i], through(i) ? r + 3.0 : r + 0.1));
+      }
+      f.addScan(pts, at(o));
+    }
+    const auto keep = f.keepMask(nullptr);
+    int kept = 0;
+    for (const std::size_t i : ids) kept += keep[i];
+    return kept;
+  };
+  // A trace: every voxel seen through except its lowest layer, where the ray meets the road
+  // just behind it (within the margin).
+  auto trace = [](std::size_t i) { return i % 5 != 0; };
+  CHECK(run(trace, 0.0) == 5);  // alone, the bottom layer stays
+  CHECK(run(trace, 0.5) == 0);  // with the vote, the whole trace goes
+  // A parked car: two edge voxels passed by grazing rays.
+  auto parked = [](std::size_t i) { return i == 4 || i == 9; };
+  CHECK(run(parked, 0.0) == 23);
+  CHECK(run(parked, 0.5) == 25);
 }
 
 TEST_CASE("seen-through: thin classes use the wider window", "[lidar][refinement]") {
@@ -132,33 +174,45 @@ TEST_CASE("seen-through: settings are validated", "[lidar][refinement]") {
   s.max_range = s.min_range;
   CHECK_THROWS_AS(SeenThroughFilter(map, s), InputError);
   s = SeenThroughSettings{};
+  s.vehicle_vote_radius = -0.1;
+  CHECK_THROWS_AS(SeenThroughFilter(map, s), InputError);
+  s = SeenThroughSettings{};
+  s.vehicle_vote_share = 0.0;
+  CHECK_THROWS_AS(SeenThroughFilter(map, s), InputError);
+  s = SeenThroughSettings{};
   SeenThroughFilter empty(map, s);
   empty.addScan({Eigen::Vector3f(5, 0, 0)}, Pose3::Identity());
   CHECK(empty.keepMask(nullptr).empty());
 }
 
-TEST_CASE("scan labels: points in removed trace voxels keep their labels", "[lidar][refinement]") {
+TEST_CASE("scan labels: points in voxels refinement removed keep their labels",
+          "[lidar][refinement]") {
   SemanticVoxelMap map(kVoxel);
   const Eigen::Vector3d car(6.025, 0.025, 0.525), road(6.025, 2.025, -1.725),
-      wall(6.025, 4.025, 0.525);
+      wall(6.025, 4.025, 0.525), parked(6.025, -4.025, 0.525);
   addVoxel(map, car, LidarClass::kVehicle);
   addVoxel(map, road, LidarClass::kRoad);
   addVoxel(map, wall, LidarClass::kBuilding);
-  // Refinement removed the car and the wall voxel as traces; the road stays.
+  addVoxel(map, parked, LidarClass::kVehicle);
+  // Refinement removed the car and the wall voxel as traces and the parked-car voxel as an
+  // isolated voxel (K-nearest filter); the road stays.
   lidar::RemovedVoxelLabels removed;
   std::vector<uint8_t> keep(map.size(), 1);
   for (std::size_t i = 0; i < map.size(); ++i) {
     const auto cls = static_cast<LidarClass>(map.voxels()[i].label);
     if (cls == LidarClass::kRoad) continue;
-    removed[map.voxels()[i].key] = map.voxels()[i].label;
+    const bool isolated = map.center(map.voxels()[i].key).y() < 0.0;
+    removed[map.voxels()[i].key] = {map.voxels()[i].label, !isolated};
     keep[i] = 0;
   }
   map.filter(keep);
   const std::vector<Eigen::Vector3f> scan = {car.cast<float>(), road.cast<float>(),
-                                             wall.cast<float>(), Eigen::Vector3f(30, 0, 0)};
+                                             wall.cast<float>(), parked.cast<float>(),
+                                             Eigen::Vector3f(30, 0, 0)};
   const auto plain = lidar::scanLabels(map, Pose3::Identity(), scan);
-  CHECK(plain == std::vector<uint32_t>{0, semanticKittiId(LidarClass::kRoad), 0, 0});
+  CHECK(plain == std::vector<uint32_t>{0, semanticKittiId(LidarClass::kRoad), 0, 0, 0});
   const auto with = lidar::scanLabels(map, Pose3::Identity(), scan, &removed);
   CHECK(with == std::vector<uint32_t>{252, semanticKittiId(LidarClass::kRoad),
-                                      semanticKittiId(LidarClass::kBuilding), 0});
+                                      semanticKittiId(LidarClass::kBuilding),
+                                      semanticKittiId(LidarClass::kVehicle), 0});
 }

@@ -40,8 +40,8 @@ std::vector<uint32_t> scanLabels(const SemanticVoxelMap& map, const Pose3& T_map
     } else if (removed) {
       const auto it = removed->find(key);
       if (it == removed->end()) continue;
-      const auto cls = static_cast<LidarClass>(it->second);
-      out[i] = cls == LidarClass::kVehicle ? kMovingCar : semanticKittiId(cls);
+      const auto cls = static_cast<LidarClass>(it->second.label);
+      out[i] = cls == LidarClass::kVehicle && it->second.trace ? kMovingCar : semanticKittiId(cls);
     }
   }
   return out;

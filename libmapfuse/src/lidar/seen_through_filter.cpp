@@ -31,6 +31,8 @@ SeenThroughFilter::SeenThroughFilter(const SemanticVoxelMap& map, const SeenThro
     throw InputError("seen-through filter: elevation_max_deg must exceed elevation_min_deg");
   if (!(s.margin > 0) || s.window < 0 || s.window_thin < 0 || !(s.max_range > s.min_range))
     throw InputError("seen-through filter: margin > 0, windows >= 0, max_range > min_range");
+  if (!(s.vehicle_vote_radius >= 0) || !(s.vehicle_vote_share > 0 && s.vehicle_vote_share <= 1))
+    throw InputError("seen-through filter: vehicle_vote_radius >= 0, vehicle_vote_share in (0, 1]");
   cols_ = static_cast<int>(std::ceil(360.0 / s.azimuth_resolution_deg));
   rows_ = static_cast<int>(
       std::ceil((s.elevation_max_deg - s.elevation_min_deg) / s.elevation_resolution_deg));
@@ -125,16 +127,66 @@ void SeenThroughFilter::addScan(const std::vector<Eigen::Vector3f>& scan_velo,
 
 std::vector<uint8_t> SeenThroughFilter::keepMask(SeenThroughStats* stats) const {
   std::vector<uint8_t> keep(through_.size(), 1);
-  std::size_t removed = 0;
   for (std::size_t k = 0; k < through_.size(); ++k) {
     const int seen = through_[k] + hit_[k];
-    if (through_[k] >= s_.min_seen_through && through_[k] >= s_.min_free_ratio * seen) {
-      keep[k] = 0;
-      ++removed;
+    if (through_[k] >= s_.min_seen_through && through_[k] >= s_.min_free_ratio * seen) keep[k] = 0;
+  }
+  if (s_.vehicle_vote_radius > 0) voteOverVehicles(keep);
+  if (stats)
+    *stats = {through_.size(), scans_,
+              static_cast<std::size_t>(std::count(keep.begin(), keep.end(), uint8_t{0}))};
+  return keep;
+}
+
+void SeenThroughFilter::voteOverVehicles(std::vector<uint8_t>& keep) const {
+  // Vehicle voxels per (x, y) cell of the voxel grid: how many, how many seen through.
+  struct Cell {
+    int32_t x, y;
+    uint32_t through, total;
+  };
+  const auto& voxels = map_->voxels();
+  const auto vehicle = static_cast<uint8_t>(LidarClass::kVehicle);
+  std::vector<Cell> cells;
+  for (std::size_t k = 0; k < voxels.size(); ++k)
+    if (voxels[k].label == vehicle) {
+      const VoxelCoord c = unpackKey(voxels[k].key);
+      cells.push_back({c.x, c.y, keep[k] ? 0u : 1u, 1u});
+    }
+  auto before = [](const Cell& a, const Cell& b) { return a.x != b.x ? a.x < b.x : a.y < b.y; };
+  std::sort(cells.begin(), cells.end(), before);
+  std::size_t n = 0;  // merge the voxels of one column
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (n > 0 && cells[n - 1].x == cells[i].x && cells[n - 1].y == cells[i].y) {
+      cells[n - 1].through += cells[i].through;
+      cells[n - 1].total += cells[i].total;
+    } else {
+      cells[n++] = cells[i];
     }
   }
-  if (stats) *stats = {through_.size(), scans_, removed};
-  return keep;
+  cells.resize(n);
+  // Verdict per cell: the share of seen-through vehicle voxels in the disc around it.
+  const double rc = s_.vehicle_vote_radius / map_->voxelSize();
+  const int reach = static_cast<int>(std::floor(rc));
+  std::vector<uint8_t> goes(cells.size(), 0);
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    uint64_t through = 0, total = 0;
+    for (int dx = -reach; dx <= reach; ++dx) {
+      const int dy = static_cast<int>(std::floor(std::sqrt(rc * rc - double(dx) * dx)));
+      auto it = std::lower_bound(cells.begin(), cells.end(),
+                                 Cell{cells[i].x + dx, cells[i].y - dy, 0, 0}, before);
+      for (; it != cells.end() && it->x == cells[i].x + dx && it->y <= cells[i].y + dy; ++it) {
+        through += it->through;
+        total += it->total;
+      }
+    }
+    goes[i] = static_cast<double>(through) >= s_.vehicle_vote_share * static_cast<double>(total);
+  }
+  for (std::size_t k = 0; k < voxels.size(); ++k)
+    if (voxels[k].label == vehicle) {
+      const VoxelCoord c = unpackKey(voxels[k].key);
+      const auto it = std::lower_bound(cells.begin(), cells.end(), Cell{c.x, c.y, 0, 0}, before);
+      keep[k] = goes[static_cast<std::size_t>(it - cells.begin())] ? 0 : 1;
+    }
 }
 
 }  // namespace mapfuse::lidar

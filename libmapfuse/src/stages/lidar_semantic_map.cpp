@@ -141,6 +141,10 @@ void LidarSemanticMapParams::validate() const {
                ">= 1");
   requireParam(seen_through_min_ratio >= 0 && seen_through_min_ratio <= 1, s,
                "seen_through_min_ratio", seen_through_min_ratio, "in [0, 1]");
+  requireParam(seen_through_vote_radius >= 0 && seen_through_vote_radius <= 5, s,
+               "seen_through_vote_radius", seen_through_vote_radius, "in [0, 5]");
+  requireParam(seen_through_vote_share > 0 && seen_through_vote_share <= 1, s,
+               "seen_through_vote_share", seen_through_vote_share, "in (0, 1]");
   requireParam(topdown_resolution > 0, s, "topdown_resolution", topdown_resolution, "> 0");
   requireParam(num_threads >= 1, s, "num_threads", num_threads, ">= 1");
 }
@@ -210,17 +214,17 @@ json runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,
 
   // Batch refinement (§2.2).
   json refinement = {{"enabled", p.refine}};
-  lidar::RemovedVoxelLabels removed;  // traces: out of the map, still labelled in the scans
-  auto removeTraces = [&](const std::vector<uint8_t>& keep) {
+  lidar::RemovedVoxelLabels removed;  // out of the map, still labelled in the scans
+  auto removeVoxels = [&](const std::vector<uint8_t>& keep, bool trace) {
     for (std::size_t i = 0; i < keep.size(); ++i)
-      if (!keep[i]) removed[map.voxels()[i].key] = map.voxels()[i].label;
+      if (!keep[i]) removed[map.voxels()[i].key] = {map.voxels()[i].label, trace};
     map.filter(keep);
   };
+  auto removeTraces = [&](const std::vector<uint8_t>& keep) { removeVoxels(keep, true); };
   t = Clock::now();
   if (p.refine) {
-    const auto keep = lidar::knnMeanDistanceFilter(map, detail::knnSettings(p));
     const std::size_t before = map.size();
-    map.filter(keep);
+    removeVoxels(lidar::knnMeanDistanceFilter(map, detail::knnSettings(p)), false);
     refinement["knn_removed_voxels"] = before - map.size();
     timings["refinement_knn"] = since(t);
     if (p.remove_vehicle_traces && p.trace_seen_through) {

@@ -66,6 +66,8 @@ lidar::SeenThroughSettings seenThroughSettings(const LidarSemanticMapParams& p) 
   s.max_range = p.max_range;
   s.min_seen_through = p.seen_through_min_scans;
   s.min_free_ratio = p.seen_through_min_ratio;
+  s.vehicle_vote_radius = p.seen_through_vote_radius;
+  s.vehicle_vote_share = p.seen_through_vote_share;
   return s;
 }
 

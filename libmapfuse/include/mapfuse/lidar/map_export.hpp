@@ -16,13 +16,20 @@ namespace mapfuse::lidar {
 /// @brief Voxel centres with their argmax label and its posterior probability.
 LabeledCloud toLabeledCloud(const SemanticVoxelMap& map);
 
-/// Labels of the voxels refinement removed as traces of moving objects, by voxel key.
-using RemovedVoxelLabels = std::unordered_map<uint64_t, uint8_t>;
+/// A voxel refinement took out of the map: its label, and whether it went as a moving object's
+/// trace (rather than as an isolated voxel).
+struct RemovedVoxel {
+  uint8_t label = 0;  ///< LidarClass
+  bool trace = false;
+};
+/// The voxels refinement removed, by voxel key.
+using RemovedVoxelLabels = std::unordered_map<uint64_t, RemovedVoxel>;
 
 /// @brief SemanticKITTI label word per scan point: the semantic id of the label of the voxel the
 /// point falls in (T_map_velo applied), 0 (unlabeled) where the map has no voxel. With `removed`,
-/// a point in a voxel removed as a moving object's trace keeps that voxel's label, vehicles as
-/// SemanticKITTI's moving-car (252): the static map leaves them out, the scan still shows them.
+/// a point in a voxel refinement removed keeps that voxel's label — the map is cleaned, the
+/// point's fused label is still the best guess — vehicles of traces as SemanticKITTI's moving-car
+/// (252): the static map leaves them out, the scan still shows them.
 std::vector<uint32_t> scanLabels(const SemanticVoxelMap& map, const Pose3& T_map_velo,
                                  const std::vector<Eigen::Vector3f>& points_velo,
                                  const RemovedVoxelLabels* removed = nullptr);

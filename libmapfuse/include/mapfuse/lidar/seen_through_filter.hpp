@@ -9,6 +9,13 @@
 /// The range-image visibility idea follows Kim & Kim, "Remove, then Revert" (IROS 2020); it
 /// complements the paper's size rules (eta_d, eta_l; Jeong et al. 2018, §2.2), which cannot tell
 /// a trace shorter than eta_l from a parked car.
+///
+/// Vehicle voxels are then decided by neighbourhood vote: a vehicle voxel goes when at least
+/// `vehicle_vote_share` of the vehicle voxels within `vehicle_vote_radius` of it in (x, y), at any
+/// height, were seen through. A trace's lowest layer (rays to it return from the road just behind,
+/// within the margin) and the voxels no later scan had a clear view of go with the seen-through
+/// body above and around them; the odd voxel at a parked car's edge that a grazing ray passed stays
+/// with the car.
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
@@ -28,8 +35,10 @@ struct SeenThroughSettings {
   double margin = 0.5;       ///< m, a return this far beyond the voxel means the ray passed it
   double min_range = 2.0;    ///< m, voxels nearer to the sensor are not tested
   double max_range = 50.0;   ///< m, nor farther ones (sparse returns)
-  int min_seen_through = 2;  ///< scans that must see through a voxel before it goes
+  int min_seen_through = 1;  ///< scans that must see through a voxel before it goes
   double min_free_ratio = 0.5;  ///< and their share among the scans that saw it at all
+  double vehicle_vote_radius = 0.5;  ///< m, (x, y) neighbourhood of the vehicle vote; 0: per voxel
+  double vehicle_vote_share = 0.6;   ///< share of seen-through vehicle voxels that removes them all
   int num_threads = 1;          ///< OpenMP threads (results do not depend on it)
 };
 
@@ -53,7 +62,8 @@ class SeenThroughFilter {
   void addScan(const std::vector<Eigen::Vector3f>& scan_velo, const Pose3& T_map_velo);
 
   /// @brief Keep mask over the map's voxels: 0 for voxels seen through by at least
-  /// min_seen_through scans and by at least min_free_ratio of the scans that saw them.
+  /// min_seen_through scans and by at least min_free_ratio of the scans that saw them; vehicle
+  /// voxels by the vote of their neighbourhood (see the file comment).
   std::vector<uint8_t> keepMask(SeenThroughStats* stats) const;
 
  private:
@@ -67,6 +77,8 @@ class SeenThroughFilter {
   std::vector<Column> columns_;  ///< sorted by key
   std::vector<uint32_t> order_;  ///< voxel indices grouped by column
   static uint64_t columnKey(const Eigen::Vector3d& p);
+  /// Replaces the vehicle voxels' own verdicts in `keep` by their neighbourhood's vote.
+  void voteOverVehicles(std::vector<uint8_t>& keep) const;
   std::vector<float> image_;  ///< range image, reused across scans
   int cols_ = 0, rows_ = 0;
   std::size_t scans_ = 0;

@@ -58,8 +58,10 @@ struct LidarSemanticMapParams {
   double seen_through_margin = 0.5;  ///< m
   int seen_through_window = 0;       ///< pixels (half size)
   int seen_through_window_thin = 1;  ///< pixels, road / sidewalk / fence / pole / vegetation
-  int seen_through_min_scans = 2;
+  int seen_through_min_scans = 1;
   double seen_through_min_ratio = 0.5;
+  double seen_through_vote_radius = 0.5;  ///< m, vehicle voxels' neighbourhood vote; 0: off
+  double seen_through_vote_share = 0.6;
   // outputs
   double topdown_resolution = 0.1;  ///< m/px
   bool write_scan_labels = true;
@@ -125,6 +127,10 @@ struct LidarSemanticMapParams {
       "scans that must see through a voxel before it goes");
     v("seen_through_min_ratio", seen_through_min_ratio, "",
       "and their share among the scans that saw the voxel");
+    v("seen_through_vote_radius", seen_through_vote_radius, "m",
+      "vehicle voxels go by the vote of the vehicle voxels within this (x, y) radius; 0: each alone");
+    v("seen_through_vote_share", seen_through_vote_share, "",
+      "share of seen-through vehicle voxels in that neighbourhood that removes them");
     v("topdown_resolution", topdown_resolution, "m", "top-down PNG pixel size");
     v("write_scan_labels", write_scan_labels, "",
       "write labels/<frame>.label for every input scan");
