@@ -3,7 +3,7 @@
 # single-frame CNN projection, + Bayesian fusion, + error minimisation, + refinement, each scored
 # with `evaluate voxels` (per-scan labels and voxel map), plus trace-removal shares.
 # usage: scripts/bench/bench_lidarsim_ablation.sh [BIN_DIR=build/bin] [WORK=/tmp/lidarsim-ablation]
-# env: SEED=900 FRAMES=30 TRAIN_SEEDS="101 102" TRAIN_FRAMES=20
+# env: SEED=900 FRAMES=30 TRAIN_SEEDS="101 102 103 104" TRAIN_FRAMES=40 (train-classifiers.sh defaults)
 set -euo pipefail
 bin=$(cd "${1:-build/bin}" && pwd)
 work=${2:-/tmp/lidarsim-ablation}
@@ -12,7 +12,7 @@ seed=${SEED:-900}
 frames=${FRAMES:-30}
 mkdir -p "$work" && cd "$work"
 drive=$("$bin/simulate-lidar" -o sim --seed "$seed" --drive "$seed" --frames "$frames" --quiet)
-SEEDS=${TRAIN_SEEDS:-"101 102"} FRAMES=${TRAIN_FRAMES:-20} WORK="$work/train" \
+SEEDS=${TRAIN_SEEDS:-"101 102 103 104"} FRAMES=${TRAIN_FRAMES:-40} WORK="$work/train" \
   bash "$root/scripts/train-classifiers.sh" "$bin" "$work/forests" > /dev/null
 # Single frame: each scan mapped alone (its own CNN probabilities only), per-scan labels.
 mkdir -p single_labels
