@@ -59,6 +59,48 @@ TEST_CASE("truth errors: element spread, absolute error and common offset of kno
   CHECK_THROWS_AS(fusion::elementTruthErrors({odom}, truth), InputError);
 }
 
+TEST_CASE("truth errors: a line seen in part is compared with the line, not its centroid",
+          "[fusion][truth]") {
+  // A 15 m lane line (shorter than a 20 m piece) and a 6 m stop line along East; each drive
+  // sees only the first 5 m of the lane line and 2 m of the stop line, shifted 0.2 m north
+  // (drive a) or 0.2 m south (drive b). Their centroids differ from the true ones by ~5 m and
+  // ~2 m along the lines; the errors are the 0.2 m shifts.
+  VectorMap truth;
+  truth.origin = kOrigin;
+  MapInstance lane;
+  lane.id = 7;
+  lane.cls = CrowdClass::kLaneLine;
+  lane.points = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(7.5, 0, 0), Eigen::Vector3d(15, 0, 0)};
+  MapInstance stop = lane;
+  stop.id = 8;
+  stop.cls = CrowdClass::kStopLine;
+  stop.points = {Eigen::Vector3d(0, 10, 0), Eigen::Vector3d(6, 10, 0)};
+  truth.instances = {lane, stop};
+  auto seen = [](const std::string& id, double dy) {
+    Lsm l = drive(id, 0.0);
+    l.elements.clear();
+    for (const auto& [tid, cls, y0, x1] : {std::tuple{7, CrowdClass::kLaneLine, 0.0, 5.0},
+                                           std::tuple{8, CrowdClass::kStopLine, 10.0, 2.0}}) {
+      Element e;
+      e.id = tid;
+      e.cls = cls;
+      e.truth_id = tid;
+      for (double x = 0.0; x <= x1 + 1e-9; x += 0.5) {
+        e.points_body.push_back(Eigen::Vector3d(x, y0 + dy, 0.0));
+        e.covariances.push_back(Eigen::Matrix3d::Identity() * 0.01);
+      }
+      l.elements.push_back(e);
+    }
+    return l;
+  };
+  const auto e = fusion::elementTruthErrors({seen("a", 0.2), seen("b", -0.2)}, truth);
+  CHECK(e.observations == 4);
+  CHECK(e.groups == 2);
+  CHECK(e.mean_abs == Approx(0.2).margin(kExact));
+  CHECK(e.spread == Approx(0.2).margin(kExact));
+  CHECK(e.mean_offset == Approx(0.0).margin(kExact));
+}
+
 TEST_CASE("truth errors: keyframe ATE with a true trajectory in another ENU origin",
           "[fusion][truth]") {
   // The LSM's keyframes every 10 m along East; the truth, in an origin ~100 m away, holds the

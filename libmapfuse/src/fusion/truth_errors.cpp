@@ -17,7 +17,8 @@ struct TrueGeom {
   std::vector<Eigen::Vector2d> pts;
   std::vector<double> arc;  // cumulative arc length (lines)
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-  bool long_line = false;
+  bool line = false;       // lane or stop line: offsets to the polyline, not to the centroid
+  bool long_line = false;  // line longer than a piece: grouped per piece
 };
 
 // Nearest point on a polyline: returns foot point and its arc length.
@@ -64,7 +65,9 @@ ElementTruthErrors elementTruthErrors(const std::vector<Lsm>& lsms, const Vector
     g.arc.assign(g.pts.size(), 0.0);
     for (std::size_t i = 1; i < g.pts.size(); ++i)
       g.arc[i] = g.arc[i - 1] + (g.pts[i] - g.pts[i - 1]).norm();
-    g.long_line = inst.cls == CrowdClass::kLaneLine && g.arc.back() > piece_length;
+    g.line = (inst.cls == CrowdClass::kLaneLine || inst.cls == CrowdClass::kStopLine) &&
+             g.pts.size() >= 2;
+    g.long_line = g.line && inst.cls == CrowdClass::kLaneLine && g.arc.back() > piece_length;
     geom[inst.id] = std::move(g);
   }
 
@@ -80,7 +83,7 @@ ElementTruthErrors elementTruthErrors(const std::vector<Lsm>& lsms, const Vector
       const auto pts = lsms[l].pointsInFrame(e);
       Eigen::Vector2d off = Eigen::Vector2d::Zero();
       int piece = 0;
-      if (g.long_line && g.pts.size() >= 2) {
+      if (g.line) {  // an observation may show part of the line: compare with the line itself
         double s_sum = 0;
         for (const auto& p : pts) {
           Eigen::Vector2d foot = p.head<2>();
@@ -90,7 +93,7 @@ ElementTruthErrors elementTruthErrors(const std::vector<Lsm>& lsms, const Vector
           s_sum += s;
         }
         off /= double(pts.size());
-        piece = int(std::floor(s_sum / double(pts.size()) / piece_length));
+        if (g.long_line) piece = int(std::floor(s_sum / double(pts.size()) / piece_length));
       } else {
         Eigen::Vector2d c = Eigen::Vector2d::Zero();
         for (const auto& p : pts) c += p.head<2>();
