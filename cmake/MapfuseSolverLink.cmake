@@ -47,8 +47,11 @@ if(_mapfuse_static_ok)
   string(REPLACE ";" "," _group "${_archives}")
   target_include_directories(mapfuse_solver INTERFACE
     $<TARGET_PROPERTY:Ceres::ceres,INTERFACE_INCLUDE_DIRECTORIES> ${GeographicLib_INCLUDE_DIRS})
+  # gfortran: the consuming executable's MAPFUSE_STATIC_FORTRAN archives when it sets them
+  # (cmake/MapfuseLeanRuntime.cmake), after the LAPACK / BLAS archives that need them.
+  set(_fortran "$<IF:$<BOOL:$<TARGET_PROPERTY:MAPFUSE_STATIC_FORTRAN>>,$<TARGET_PROPERTY:MAPFUSE_STATIC_FORTRAN>,${_gfortran}>")
   target_link_libraries(mapfuse_solver INTERFACE
-    "$<LINK_GROUP:RESCAN,${_group}>" ${_metis} ${_unwind} ${_gfortran}
+    "$<LINK_GROUP:RESCAN,${_group}>" ${_metis} ${_unwind} "${_fortran}"
     Threads::Threads Eigen3::Eigen)
 else()
   target_include_directories(mapfuse_solver INTERFACE ${GeographicLib_INCLUDE_DIRS})
