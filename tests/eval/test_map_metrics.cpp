@@ -213,3 +213,51 @@ TEST_CASE("the coverage wedge follows the camera's field of view and reach", "[e
   CHECK(seen(20.5, 11.9));
   CHECK_FALSE(seen(21, 12.5));  // wider than the lateral limit
 }
+
+TEST_CASE("map elements of true elements outside the scored scope count neither way",
+          "[eval][map]") {
+  // A drive along +x from x = 0 to x = 100: the scored truth is what the clip keeps; the map
+  // also holds elements of what it left out (a pole behind the start, the line's part behind the
+  // start) and one false pole.
+  std::vector<Pose3> poses;
+  for (int i = 0; i <= 100; ++i) poses.push_back(Pose3(Eigen::Translation3d(i, 0.0, 0.0)));
+  VectorMap t;
+  t.origin = {49.0, 8.4, 110.0};
+  std::vector<Vec3> lane;
+  for (int x = -40; x <= 100; x += 10) lane.push_back({double(x), 3.0, 0.0});
+  t.instances = {inst(1, CrowdClass::kLaneLine, lane), inst(2, CrowdClass::kPole, {{50, -3, 0}}, 6),
+                 inst(3, CrowdClass::kPole, {{-20, -3, 0}}, 6)};  // behind the start
+  VectorMap outside;
+  const VectorMap scored = clipToCoverage(t, poses, CoverageWedge{12.0, 12.0, M_PI / 2}, &outside);
+  REQUIRE(scored.instances.size() == 2);
+  double out_length = 0;
+  int out_poles = 0;
+  for (const auto& m : outside.instances) {
+    if (m.cls == CrowdClass::kLaneLine) out_length += polylineLength(m.points);
+    if (m.cls == CrowdClass::kPole) ++out_poles;
+  }
+  CHECK(out_poles == 1);
+  CHECK(out_length == Approx(40.0).margin(0.6));  // x in [-40, 0], up to the cut
+
+  VectorMap map;
+  map.origin = t.origin;
+  std::vector<Vec3> map_lane;
+  for (int x = -40; x <= 100; x += 10) map_lane.push_back({double(x), 3.1, 0.0});
+  map.instances = {inst(1, CrowdClass::kLaneLine, map_lane),
+                   inst(2, CrowdClass::kPole, {{50.2, -3, 0}}, 6),
+                   inst(3, CrowdClass::kPole, {{-20.2, -3, 0}}, 6),  // a true pole, out of scope
+                   inst(4, CrowdClass::kPole, {{70, -8, 0}}, 6)};    // false
+  const MapEvalParams p;
+  const auto with = evaluateMap(map, scored, p, &outside);
+  const auto& lane_with = get(with, CrowdClass::kLaneLine);
+  CHECK(lane_with.completeness == Approx(1.0).margin(kExact));
+  CHECK(lane_with.map_length == Approx(100.0).margin(0.6));
+  CHECK(lane_with.redundancy == Approx(0.0).margin(0.01));
+  const auto& pole_with = get(with, CrowdClass::kPole);
+  CHECK(pole_with.map_count == 2);
+  CHECK(pole_with.redundancy == Approx(0.5).margin(kExact));  // the false pole only
+  // Without the unscored truth both out-of-scope elements count as redundant.
+  const auto without = evaluateMap(map, scored, p);
+  CHECK(get(without, CrowdClass::kLaneLine).redundancy == Approx(40.0 / 140.0).margin(0.01));
+  CHECK(get(without, CrowdClass::kPole).redundancy == Approx(2.0 / 3.0).margin(kExact));
+}

@@ -88,15 +88,18 @@ Vec3 centreOf(const MapInstance& m) {
 }
 
 ClassMetrics evaluateLines(const std::vector<const MapInstance*>& map,
-                           const std::vector<const MapInstance*>& truth, const MapEvalParams& p) {
+                           const std::vector<const MapInstance*>& truth,
+                           const std::vector<const MapInstance*>& unscored,
+                           const MapEvalParams& p) {
   ClassMetrics m;
   m.by_length = true;
   m.truth_count = truth.size();
   m.map_count = map.size();
-  std::vector<std::vector<Vec3>> tl, ml;
+  std::vector<std::vector<Vec3>> tl, ml, ul;
   for (const auto* t : truth) tl.push_back(t->points);
   for (const auto* i : map) ml.push_back(i->points);
-  const SegmentIndex tindex(tl), mindex(ml);
+  for (const auto* u : unscored) ul.push_back(u->points);
+  const SegmentIndex tindex(tl), mindex(ml), uindex(ul);
   const double tol = p.line_tolerance;
 
   // map side: matched length, absolute error, which truth line each map line follows
@@ -105,13 +108,17 @@ ClassMetrics evaluateLines(const std::vector<const MapInstance*>& map,
   for (std::size_t i = 0; i < ml.size(); ++i) {
     const auto s = aggregate::resamplePolyline(ml[i], p.sample_step);
     std::map<int, double> votes;
-    double matched = 0, length = 0;
+    double matched = 0, length = 0, out_of_scope = 0;
     for (std::size_t k = 1; k < s.size(); ++k) {
       const Vec3 c = 0.5 * (s[k - 1] + s[k]);
       const double len = (s[k] - s[k - 1]).norm();
-      length += len;
       int line = -1;
       const double d = tindex.nearest(c, tol, nullptr, &line);
+      if (d > tol && uindex.nearest(c, tol, nullptr, nullptr) <= tol) {
+        out_of_scope += len;
+        continue;
+      }
+      length += len;
       if (d <= tol) {
         matched += len;
         votes[line] += len;
@@ -120,6 +127,7 @@ ClassMetrics evaluateLines(const std::vector<const MapInstance*>& map,
     }
     m.map_length += length;
     m.matched_map_length += matched;
+    if (length == 0 && out_of_scope > 0) --m.map_count;  // wholly out of scope
     if (matched >= 0.5 * length && length > 0) ++m.matched_map;
     double best = 0;
     for (const auto& [line, w] : votes)
@@ -182,15 +190,28 @@ ClassMetrics evaluateLines(const std::vector<const MapInstance*>& map,
   return m;
 }
 
-ClassMetrics evaluateDiscrete(const std::vector<const MapInstance*>& map,
+ClassMetrics evaluateDiscrete(const std::vector<const MapInstance*>& map_all,
                               const std::vector<const MapInstance*>& truth,
+                              const std::vector<const MapInstance*>& unscored,
                               const MapEvalParams& p) {
   ClassMetrics m;
   m.truth_count = truth.size();
-  m.map_count = map.size();
   std::vector<Vec3> tc, mc;
   for (const auto* t : truth) tc.push_back(centreOf(*t));
-  for (const auto* i : map) mc.push_back(centreOf(*i));
+  // Out of scope: map elements that match no scored true element but an unscored one.
+  std::vector<const MapInstance*> map;
+  for (const auto* i : map_all) {
+    const Vec3 c = centreOf(*i);
+    auto near = [&](const MapInstance* t) {
+      return (centreOf(*t) - c).norm() <= p.discrete_tolerance;
+    };
+    if (std::none_of(truth.begin(), truth.end(), near) &&
+        std::any_of(unscored.begin(), unscored.end(), near))
+      continue;
+    map.push_back(i);
+    mc.push_back(c);
+  }
+  m.map_count = map.size();
   // greedy one-to-one matching by increasing centre distance
   std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;
   for (std::size_t j = 0; j < tc.size(); ++j)
@@ -239,19 +260,23 @@ VectorMap inOrigin(const VectorMap& map_in, const geo::GeoOrigin& origin) {
   return map;
 }
 
-MapMetrics evaluateMap(const VectorMap& map_in, const VectorMap& truth, const MapEvalParams& p) {
+MapMetrics evaluateMap(const VectorMap& map_in, const VectorMap& truth, const MapEvalParams& p,
+                       const VectorMap* unscored) {
   const VectorMap map = inOrigin(map_in, truth.origin);
   MapMetrics out;
   for (int c = 0; c < kNumCrowdClasses; ++c) {
     const CrowdClass cls = CrowdClass(c);
-    std::vector<const MapInstance*> mi, ti;
+    std::vector<const MapInstance*> mi, ti, ui;
     for (const auto& i : map.instances)
       if (i.cls == cls) mi.push_back(&i);
     for (const auto& i : truth.instances)
       if (i.cls == cls) ti.push_back(&i);
+    if (unscored)
+      for (const auto& i : unscored->instances)
+        if (i.cls == cls) ui.push_back(&i);
     if (mi.empty() && ti.empty()) continue;
-    ClassMetrics m =
-        cls == CrowdClass::kLaneLine ? evaluateLines(mi, ti, p) : evaluateDiscrete(mi, ti, p);
+    ClassMetrics m = cls == CrowdClass::kLaneLine ? evaluateLines(mi, ti, ui, p)
+                                                  : evaluateDiscrete(mi, ti, ui, p);
     m.cls = cls;
     out.classes.push_back(std::move(m));
   }
@@ -259,7 +284,7 @@ MapMetrics evaluateMap(const VectorMap& map_in, const VectorMap& truth, const Ma
 }
 
 VectorMap clipToCoverage(const VectorMap& truth, const std::vector<Pose3>& poses,
-                         const CoverageWedge& wedge) {
+                         const CoverageWedge& wedge, VectorMap* outside) {
   const double cell = std::hypot(wedge.range, wedge.lateral);  // farthest covered point
   const double tan_fov = wedge.half_fov < M_PI / 2 ? std::tan(wedge.half_fov) : 1e18;
   auto key = [&](double x, double y) {
@@ -285,14 +310,30 @@ VectorMap clipToCoverage(const VectorMap& truth, const std::vector<Pose3>& poses
   constexpr double kMinPiece = 1.0;  // m
   VectorMap out = truth;
   out.instances.clear();
+  if (outside) {
+    *outside = truth;
+    outside->instances.clear();
+  }
   int64_t next_id = 1;
   for (const auto& i : truth.instances) next_id = std::max(next_id, i.id + 1);
   for (const auto& inst : truth.instances) {
     if (geometryKind(inst.cls) != GeometryKind::kLine) {
-      if (covered(centreOf(inst))) out.instances.push_back(inst);
+      if (covered(centreOf(inst)))
+        out.instances.push_back(inst);
+      else if (outside)
+        outside->instances.push_back(inst);
       continue;
     }
-    std::vector<Vec3> piece;
+    std::vector<Vec3> piece, rest;  // covered piece, uncovered piece
+    auto flush_rest = [&] {
+      if (outside && rest.size() >= 2) {
+        MapInstance m = inst;
+        m.points = rest;
+        m.bezier.clear();
+        outside->instances.push_back(std::move(m));
+      }
+      rest.clear();
+    };
     bool first = true;
     auto flush = [&] {
       if (piece.size() >= 2 && polylineLength(piece) >= kMinPiece) {
@@ -306,12 +347,18 @@ VectorMap clipToCoverage(const VectorMap& truth, const std::vector<Pose3>& poses
       piece.clear();
     };
     for (const auto& q : aggregate::resamplePolyline(inst.points, 0.5)) {
-      if (covered(q))
+      if (covered(q)) {
+        if (!rest.empty()) rest.push_back(q);  // the uncovered piece reaches the boundary
+        flush_rest();
         piece.push_back(q);
-      else
+      } else {
+        if (rest.empty() && !piece.empty()) rest.push_back(piece.back());
         flush();
+        rest.push_back(q);
+      }
     }
     flush();
+    flush_rest();
   }
   return out;
 }

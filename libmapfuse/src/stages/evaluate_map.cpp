@@ -71,6 +71,8 @@ nlohmann::json runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
     throw InputError("--lsm needs --truth-trajectories (folder of <drive>.trajectory.json)");
   VectorMap truth = io::readVectorMap(in.truth);
   std::size_t coverage_files = 0;
+  VectorMap unscored;  // truth outside the drives' view: map elements there are not scored
+  unscored.origin = truth.origin;
   if (!in.truth_trajectories.empty() && params.coverage_radius > 0) {
     // score only what the drives could see: truth near the true trajectories
     if (!std::filesystem::is_directory(in.truth_trajectories))
@@ -90,7 +92,7 @@ nlohmann::json runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
       for (const auto& p : t.poses) poses.push_back(p.T_enu_body);
     }
     coverage_files = files.size();
-    truth = eval::clipToCoverage(truth, poses, params.coverageWedge());
+    truth = eval::clipToCoverage(truth, poses, params.coverageWedge(), &unscored);
   }
   std::vector<eval::MapReportEntry> entries;
   VectorMap last_map;
@@ -102,7 +104,7 @@ nlohmann::json runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
     e.name = std::filesystem::path(in.maps[i]).filename().string();
     if (in.maps.size() > 1) e.name = in.maps[i];
     e.traversals = in.traversals.empty() ? traversalsOf(in.maps[i], map) : in.traversals[i];
-    e.metrics = eval::evaluateMap(map, truth, params.toEval());
+    e.metrics = eval::evaluateMap(map, truth, params.toEval(), &unscored);
     entries.push_back(std::move(e));
   }
   std::vector<eval::TrajectoryMetrics> trajectories;

@@ -44,8 +44,11 @@ struct MapMetrics {
 VectorMap inOrigin(const VectorMap& map, const geo::GeoOrigin& origin);
 
 /// @brief Compares `map` with `truth` (map coordinates are converted to the truth's ENU when the
-/// origins differ).
-MapMetrics evaluateMap(const VectorMap& map, const VectorMap& truth, const MapEvalParams& params);
+/// origins differ). With `unscored`, the true elements left out of the score (clipToCoverage's
+/// `outside`, in the truth's ENU): map elements (lane-line samples) that match no scored truth
+/// but lie within the tolerance of an unscored one are neither credited nor counted redundant.
+MapMetrics evaluateMap(const VectorMap& map, const VectorMap& truth, const MapEvalParams& params,
+                       const VectorMap* unscored = nullptr);
 
 /// What a forward camera at a pose sees of the ground: body x in [0, range], |y| <= lateral and
 /// |y| <= x tan(half_fov).
@@ -59,8 +62,10 @@ struct CoverageWedge {
 /// their pieces (sampled every 0.5 m, pieces shorter than 1 m dropped), other instances kept by
 /// their centre, where a point is covered when it lies in the wedge of some pose (what lies
 /// behind a drive's start or beside it outside the field of view was never in view).
+/// `outside`, when given, receives the rest: instances whose centre is not covered and the
+/// uncovered pieces of lane lines.
 VectorMap clipToCoverage(const VectorMap& truth, const std::vector<Pose3>& poses,
-                         const CoverageWedge& wedge);
+                         const CoverageWedge& wedge, VectorMap* outside = nullptr);
 
 nlohmann::json toJson(const ClassMetrics& m);
 nlohmann::json toJson(const MapMetrics& m);
