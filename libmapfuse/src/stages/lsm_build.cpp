@@ -40,6 +40,7 @@ void LsmBuildParams::validate() const {
   requireParam(sigma_height >= 0.0, S, "sigma_height", sigma_height, ">= 0");
   requireParam(sigma_attitude >= 0.0, S, "sigma_attitude", sigma_attitude, ">= 0");
   requireParam(vp_window >= 1, S, "vp_window", vp_window, ">= 1");
+  requireParam(tilt_window >= 0, S, "tilt_window", tilt_window, ">= 0");
   requireParam(vp_max_range > min_range, S, "vp_max_range", vp_max_range, "> min_range");
   requireParam(vp_max_line_rms > 0.0, S, "vp_max_line_rms", vp_max_line_rms, "> 0");
   requireParam(max_pitch_correction > 0.0, S, "max_pitch_correction", max_pitch_correction, "> 0");

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <map>
 
+#include "mapfuse/vehicle/body_tilt.hpp"
 #include "mapfuse/vehicle/dead_reckoning.hpp"
 #include "mapfuse/vehicle/ground_ranging.hpp"
 #include "mapfuse/vehicle/lsm_assembly.hpp"
@@ -39,8 +40,16 @@ ProcessedDrive processDrive(const LoadedDrive& d, const LsmBuildParams& p) {
   const Eigen::Matrix3d K_inv = d.calib.K.inverse();
   const auto t_all = Clock::now();
 
-  // 1. Ground-plane calibration from lane vanishing points (§3.2.1).
+  // 1. Ground plane per frame: tilted with the body (body_tilt.hpp), then calibrated from lane
+  // vanishing points (§3.2.1) against that plane.
   auto t = Clock::now();
+  out.planes.resize(n, d.calib.ground);
+  if (p.tilt_window > 0) {
+    const auto tilt = vehicle::roadTiltInBody(d.T_odom_body, d.stamps, p.tilt_window);
+    for (std::size_t i = 0; i < n; ++i)
+      out.planes[i].normal_cam = vehicle::tiltByBodyRotation(
+          d.calib.ground.normal_cam, tilt[i], d.calib.T_body_cam.linear());
+  }
   out.pitch_corrections.assign(n, 0.0);
   if (p.vp_calibration) {
     vehicle::VanishingSettings vs;
@@ -74,15 +83,14 @@ ProcessedDrive processDrive(const LoadedDrive& d, const LsmBuildParams& p) {
         if (k == 0 || obs[k].first - obs[k - 1].first > kLaneGroupGap) lanes.emplace_back();
         lanes.back().insert(lanes.back().end(), obs[k].second.begin(), obs[k].second.end());
       }
-      per_frame[i] = vehicle::estimatePitchCorrection(lanes, d.calib.K, d.calib.ground, vs);
+      per_frame[i] = vehicle::estimatePitchCorrection(lanes, d.calib.K, out.planes[i], vs);
     }
     for (const auto& c : per_frame) out.vp_frames += c ? 1 : 0;
     out.pitch_corrections = vehicle::smoothCorrections(per_frame, p.vp_window);
   }
-  out.planes.resize(n, d.calib.ground);
   for (std::size_t i = 0; i < n; ++i)
     out.planes[i].normal_cam =
-        vehicle::tiltNormal(d.calib.ground.normal_cam, out.pitch_corrections[i], 0.0);
+        vehicle::tiltNormal(out.planes[i].normal_cam, out.pitch_corrections[i], 0.0);
   const double t_calib = since(t);
 
   // 2. Ground ranging (eq. 1) into the odom frame, frame-parallel.

@@ -28,8 +28,9 @@ struct LsmBuildParams {
   double sigma_pixel = 1.0;                                        ///< px
   double sigma_height = 0.03;                                      ///< m
   double sigma_attitude = 0.003;       ///< rad, residual pitch / roll after calibration
+  double tilt_window = 2.0;            ///< s, body tilt from the ego-motion (body_tilt.hpp); 0: off
   bool vp_calibration = true;          ///< correct the ground plane from lane vanishing points
-  int vp_window = 5;                   ///< frames in the median window
+  int vp_window = 601;                 ///< frames in the median window (the mount error is constant)
   double vp_max_range = 25.0;          ///< m, lane points used for line fits
   double vp_max_line_rms = 1.5;        ///< px
   double max_pitch_correction = 0.05;  ///< rad
@@ -71,6 +72,8 @@ struct LsmBuildParams {
     v("sigma_pixel", sigma_pixel, "px", "marking pixel noise (covariances)");
     v("sigma_height", sigma_height, "m", "camera height uncertainty (covariances)");
     v("sigma_attitude", sigma_attitude, "rad", "pitch/roll uncertainty (covariances)");
+    v("tilt_window", tilt_window, "s",
+      "follow the body's pitch and roll from the ego-motion against their mean over this window; 0: off");
     v("vp_calibration", vp_calibration, "", "vanishing-point ground-plane calibration");
     v("vp_window", vp_window, "frames", "median window of the pitch correction");
     v("vp_max_range", vp_max_range, "m", "lane points farther than this are not fitted");

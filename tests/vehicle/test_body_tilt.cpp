@@ -1,0 +1,89 @@
+// vehicle::roadTiltInBody / tiltByBodyRotation on hand-made motions whose answers are known: a
+// body pitching and rolling on its suspension over a level road, a long climb (road grade, not
+// tilt), and bad inputs.
+#include <Eigen/Geometry>
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/vehicle/body_tilt.hpp"
+
+using namespace mapfuse;
+
+namespace {
+constexpr double kRate = 10.0;        // Hz, camera frames
+constexpr double kWindow = 2.0;       // s
+constexpr double kOscillation = 0.7;  // Hz, suspension
+constexpr double kAmplitude = 0.01;   // rad
+
+Pose3 pose(double yaw, double pitch, double roll, const Eigen::Vector3d& t) {
+  Pose3 T = Pose3::Identity();
+  T.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  T.translation() = t;
+  return T;
+}
+
+/// Angle between the tilt's image of e_z and the true road normal in the body frame.
+double normalError(const Eigen::Matrix3d& tilt, const Pose3& T_odom_body,
+                   const Eigen::Vector3d& road_odom) {
+  const Eigen::Vector3d est = tilt * Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d truth = T_odom_body.linear().transpose() * road_odom;
+  return std::acos(std::clamp(est.dot(truth.normalized()), -1.0, 1.0));
+}
+}  // namespace
+
+TEST_CASE("body tilt: suspension pitch and roll over a level road are followed") {
+  // 20 s of driving in a slow turn; pitch and roll oscillate at 0.7 and 0.45 Hz.
+  std::vector<Pose3> poses;
+  std::vector<double> stamps;
+  for (int i = 0; i < 200; ++i) {
+    const double t = i / kRate;
+    poses.push_back(pose(0.05 * t, kAmplitude * std::sin(2 * M_PI * kOscillation * t),
+                         0.5 * kAmplitude * std::sin(2 * M_PI * 0.45 * t + 1.0),
+                         Eigen::Vector3d(8.0 * t, 0.0, 0.0)));
+    stamps.push_back(t);
+  }
+  const auto tilt = vehicle::roadTiltInBody(poses, stamps, kWindow);
+  REQUIRE(tilt.size() == poses.size());
+  double worst = 0.0, worst_fixed = 0.0;
+  for (std::size_t i = 20; i + 20 < poses.size(); ++i) {  // full windows
+    worst = std::max(worst, normalError(tilt[i], poses[i], Eigen::Vector3d::UnitZ()));
+    worst_fixed = std::max(
+        worst_fixed, normalError(Eigen::Matrix3d::Identity(), poses[i], Eigen::Vector3d::UnitZ()));
+  }
+  INFO("worst normal error " << worst << " rad with the tilt, " << worst_fixed << " without");
+  // The window average of a sinusoid over 1.4 of its periods leaves ~0.15 of the amplitude.
+  CHECK(worst < 0.25 * kAmplitude);
+  CHECK(worst_fixed > 0.9 * kAmplitude);
+}
+
+TEST_CASE("body tilt: a steady climb is road grade, not tilt, windows off, bad input") {
+  // A 3 % grade driven at a constant pitch: the body lies on the road, nothing to correct.
+  std::vector<Pose3> poses;
+  std::vector<double> stamps;
+  const double grade = std::atan(0.03);
+  for (int i = 0; i < 100; ++i) {
+    poses.push_back(pose(0.0, -grade, 0.0, Eigen::Vector3d(0.8 * i, 0.0, 0.024 * i)));
+    stamps.push_back(i / kRate);
+  }
+  const auto tilt = vehicle::roadTiltInBody(poses, stamps, kWindow);
+  for (const auto& R : tilt) CHECK((R - Eigen::Matrix3d::Identity()).norm() < 1e-9);
+  for (const auto& R : vehicle::roadTiltInBody(poses, stamps, 0.0))
+    CHECK(R == Eigen::Matrix3d::Identity());
+
+  // The nominal camera normal is rotated by the body-frame tilt through the mount.
+  const Eigen::Matrix3d R_body_cam =
+      (Eigen::Matrix3d() << 0, 0, 1, -1, 0, 0, 0, -1, 0).finished();  // x right, y down, z ahead
+  const Eigen::Vector3d n_cam = R_body_cam.transpose() * Eigen::Vector3d::UnitZ();
+  const Eigen::Matrix3d pitch = Eigen::AngleAxisd(0.02, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const Eigen::Vector3d tilted = vehicle::tiltByBodyRotation(n_cam, pitch, R_body_cam);
+  CHECK((R_body_cam * tilted - pitch * Eigen::Vector3d::UnitZ()).norm() < 1e-12);
+
+  stamps.pop_back();
+  CHECK_THROWS_AS(vehicle::roadTiltInBody(poses, stamps, kWindow), InputError);
+  stamps.push_back(0.0);  // backwards
+  CHECK_THROWS_AS(vehicle::roadTiltInBody(poses, stamps, kWindow), InputError);
+}
