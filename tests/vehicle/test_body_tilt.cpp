@@ -78,7 +78,8 @@ TEST_CASE("body tilt: a steady climb is road grade, not tilt, windows off, bad i
   const Eigen::Matrix3d R_body_cam =
       (Eigen::Matrix3d() << 0, 0, 1, -1, 0, 0, 0, -1, 0).finished();  // x right, y down, z ahead
   const Eigen::Vector3d n_cam = R_body_cam.transpose() * Eigen::Vector3d::UnitZ();
-  const Eigen::Matrix3d pitch = Eigen::AngleAxisd(0.02, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const Eigen::Matrix3d pitch =
+      Eigen::AngleAxisd(0.02, Eigen::Vector3d::UnitY()).toRotationMatrix();
   const Eigen::Vector3d tilted = vehicle::tiltByBodyRotation(n_cam, pitch, R_body_cam);
   CHECK((R_body_cam * tilted - pitch * Eigen::Vector3d::UnitZ()).norm() < 1e-12);
 

@@ -47,8 +47,8 @@ ProcessedDrive processDrive(const LoadedDrive& d, const LsmBuildParams& p) {
   if (p.tilt_window > 0) {
     const auto tilt = vehicle::roadTiltInBody(d.T_odom_body, d.stamps, p.tilt_window);
     for (std::size_t i = 0; i < n; ++i)
-      out.planes[i].normal_cam = vehicle::tiltByBodyRotation(
-          d.calib.ground.normal_cam, tilt[i], d.calib.T_body_cam.linear());
+      out.planes[i].normal_cam = vehicle::tiltByBodyRotation(d.calib.ground.normal_cam, tilt[i],
+                                                             d.calib.T_body_cam.linear());
   }
   out.pitch_corrections.assign(n, 0.0);
   if (p.vp_calibration) {

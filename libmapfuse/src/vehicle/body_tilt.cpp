@@ -26,8 +26,8 @@ std::vector<Eigen::Matrix3d> roadTiltInBody(const std::vector<Pose3>& T_odom_bod
     while (hi < n && stamps[hi] <= stamps[i] + 0.5 * window) ++hi;
     const Eigen::Vector3d road_odom = (prefix[hi] - prefix[lo]).normalized();
     const Eigen::Vector3d road_body = T_odom_body[i].linear().transpose() * road_odom;
-    out[i] = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), road_body)
-                 .toRotationMatrix();
+    out[i] =
+        Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), road_body).toRotationMatrix();
   }
   return out;
 }

@@ -26,8 +26,9 @@ struct ElementTruthErrors {
 /// the truth to the observation: for lane and stop lines the mean offset of its points to their
 /// nearest points on the true polyline (an observation often shows only part of a line, so
 /// centroids would differ without any error), lane lines longer than `piece_length` grouped by
-/// pieces of that arc length; for other elements centroid minus true centroid. Spread: per group, the per-drive mean
-/// offsets' RMS distance to their mean. The truth is converted when its origin differs.
+/// pieces of that arc length; for other elements centroid minus true centroid. Spread: per group,
+/// the per-drive mean offsets' RMS distance to their mean. The truth is converted when its origin
+/// differs.
 /// @throws InputError when an LSM is not in enu.
 ElementTruthErrors elementTruthErrors(const std::vector<Lsm>& lsms, const VectorMap& truth,
                                       double piece_length = 20.0);

@@ -36,10 +36,10 @@ struct SeenThroughSettings {
   double min_range = 2.0;    ///< m, voxels nearer to the sensor are not tested
   double max_range = 50.0;   ///< m, nor farther ones (sparse returns)
   int min_seen_through = 1;  ///< scans that must see through a voxel before it goes
-  double min_free_ratio = 0.5;  ///< and their share among the scans that saw it at all
+  double min_free_ratio = 0.5;       ///< and their share among the scans that saw it at all
   double vehicle_vote_radius = 0.5;  ///< m, (x, y) neighbourhood of the vehicle vote; 0: per voxel
   double vehicle_vote_share = 0.6;   ///< share of seen-through vehicle voxels that removes them all
-  int num_threads = 1;          ///< OpenMP threads (results do not depend on it)
+  int num_threads = 1;               ///< OpenMP threads (results do not depend on it)
 };
 
 struct SeenThroughStats {

@@ -128,7 +128,8 @@ struct LidarSemanticMapParams {
     v("seen_through_min_ratio", seen_through_min_ratio, "",
       "and their share among the scans that saw the voxel");
     v("seen_through_vote_radius", seen_through_vote_radius, "m",
-      "vehicle voxels go by the vote of the vehicle voxels within this (x, y) radius; 0: each alone");
+      "vehicle voxels go by the vote of the vehicle voxels within this (x, y) radius; 0: each "
+      "alone");
     v("seen_through_vote_share", seen_through_vote_share, "",
       "share of seen-through vehicle voxels in that neighbourhood that removes them");
     v("topdown_resolution", topdown_resolution, "m", "top-down PNG pixel size");

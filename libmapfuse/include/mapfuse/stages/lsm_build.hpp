@@ -27,23 +27,23 @@ struct LsmBuildParams {
   double min_range = 3.0, max_range = 30.0;                        ///< m, ground ranging band
   double sigma_pixel = 1.0;                                        ///< px
   double sigma_height = 0.03;                                      ///< m
-  double sigma_attitude = 0.003;       ///< rad, residual pitch / roll after calibration
-  double tilt_window = 2.0;            ///< s, body tilt from the ego-motion (body_tilt.hpp); 0: off
-  bool vp_calibration = true;          ///< correct the ground plane from lane vanishing points
-  int vp_window = 601;                 ///< frames in the median window (the mount error is constant)
-  double vp_max_range = 25.0;          ///< m, lane points used for line fits
-  double vp_max_line_rms = 1.5;        ///< px
-  double max_pitch_correction = 0.05;  ///< rad
-  int mask_min_area = 20;              ///< px, smaller mask components are noise
-  double min_parallax = 0.02;          ///< rad
-  int min_track_frames = 3;            ///< frames for aerial triangulation
-  double track_sigma_pixel = 1.0;      ///< px
-  double huber_delta = 2.0;            ///< sigmas
-  double max_reprojection_rms = 4.0;   ///< px
-  double association_radius = 0.6;     ///< m
-  double point_spacing = 0.5;          ///< m
-  double max_element_length = 30.0;    ///< m
-  int min_observations = 2;            ///< frames per ground instance
+  double sigma_attitude = 0.003;  ///< rad, residual pitch / roll after calibration
+  double tilt_window = 2.0;       ///< s, body tilt from the ego-motion (body_tilt.hpp); 0: off
+  bool vp_calibration = true;     ///< correct the ground plane from lane vanishing points
+  int vp_window = 601;            ///< frames in the median window (the mount error is constant)
+  double vp_max_range = 25.0;     ///< m, lane points used for line fits
+  double vp_max_line_rms = 1.5;   ///< px
+  double max_pitch_correction = 0.05;        ///< rad
+  int mask_min_area = 20;                    ///< px, smaller mask components are noise
+  double min_parallax = 0.02;                ///< rad
+  int min_track_frames = 3;                  ///< frames for aerial triangulation
+  double track_sigma_pixel = 1.0;            ///< px
+  double huber_delta = 2.0;                  ///< sigmas
+  double max_reprojection_rms = 4.0;         ///< px
+  double association_radius = 0.6;           ///< m
+  double point_spacing = 0.5;                ///< m
+  double max_element_length = 30.0;          ///< m
+  int min_observations = 2;                  ///< frames per ground instance
   double keyframe_sigma_translation = 0.05;  ///< m
   double keyframe_sigma_rotation = 0.002;    ///< rad
   std::string format = "json";               ///< LSM encoding: json | cbor
@@ -73,7 +73,8 @@ struct LsmBuildParams {
     v("sigma_height", sigma_height, "m", "camera height uncertainty (covariances)");
     v("sigma_attitude", sigma_attitude, "rad", "pitch/roll uncertainty (covariances)");
     v("tilt_window", tilt_window, "s",
-      "follow the body's pitch and roll from the ego-motion against their mean over this window; 0: off");
+      "follow the body's pitch and roll from the ego-motion against their mean over this window; "
+      "0: off");
     v("vp_calibration", vp_calibration, "", "vanishing-point ground-plane calibration");
     v("vp_window", vp_window, "frames", "median window of the pitch correction");
     v("vp_max_range", vp_max_range, "m", "lane points farther than this are not fitted");
