@@ -4,6 +4,8 @@
 # low-cost noise. Element spread across traversals, element absolute error and keyframe ATE
 # against the simulator's truth (bench_fusion_errors), time per phase.
 # Writes docs/performance-fusion-accuracy.md. Usage: bench_fusion_accuracy.sh [BIN_DIR] [N]
+# env: KARLSRUHE_SEEDS="1 2 3 4 5 6 7" (further simulate seeds of the one-route Karlsruhe world,
+# summarised as means over all seeds with the default 42; empty: none)
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 bin="$(cd "${1:-$root/build/bin}" && pwd)"
@@ -35,6 +37,8 @@ print(f"| {w} | mean GPS bias of the drives | | | | {geo['gps_bias_mean_m']:.3f}
 PY
 }
 
+seeds_extra=${KARLSRUHE_SEEDS-"1 2 3 4 5 6 7"}
+
 run_world() {  # label, extra simulate args...
   local w=$1; shift
   local d="$tmp/$w"
@@ -63,6 +67,7 @@ if [ -f "$osm" ]; then
   run_world karlsruhe --map "$osm" --routes 1
   run_world karlsruhe-4-routes --map "$osm"
   worlds="procedural karlsruhe karlsruhe-4-routes"
+  for s in $seeds_extra; do run_world "karlsruhe-seed$s" --map "$osm" --routes 1 --seed "$s"; done
 else
   echo "bench_fusion_accuracy: $osm absent, Karlsruhe rows skipped" >&2
 fi
@@ -89,5 +94,28 @@ fi
   echo "| world | method | spread mean [m] | spread median [m] | spread shrink vs georef | abs error [m] | keyframe ATE [m] | time [s] |"
   echo "|---|---|---|---|---|---|---|---|"
   for w in $worlds; do row "$w" "$tmp/$w"; done
+  if [ -f "$osm" ] && [ -n "$seeds_extra" ]; then
+    echo
+    echo "Karlsruhe, one route, $n traversals, simulate seeds 42 (above) and $seeds_extra: per method,"
+    echo "the mean over seeds of each figure, and the smallest per-seed spread shrink."
+    echo
+    echo "| method | spread mean [m] | spread shrink (mean spreads) | smallest per-seed shrink | abs error [m] | keyframe ATE [m] | mean GPS bias [m] |"
+    echo "|---|---|---|---|---|---|---|"
+    python3 - "$tmp" karlsruhe $(for s in $seeds_extra; do echo "karlsruhe-seed$s"; done) <<'PY'
+import json, sys
+tmp, worlds = sys.argv[1], sys.argv[2:]
+load = lambda w, m: json.load(open(f"{tmp}/{w}/err_{m}.json"))
+mean = lambda xs: sum(xs) / len(xs)
+geo = [load(w, "georef") for w in worlds]
+for m in ["georef", "icp", "sicp", "sgicp", "gba_sgicp"]:
+    e = [load(w, m) for w in worlds]
+    spread = [x["element_spread_m"] for x in e]
+    shrink = sum(g["element_spread_m"] for g in geo) / sum(spread)
+    worst = min(g["element_spread_m"] / x for g, x in zip(geo, spread))
+    print(f"| {m} | {mean(spread):.3f} | {shrink:.1f}x | {worst:.1f}x | "
+          f"{mean([x['element_abs_m'] for x in e]):.3f} | {mean([x['ate_mean_m'] for x in e]):.3f} | "
+          f"{mean([g['gps_bias_mean_m'] for g in geo]):.3f} |")
+PY
+  fi
 } > "$out"
 cat "$out"
