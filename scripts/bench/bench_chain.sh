@@ -24,7 +24,7 @@ run() {
   "$bin/simulate" -q "$@" -o "$sim" > /dev/null
   local mk=(make -s -j2 -f "$root/scripts/crowd.mk" BIN="$bin" LSM_DIR="$sim/lsm" WORK="$work"
     TRUTH="$sim/truth/vector_map.json" TRUTH_TRAJ="$sim/truth" ${tile:+TILE_SIZE=$tile})
-  # Timings on this VM drift by +-30 % from minute to minute: chains under 10 s run 3 times
+  # Timings on this VM drift by +-30 % from minute to minute: chains under 10 s run 5 times
   # (work folders cleared in between) and the median counts.
   local times=() directs=() rep=0
   while :; do
@@ -48,7 +48,7 @@ run() {
       directs+=(0)
     fi
     rep=$((rep + 1))
-    if [[ $rep -ge 3 ]] || awk "BEGIN { exit !(${times[0]} >= 10) }"; then break; fi
+    if [[ $rep -ge 5 ]] || awk "BEGIN { exit !(${times[0]} >= 10) }"; then break; fi
   done
   median() { printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
   local seconds direct
@@ -109,7 +109,7 @@ lines = ["# Performance: the crowd chain (georef -> align -> aggregate)", "",
          " (georef per drive, align gba_sgicp, aggregate [tile, stitch]), timed from make's start to the"
          " map; simulate and evaluate (run afterwards for the quality columns) are not included."
          " Timings on this VM drift by up to +-30 % from minute to minute: chains shorter than 10 s"
-         " ran 3 times (fresh work folders) and the tables give the median.",
+         " ran 5 times (fresh work folders) and the tables give the median.",
          "- road km: aggregate's `size.road_km`, the length of road the drives covered (trajectories"
          " merged within 4 m); driven km: the sum over all drives (simulate's `km_driven`). Road km/h"
          " is the issue's figure; driven km/h is the volume of crowd data the chain digests per hour.",
