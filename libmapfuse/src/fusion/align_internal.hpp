@@ -37,7 +37,8 @@ struct SubmapPair {
 
 /// @brief Pairs of submaps of different LSMs to register: for every submap the
 /// `max_partners` best-overlapping submaps of distinct other LSMs (overlap = share of coarse
-/// points with a same-label point within `overlap_radius` m), union over submaps, sorted.
+/// points with a same-label point within `overlap_radius` m; with `spread_partners`, that many
+/// evenly spread over the LSMs that overlap at least `min_overlap`), union over submaps, sorted.
 std::vector<SubmapPair> selectPairs(const std::vector<Submap>& maps, const AlignSettings& s);
 
 struct CoarseResult {

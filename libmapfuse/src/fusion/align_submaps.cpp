@@ -155,7 +155,10 @@ std::vector<SubmapPair> selectPairs(const std::vector<Submap>& maps, const Align
 #pragma omp parallel for schedule(dynamic, 16) num_threads(s.threads)
   for (int p = 0; p < int(cand.size()); ++p)
     ov[p] = std::min(share(cand[p].first, cand[p].second), share(cand[p].second, cand[p].first));
-  // Per submap, the best partner of each other LSM, then the max_partners best of those.
+  // Per submap, the best partner of each other LSM, then the max_partners best of those, or
+  // (spread_partners) max_partners of those evenly spread over the LSMs, the offset rotating with
+  // the submap: drives whose GPS biases agree overlap best in georef's ENU, so "best" ties like
+  // to like and can leave groups of drives joined only elsewhere.
   std::vector<std::map<int, std::pair<double, int>>> best(n);  // submap -> lsm -> (overlap, pair)
   for (int p = 0; p < int(cand.size()); ++p) {
     if (ov[p] < s.min_overlap) continue;
@@ -168,12 +171,16 @@ std::vector<SubmapPair> selectPairs(const std::vector<Submap>& maps, const Align
   std::vector<char> chosen(cand.size(), 0);
   for (int i = 0; i < n; ++i) {
     std::vector<std::pair<double, int>> v;
-    for (const auto& [lsm, e] : best[i]) v.push_back(e);
+    for (const auto& [lsm, e] : best[i]) v.push_back(e);  // in LSM order
+    const int m = int(v.size());
+    const int take = s.max_partners > 0 ? std::min(s.max_partners, m) : m;
+    if (s.spread_partners) {
+      for (int k = 0; k < take; ++k) chosen[v[(i + k * m / take) % m].second] = 1;
+      continue;
+    }
     std::sort(v.begin(), v.end(), [](const auto& x, const auto& y) {
       return x.first != y.first ? x.first > y.first : x.second < y.second;
     });
-    const int take =
-        s.max_partners > 0 ? std::min<int>(s.max_partners, int(v.size())) : int(v.size());
     for (int k = 0; k < take; ++k) chosen[v[k].second] = 1;
   }
   std::vector<SubmapPair> out;

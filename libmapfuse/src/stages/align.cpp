@@ -17,6 +17,8 @@ void AlignParams::validate() const {
   requireParam(min_overlap >= 0 && min_overlap <= 1, st, "min_overlap", min_overlap, "in [0, 1]");
   requireParam(overlap_radius > 0, st, "overlap_radius", overlap_radius, "> 0");
   requireParam(max_partners >= 0, st, "max_partners", max_partners, ">= 0");
+  requireParam(partner_choice == "overlap" || partner_choice == "spread", st, "partner_choice",
+               partner_choice, "overlap or spread");
   requireParam(coarse_radius > 0, st, "coarse_radius", coarse_radius, "> 0");
   requireParam(coarse_bin > 0 && coarse_bin < coarse_radius, st, "coarse_bin", coarse_bin,
                "in (0, coarse_radius)");
@@ -60,6 +62,7 @@ fusion::AlignSettings AlignParams::settings() const {
   s.min_overlap = min_overlap;
   s.overlap_radius = overlap_radius;
   s.max_partners = max_partners;
+  s.spread_partners = partner_choice == "spread";
   s.coarse_radius = coarse_radius;
   s.coarse_bin = coarse_bin;
   s.coarse_prior_sigma = coarse_prior_sigma;

@@ -26,10 +26,11 @@ struct AlignSettings {
   double submap_length = 60.0;  ///< m of keyframe path per submap
   double min_overlap =
       0.3;  ///< share of coarse points with a same-label point within overlap_radius
-  double overlap_radius = 4.0;  ///< m, overlap test radius (covers the GPS-level initial error)
-  int max_partners = 4;         ///< per submap, register with the best submaps of this many LSMs
-  double coarse_radius = 8.0;   ///< m, displacement-voting search radius (coarse level)
-  double coarse_bin = 0.5;      ///< m, displacement histogram bin
+  double overlap_radius = 4.0;   ///< m, overlap test radius (covers the GPS-level initial error)
+  int max_partners = 4;          ///< per submap, register with the best submaps of this many LSMs
+  bool spread_partners = false;  ///< choose them evenly spread over the overlapping LSMs instead
+  double coarse_radius = 8.0;    ///< m, displacement-voting search radius (coarse level)
+  double coarse_bin = 0.5;       ///< m, displacement histogram bin
   double coarse_prior_sigma = 4.0;  ///< m, Gaussian prior on the relative shift (GPS level)
   int coarse_neighbors = 1;         ///< votes of pairs of submaps this many steps away are added
   /// vote weight per coarse (1 m) point by CrowdClass: landmarks count like metres of line

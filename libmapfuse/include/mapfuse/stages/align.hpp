@@ -17,6 +17,7 @@ struct AlignParams {
   double min_overlap = 0.3;
   double overlap_radius = 4.0;
   int max_partners = 4;
+  std::string partner_choice = "overlap";
   double coarse_radius = 8.0;
   double coarse_bin = 0.5;
   double coarse_prior_sigma = 4.0;
@@ -54,6 +55,9 @@ struct AlignParams {
     v("min_overlap", min_overlap, "", "min share of coarse points near the other submap");
     v("overlap_radius", overlap_radius, "m", "overlap test radius (GPS-level initial error)");
     v("max_partners", max_partners, "", "per submap, register with this many other LSMs (0 = all)");
+    v("partner_choice", partner_choice, "",
+      "overlap (the best-overlapping LSMs) | spread (an evenly spread subset of the overlapping "
+      "LSMs)");
     v("coarse_radius", coarse_radius, "m", "coarse displacement-voting search radius");
     v("coarse_bin", coarse_bin, "m", "coarse displacement histogram bin");
     v("coarse_prior_sigma", coarse_prior_sigma, "m", "Gaussian prior on the coarse shift");
