@@ -39,6 +39,13 @@ VectorMap truthMap() {
   return t;
 }
 
+// Poses every 1 m along +x from x = 0 to x = 100, heading east.
+std::vector<Pose3> driveAlongX() {
+  std::vector<Pose3> poses;
+  for (int i = 0; i <= 100; ++i) poses.push_back(Pose3(Eigen::Translation3d(i, 0.0, 0.0)));
+  return poses;
+}
+
 const ClassMetrics& get(const MapMetrics& m, CrowdClass c) {
   for (const auto& x : m.classes)
     if (x.cls == c) return x;
@@ -166,8 +173,7 @@ TEST_CASE("maps with another origin are converted to the truth's ENU", "[eval][m
 TEST_CASE("coverage keeps what is beside or ahead of a drive, not what lies behind its start",
           "[eval][map]") {
   // A drive along +x from x = 0 to x = 100 (poses every 1 m, heading east), radius 12 m.
-  std::vector<Pose3> poses;
-  for (int i = 0; i <= 100; ++i) poses.push_back(Pose3(Eigen::Translation3d(i, 0.0, 0.0)));
+  const std::vector<Pose3> poses = driveAlongX();
   VectorMap t;
   t.origin = {49.0, 8.4, 110.0};
   std::vector<Vec3> long_line;
@@ -219,8 +225,7 @@ TEST_CASE("map elements of true elements outside the scored scope count neither 
   // A drive along +x from x = 0 to x = 100: the scored truth is what the clip keeps; the map
   // also holds elements of what it left out (a pole behind the start, the line's part behind the
   // start) and one false pole.
-  std::vector<Pose3> poses;
-  for (int i = 0; i <= 100; ++i) poses.push_back(Pose3(Eigen::Translation3d(i, 0.0, 0.0)));
+  const std::vector<Pose3> poses = driveAlongX();
   VectorMap t;
   t.origin = {49.0, 8.4, 110.0};
   std::vector<Vec3> lane;

@@ -196,17 +196,15 @@ ClassMetrics evaluateDiscrete(const std::vector<const MapInstance*>& map_all,
                               const MapEvalParams& p) {
   ClassMetrics m;
   m.truth_count = truth.size();
-  std::vector<Vec3> tc, mc;
+  std::vector<Vec3> tc, uc, mc;
   for (const auto* t : truth) tc.push_back(centreOf(*t));
+  for (const auto* u : unscored) uc.push_back(centreOf(*u));
   // Out of scope: map elements that match no scored true element but an unscored one.
   std::vector<const MapInstance*> map;
   for (const auto* i : map_all) {
     const Vec3 c = centreOf(*i);
-    auto near = [&](const MapInstance* t) {
-      return (centreOf(*t) - c).norm() <= p.discrete_tolerance;
-    };
-    if (std::none_of(truth.begin(), truth.end(), near) &&
-        std::any_of(unscored.begin(), unscored.end(), near))
+    auto near = [&](const Vec3& t) { return (t - c).norm() <= p.discrete_tolerance; };
+    if (std::none_of(tc.begin(), tc.end(), near) && std::any_of(uc.begin(), uc.end(), near))
       continue;
     map.push_back(i);
     mc.push_back(c);

@@ -220,7 +220,6 @@ json runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,
       if (!keep[i]) removed[map.voxels()[i].key] = {map.voxels()[i].label, trace};
     map.filter(keep);
   };
-  auto removeTraces = [&](const std::vector<uint8_t>& keep) { removeVoxels(keep, true); };
   t = Clock::now();
   if (p.refine) {
     const std::size_t before = map.size();
@@ -233,7 +232,7 @@ json runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,
       for (std::size_t i = 0; i < drive.frames.size(); ++i)
         seen.addScan(io::readVelodyneBin(drive.frames[i].velodyne).points, poses[i]);
       lidar::SeenThroughStats ss;
-      removeTraces(seen.keepMask(&ss));
+      removeVoxels(seen.keepMask(&ss), true);
       refinement["seen_through_tested_voxels"] = ss.tested_voxels;
       refinement["seen_through_removed_voxels"] = ss.removed_voxels;
       timings["refinement_seen_through"] = since(t2);
@@ -241,7 +240,7 @@ json runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,
     if (p.remove_vehicle_traces) {
       const auto t2 = Clock::now();
       lidar::VehicleTraceStats ts;
-      removeTraces(lidar::vehicleTraceFilter(map, detail::traceSettings(p), &ts));
+      removeVoxels(lidar::vehicleTraceFilter(map, detail::traceSettings(p), &ts), true);
       refinement["vehicle_voxels"] = ts.vehicle_voxels;
       refinement["vehicle_clusters"] = ts.clusters;
       refinement["trace_clusters_removed"] = ts.removed_clusters;
