@@ -188,7 +188,7 @@ TEST_CASE("align: traversals on roads that share nothing are not pulled together
   CHECK(std::abs(d1 - d_true) < kGpsBias);
 }
 
-TEST_CASE("align: GBA solver parameters out of range are refused by name") {
+TEST_CASE("align: GBA and pairing parameters out of range are refused by name") {
   auto refused = [](auto set, const char* field) {
     stages::AlignParams p;
     set(p);
@@ -203,6 +203,7 @@ TEST_CASE("align: GBA solver parameters out of range are refused by name") {
           "gba_early_round_tolerance");
   refused([](stages::AlignParams& p) { p.gba_early_round_tolerance = 1; },
           "gba_early_round_tolerance");
+  refused([](stages::AlignParams& p) { p.partner_choice = "best"; }, "partner_choice");
   stages::AlignParams four;
   four.gba_dof = 4;
   CHECK_NOTHROW(four.validate());

@@ -53,6 +53,12 @@ TEST_CASE("lidar-semantic-map defaults are valid and configs/ mirrors them", "[l
   CHECK(file == paramsToJson(p));
   p.knn_k = 0;
   CHECK_THROWS_AS(p.validate(), ConfigError);
+  p = {};
+  p.seen_through_vote_radius = -0.5;
+  CHECK_THROWS_WITH(p.validate(), Catch::Contains("seen_through_vote_radius"));
+  p = {};
+  p.seen_through_vote_share = 0.0;
+  CHECK_THROWS_WITH(p.validate(), Catch::Contains("seen_through_vote_share"));
 }
 
 TEST_CASE("lidar-semantic-map builds a map from precomputed label images", "[lidar][stage]") {

@@ -39,6 +39,10 @@ TEST_CASE("configs/lsm-build.json mirrors the defaults, which are valid") {
   bad = {};
   bad.semantics = "lidar";
   CHECK_THROWS_WITH(bad.validate(), Catch::Contains("semantics"));
+  bad = {};
+  bad.tilt_window = -1.0;
+  CHECK_THROWS_AS(bad.validate(), ConfigError);
+  CHECK_THROWS_WITH(bad.validate(), Catch::Contains("tilt_window"));
 }
 
 TEST_CASE("lsm-build writes an LSM that reads back, validates and keeps the GPS fixes") {
