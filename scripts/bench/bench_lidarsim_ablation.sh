@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Ablation of the LiDAR pipeline on a held-out synthetic drive (docs/lidar-ground-truth.md):
 # single-frame CNN projection, + Bayesian fusion, + error minimisation, + refinement, each scored
-# with `evaluate voxels` (per-scan labels and voxel map), plus trace-removal shares.
+# with `evaluate voxels` (per-scan labels and voxel map), plus trace-removal shares. Prints the
+# tables and writes docs/performance-lidar-ablation.md.
 # usage: scripts/bench/bench_lidarsim_ablation.sh [BIN_DIR=build/bin] [WORK=/tmp/lidarsim-ablation]
 # env: SEED=900 FRAMES=30 TRAIN_SEEDS="101 102 103 104" TRAIN_FRAMES=40 (train-classifiers.sh defaults)
 set -euo pipefail
@@ -28,7 +29,8 @@ for r in fused errmin full; do
   "$bin/evaluate" voxels --drive "$drive" --map $r/map.ply -o eval_map_$r --title $r --quiet > /dev/null
   "$bin/evaluate" voxels --drive "$drive" --predicted-labels $r/labels -o eval_scan_$r --title $r --quiet > /dev/null
 done
-python3 - <<'PY'
+tables="$PWD/tables.md"
+python3 - <<'PY' | tee "$tables"
 import json
 classes = ["road", "sidewalk", "building", "fence", "pole", "vegetation", "vehicle"]
 def row(name, path):
@@ -50,3 +52,14 @@ for n, p in [("Bayesian fusion", "eval_map_fused"), ("+ error minimisation", "ev
     t = json.load(open(p + "/voxels.json"))["trace_removal"]
     print(f"| {n} | {100 * t['moving_removed_share']:.1f} % of {t['moving_truth_voxels']} | {100 * t['parked_kept_share']:.1f} % of {t['parked_truth_voxels']} |")
 PY
+{
+  echo "# Performance: LiDAR pipeline ablation on a held-out simulated drive"
+  echo
+  echo "- date: $(date -u +%Y-%m-%dT%H:%MZ)"
+  echo "- machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -1)"
+  echo "- command: \`scripts/bench/bench_lidarsim_ablation.sh BIN_DIR WORK\`: held-out seed $seed, $frames"
+  echo "  frames; forests from scripts/train-classifiers.sh on seeds ${TRAIN_SEEDS:-101 102 103 104}"
+  echo "  (${TRAIN_FRAMES:-40} frames each); runs and scoring as in docs/lidar-ground-truth.md."
+  echo
+  cat "$tables"
+} > "$root/docs/performance-lidar-ablation.md"
