@@ -90,37 +90,48 @@ SynthWorld makeSynthWorld(const SynthOptions& o) {
       const Pose3 T_body_enu = kf.T_frame_body.inverse();
       for (const auto& t : w.truth.instances) {
         // seen when its first point (lines: the visible part) lies within the view window
-        std::vector<Vec3> pts;
-        if (t.cls == CrowdClass::kLaneLine) {
+        std::vector<std::vector<Vec3>> pieces;  // one element each
+        if (t.cls == CrowdClass::kLaneLine && t.attributes.style == LineStyle::kDashed &&
+            o.dash_length > 0) {  // the dashes (of the straight y = 3.5 line) in view
+          const double y = t.points.front().y();
+          for (double x = 0; x < L; x += o.dash_length + o.dash_gap) {
+            const double a = std::max(x, s), b = std::min(x + o.dash_length, s + o.view);
+            if (b - a > 0.2) pieces.push_back(line({a, y, 0}, {b, y, 0}, 0.5));
+          }
+        } else if (t.cls == CrowdClass::kLaneLine) {
+          std::vector<Vec3> pts;
           for (const auto& p : t.points)
             if (p.x() >= s - 1e-9 && p.x() <= s + o.view + 1e-9) pts.push_back(p);
           if (pts.size() < 2) continue;
+          pieces.push_back(std::move(pts));
         } else {
           Vec3 c = Vec3::Zero();
           for (const auto& p : t.points) c += p;
           c /= double(t.points.size());
           // each discrete element is observed once per drive: from the keyframe before it
           if (!(c.x() >= s && c.x() < s + o.keyframe_step)) continue;
-          pts = t.points;
+          pieces.push_back(t.points);
         }
-        const Vec3 elem_offset = noise2(o.element_sigma);
-        Element e;
-        e.id = eid++;
-        e.cls = t.cls;
-        e.attributes = t.attributes;
-        e.anchor = kf.id;
-        e.height = t.height;
-        e.truth_id = t.id;
-        e.confidence = 0.9;
-        e.observations = 5;
-        for (const auto& p : pts) {
-          const Vec3 noisy = p + drive_offset + elem_offset + noise2(o.point_sigma);
-          e.points_body.push_back(T_body_enu * noisy);
-          e.covariances.push_back(Eigen::Matrix3d::Identity() * 0.01);
+        for (const auto& pts : pieces) {
+          const Vec3 elem_offset = noise2(o.element_sigma);
+          Element e;
+          e.id = eid++;
+          e.cls = t.cls;
+          e.attributes = t.attributes;
+          e.anchor = kf.id;
+          e.height = t.height;
+          e.truth_id = t.id;
+          e.confidence = 0.9;
+          e.observations = 5;
+          for (const auto& p : pts) {
+            const Vec3 noisy = p + drive_offset + elem_offset + noise2(o.point_sigma);
+            e.points_body.push_back(T_body_enu * noisy);
+            e.covariances.push_back(Eigen::Matrix3d::Identity() * 0.01);
+          }
+          if (reverse && t.cls == CrowdClass::kLaneLine)
+            std::reverse(e.points_body.begin(), e.points_body.end());
+          lsm.elements.push_back(std::move(e));
         }
-        if (reverse && t.cls == CrowdClass::kLaneLine)
-          std::reverse(e.points_body.begin(), e.points_body.end());
-        lsm.elements.push_back(std::move(e));
       }
     }
     std::uniform_real_distribution<double> ux(0, L), uy(-8, 15);

@@ -25,6 +25,8 @@ struct SynthOptions {
   double view = 25.0;           ///< m, length of road seen from one keyframe
   double keyframe_step = 10.0;  ///< m
   int false_positives = 0;      ///< random false elements per drive (each class but lanes)
+  double dash_length = 0.0;     ///< m, > 0: dashed lines are observed dash by dash
+  double dash_gap = 6.0;        ///< m, between dashes (with dash_length > 0)
   uint64_t seed = 1;
   geo::GeoOrigin origin{49.0110, 8.4228, 112.8};
 };

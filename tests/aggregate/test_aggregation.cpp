@@ -68,6 +68,36 @@ TEST_CASE("a straight three-line road gives three lane instances on the truth",
   CHECK(stats.bezier_max_deviation <= AggregatorParams{}.bezier.max_deviation);
 }
 
+TEST_CASE("a dashed line observed dash by dash is one instance over its whole length",
+          "[aggregate][lanes]") {
+  // 3 m dashes, 6 m gaps (the simulator's pattern), 10 m tiles: tile edges cut dashes into
+  // stubs, and several dashes lie within the 8 m link distance of every fragment end
+  constexpr double kMinCoverage = 0.95;  // of the road length
+  // 10 drives offset by 0.15 m each: their mean is within ~0.15 m (3 sigma), plus Bezier error
+  constexpr double kDashedLineTolerance = 0.25;  // m
+  for (uint64_t seed : {1, 2, 3}) {
+    test::SynthOptions o;
+    o.discrete = false;
+    o.dash_length = 3.0;
+    o.dash_gap = 6.0;
+    o.drive_sigma = 0.15;
+    o.seed = seed;
+    const auto w = test::makeSynthWorld(o);
+    AggregatorStats stats;
+    const VectorMap map = aggregateObservations(observe(w), AggregatorParams{}, &stats);
+    const auto lanes = ofClass(map, CrowdClass::kLaneLine);
+    CHECK(lanes.size() == 3);
+    CHECK(stats.lanes.branch_ends == 0);
+    for (const auto* l : lanes) {
+      if (std::abs(l->points.front().y() - 3.5) > 1) continue;
+      CHECK(l->attributes.style == LineStyle::kDashed);
+      CHECK(polylineLength(l->points) >= kMinCoverage * o.length);
+      for (const auto& p : l->points)
+        CHECK(distanceToTruth(p, w.truth, CrowdClass::kLaneLine) < kDashedLineTolerance);
+    }
+  }
+}
+
 TEST_CASE("a fork splits its line into three instances", "[aggregate][lanes]") {
   test::SynthOptions o;
   o.discrete = false;

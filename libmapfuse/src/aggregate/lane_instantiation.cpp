@@ -12,6 +12,7 @@
 #include <optional>
 #include <set>
 
+#include "lane_fragments.hpp"
 #include "mapfuse/aggregate/dbscan.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
 #include "mapfuse/aggregate/polygon_overlap.hpp"
@@ -30,7 +31,6 @@ using Line2 = bg::model::linestring<P2>;
 using Poly2 = bg::model::polygon<P2>;
 using MPoly2 = bg::model::multi_polygon<Poly2>;
 using Box2 = bg::model::box<P2>;
-using BoxValue = std::pair<Box2, std::size_t>;
 using PointValue = std::pair<P2, std::size_t>;
 
 struct Piece {
@@ -125,21 +125,6 @@ OverlapPolygon toOverlapPolygon(const MPoly2& mp, const Eigen::Vector2d& origin)
   return OverlapPolygon(rings, origin);
 }
 
-struct Fragment {
-  std::vector<Vec3> centreline;
-  std::vector<Vec3> samples;  ///< resampled member points
-  std::set<std::size_t> obs;
-};
-
-// Fraction of a's centreline points within `tol` of b's centreline.
-double coveredFraction(const Fragment& a, const Fragment& b, double tol) {
-  if (a.centreline.empty()) return 0.0;
-  int inside = 0;
-  for (const auto& p : a.centreline)
-    if (distanceToPolyline2d(p, b.centreline) <= tol) ++inside;
-  return double(inside) / double(a.centreline.size());
-}
-
 struct End {
   Vec3 pos;
   Eigen::Vector2d dir;  ///< outward unit direction
@@ -152,11 +137,25 @@ End endOf(const Fragment& f, int which) {
   return which == 0 ? End{c.front(), -axis} : End{c.back(), axis};
 }
 
-int findRoot(std::vector<int>& parent, int i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
+// |N_eps| of an end counts the fragments that follow it directly. A candidate lying beyond
+// the far end of a nearer candidate (plus `slack`) follows that one, not this end: short
+// fragments of one dashed line all lie within the link distance, and counting them as a
+// fork left the dashes unlinked. Branches of a real fork start side by side and survive.
+void dropShadowed(const std::vector<End>& ends, std::size_t e, double slack,
+                  std::vector<std::size_t>& cand) {
+  if (cand.size() < 2) return;
+  auto along = [&](std::size_t f) {
+    return (ends[f].pos - ends[e].pos).head<2>().dot(ends[e].dir);
+  };
+  std::vector<std::size_t> kept;
+  for (std::size_t f : cand) {
+    bool shadowed = false;
+    for (std::size_t g : cand)
+      if (g != f && along(g ^ 1) <= along(f) + slack && along(g) < along(f)) shadowed = true;
+    if (!shadowed) kept.push_back(f);
+  }
+  cand = std::move(kept);
 }
-
 }  // namespace
 
 LaneInstantiation instantiateLanes(const std::vector<Observation>& items,
@@ -240,46 +239,8 @@ LaneInstantiation instantiateLanes(const std::vector<Observation>& items,
   }
   for (auto& f : frags) f.centreline = binnedCentreline(f.samples, p.station_step);
 
-  // merge fragments of one line split by a tile edge running along it (side by side)
-  {
-    const double tol = 2 * p.buffer_width;
-    std::vector<BoxValue> fb;
-    for (std::size_t i = 0; i < frags.size(); ++i)
-      fb.push_back({boxOf(frags[i].centreline, tol), i});
-    const bgi::rtree<BoxValue, bgi::rstar<16>> ftree(fb.begin(), fb.end());
-    std::vector<int> parent(frags.size());
-    std::iota(parent.begin(), parent.end(), 0);
-    bool merged = false;
-    for (std::size_t i = 0; i < frags.size(); ++i) {
-      std::vector<BoxValue> hits;
-      ftree.query(bgi::intersects(fb[i].first), std::back_inserter(hits));
-      for (const auto& h : hits) {
-        const std::size_t j = h.second;
-        if (j <= i) continue;
-        if (std::max(coveredFraction(frags[i], frags[j], tol),
-                     coveredFraction(frags[j], frags[i], tol)) >= 0.5) {
-          parent[findRoot(parent, int(j))] = findRoot(parent, int(i));
-          merged = true;
-        }
-      }
-    }
-    if (merged) {
-      std::vector<Fragment> out;
-      std::vector<int> slot(frags.size(), -1);
-      for (std::size_t i = 0; i < frags.size(); ++i) {
-        const int r = findRoot(parent, int(i));
-        if (slot[r] < 0) {
-          slot[r] = int(out.size());
-          out.emplace_back();
-        }
-        Fragment& f = out[std::size_t(slot[r])];
-        f.samples.insert(f.samples.end(), frags[i].samples.begin(), frags[i].samples.end());
-        f.obs.insert(frags[i].obs.begin(), frags[i].obs.end());
-      }
-      for (auto& f : out) f.centreline = binnedCentreline(f.samples, p.station_step);
-      frags = std::move(out);
-    }
-  }
+  mergeSideBySide(frags, p);
+  absorbStubs(frags, p);
   result.stats.fragments = frags.size();
 
   // ---- stage 2: link fragment ends with the modified core-object rule
@@ -312,6 +273,7 @@ LaneInstantiation instantiateLanes(const std::vector<Observation>& items,
       if (f / 2 == e / 2) continue;
       if (follows(ends[e], ends[f]) && follows(ends[f], ends[e])) cand[e].push_back(f);
     }
+    dropShadowed(ends, e, p.station_step, cand[e]);
     std::sort(cand[e].begin(), cand[e].end());
   }
   auto isCore = [&](std::size_t e) {

@@ -1,0 +1,122 @@
+#include "lane_fragments.hpp"
+
+// Boost.Geometry rtree instantiations trigger GCC false positives.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <boost/geometry.hpp>
+#include <boost/geometry/geometries/box.hpp>
+#include <boost/geometry/geometries/point_xy.hpp>
+#include <boost/geometry/index/rtree.hpp>
+#include <numeric>
+
+#include "mapfuse/aggregate/geometry2d.hpp"
+#include "mapfuse/core/vector_map.hpp"
+
+namespace mapfuse::aggregate {
+namespace {
+
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+using P2 = bg::model::d2::point_xy<double>;
+using Box2 = bg::model::box<P2>;
+using BoxValue = std::pair<Box2, std::size_t>;
+
+Box2 boxOf(const std::vector<Eigen::Vector3d>& pts, double margin) {
+  Box2 b(P2(pts[0].x(), pts[0].y()), P2(pts[0].x(), pts[0].y()));
+  for (const auto& p : pts) bg::expand(b, P2(p.x(), p.y()));
+  return Box2(P2(b.min_corner().x() - margin, b.min_corner().y() - margin),
+              P2(b.max_corner().x() + margin, b.max_corner().y() + margin));
+}
+
+// Fraction of a's centreline points within `tol` of b's centreline.
+double coveredFraction(const Fragment& a, const Fragment& b, double tol) {
+  if (a.centreline.empty()) return 0.0;
+  int inside = 0;
+  for (const auto& p : a.centreline)
+    if (distanceToPolyline2d(p, b.centreline) <= tol) ++inside;
+  return double(inside) / double(a.centreline.size());
+}
+
+int findRoot(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+// Pools fragments into the union-find roots of `parent`; centrelines recomputed.
+void poolFragments(std::vector<Fragment>& frags, std::vector<int>& parent, double station_step) {
+  std::vector<Fragment> out;
+  std::vector<int> slot(frags.size(), -1);
+  for (std::size_t i = 0; i < frags.size(); ++i) {
+    const int r = findRoot(parent, int(i));
+    if (slot[r] < 0) {
+      slot[r] = int(out.size());
+      out.emplace_back();
+    }
+    Fragment& f = out[std::size_t(slot[r])];
+    f.samples.insert(f.samples.end(), frags[i].samples.begin(), frags[i].samples.end());
+    f.obs.insert(frags[i].obs.begin(), frags[i].obs.end());
+  }
+  for (auto& f : out) f.centreline = binnedCentreline(f.samples, station_step);
+  frags = std::move(out);
+}
+
+bgi::rtree<BoxValue, bgi::rstar<16>> fragmentBoxes(const std::vector<Fragment>& frags,
+                                                   double margin) {
+  std::vector<BoxValue> fb;
+  for (std::size_t i = 0; i < frags.size(); ++i)
+    fb.push_back({boxOf(frags[i].centreline, margin), i});
+  return bgi::rtree<BoxValue, bgi::rstar<16>>(fb.begin(), fb.end());
+}
+
+}  // namespace
+
+void mergeSideBySide(std::vector<Fragment>& frags, const LaneInstantiationParams& p) {
+  const double tol = 2 * p.buffer_width;
+  const auto tree = fragmentBoxes(frags, tol);
+  std::vector<int> parent(frags.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  bool merged = false;
+  for (std::size_t i = 0; i < frags.size(); ++i) {
+    std::vector<BoxValue> hits;
+    tree.query(bgi::intersects(boxOf(frags[i].centreline, tol)), std::back_inserter(hits));
+    for (const auto& h : hits) {
+      const std::size_t j = h.second;
+      if (j <= i) continue;
+      if (std::max(coveredFraction(frags[i], frags[j], tol),
+                   coveredFraction(frags[j], frags[i], tol)) >= 0.5) {
+        parent[findRoot(parent, int(j))] = findRoot(parent, int(i));
+        merged = true;
+      }
+    }
+  }
+  if (merged) poolFragments(frags, parent, p.station_step);
+}
+
+void absorbStubs(std::vector<Fragment>& frags, const LaneInstantiationParams& p) {
+  const double tol = p.station_step;
+  auto isStub = [&](const Fragment& f) { return polylineLength(f.centreline) < tol; };
+  const auto tree = fragmentBoxes(frags, tol);
+  std::vector<int> parent(frags.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  bool merged = false;
+  for (std::size_t i = 0; i < frags.size(); ++i) {
+    if (!isStub(frags[i])) continue;
+    std::vector<BoxValue> hits;
+    tree.query(bgi::intersects(boxOf(frags[i].centreline, tol)), std::back_inserter(hits));
+    double best = tol;
+    int target = -1;
+    for (const auto& h : hits) {
+      if (h.second == i || isStub(frags[h.second])) continue;
+      for (const auto& q : frags[i].centreline) {
+        const double d = distanceToPolyline2d(q, frags[h.second].centreline);
+        if (d <= best) best = d, target = int(h.second);
+      }
+    }
+    if (target >= 0) {
+      parent[i] = target;  // targets are no stubs, so they stay roots
+      merged = true;
+    }
+  }
+  if (merged) poolFragments(frags, parent, p.station_step);
+}
+
+}  // namespace mapfuse::aggregate
