@@ -118,11 +118,12 @@ lines = ["# Performance: the crowd chain (georef -> align -> aggregate)", "",
          " georef process per drive, 15-17 ms each on this VM, most of it loading the executable:"
          " page faults that do not overlap under -j2). Same outputs.",
          "- peak MB: the largest single process of the chain (GNU time over make).",
-         "- quality columns: `evaluate map` with its defaults (lane samples match within 0.5 m)."
-         " With 10 traversals the drives' GPS biases (1-3 m each) average to a common offset of"
-         " about 0.6-0.8 m (see the discrete elements' absolute error in evaluate.summary.json), so"
-         " many lane lines fall outside the 0.5 m tolerance: completeness here measures absolute"
-         " placement more than coverage. Relative precision of lane widths is 0.03 m.", "",
+         "- quality columns: `evaluate map` with its defaults (lane samples match within 1.0 m;"
+         " docs/evaluate.md says why). With 10 traversals the drives' GPS biases (1-3 m each)"
+         " average to a common offset of about 0.6-0.8 m (see the discrete elements' absolute error"
+         " in evaluate.summary.json): lane lines near or beyond the tolerance count as missing, so"
+         " completeness at few traversals measures absolute placement more than coverage. Relative"
+         " precision of lane widths is 0.03 m.", "",
          "| run | traversals | road km | driven km | chain s (make) | road km/h (make) | direct s | road km/h (direct) | driven km/h (make) | peak MB | MB per road km | map KB/km | lane completeness | lane abs. error m |",
          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
 by = {r["name"]: r for r in rows}

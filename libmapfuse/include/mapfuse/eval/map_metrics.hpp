@@ -15,7 +15,7 @@
 namespace mapfuse::eval {
 
 struct MapEvalParams {
-  double line_tolerance = 0.5;      ///< m, a lane-line sample within this of the other map matches
+  double line_tolerance = 1.0;      ///< m, a lane-line sample within this of the other map matches
   double discrete_tolerance = 1.5;  ///< m, largest centre distance of a matched discrete pair
   double sample_step = 0.5;         ///< m, spacing of lane-line samples
   double lane_width_min = 2.0;      ///< m, neighbouring lines closer than this are not lanes

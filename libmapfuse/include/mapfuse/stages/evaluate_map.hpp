@@ -13,7 +13,7 @@
 namespace mapfuse::stages {
 
 struct EvaluateMapParams {
-  double line_tolerance = 0.5;            ///< m
+  double line_tolerance = 1.0;            ///< m
   double discrete_tolerance = 1.5;        ///< m
   double sample_step = 0.5;               ///< m
   double lane_width_min = 2.0;            ///< m
