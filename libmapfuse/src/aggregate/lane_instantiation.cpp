@@ -13,6 +13,7 @@
 #include <set>
 
 #include "lane_fragments.hpp"
+#include "mapfuse/aggregate/arc_link.hpp"
 #include "mapfuse/aggregate/dbscan.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
 #include "mapfuse/aggregate/polygon_overlap.hpp"
@@ -22,6 +23,7 @@ namespace mapfuse::aggregate {
 namespace {
 
 constexpr double kSimplifyTolerance = 0.02;  // m
+constexpr double kArcTail = 4.0;             // m of a fragment's end the arc link test fits
 
 namespace bg = boost::geometry;
 namespace bgi = boost::geometry::index;
@@ -262,6 +264,29 @@ LaneInstantiation instantiateLanes(const std::vector<Observation>& items,
     const double lateral = (v - along * a.dir).norm();
     return along >= -p.link_lateral && along <= p.link_distance && lateral <= p.link_lateral;
   };
+  auto straight = [&](std::size_t e, std::size_t f) {
+    return follows(ends[e], ends[f]) && follows(ends[f], ends[e]);
+  };
+  // curves too tight for the straight test (roundabouts): both ends' last kArcTail metres on
+  // one circle, the gap along it within link_distance (arc_link.hpp)
+  const ArcLinkLimits arc{p.link_distance, 4.0, 0.15};
+  auto tail = [&](std::size_t e, bool towards_end) {  // end point last if towards_end
+    const auto& c = frags[e / 2].centreline;
+    std::vector<Vec3> t;
+    double run = 0;
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      const std::size_t i = e % 2 == 0 ? k : c.size() - 1 - k;
+      if (k > 0) run += (c[i] - t.back()).head<2>().norm();
+      if (run > kArcTail) break;
+      t.push_back(c[i]);
+    }
+    if (towards_end) std::reverse(t.begin(), t.end());
+    return t;
+  };
+  auto onArc = [&](std::size_t e, std::size_t f) {
+    return (ends[f].pos - ends[e].pos).head<2>().norm() <= p.link_distance &&
+           continuesOnArc(tail(e, true), tail(f, false), arc);
+  };
   std::vector<std::vector<std::size_t>> cand(2 * m);
   for (std::size_t e = 0; e < 2 * m; ++e) {
     const auto& q = ends[e].pos;
@@ -271,7 +296,7 @@ LaneInstantiation instantiateLanes(const std::vector<Observation>& items,
     for (const auto& h : hits) {
       const std::size_t f = h.second;
       if (f / 2 == e / 2) continue;
-      if (follows(ends[e], ends[f]) && follows(ends[f], ends[e])) cand[e].push_back(f);
+      if (straight(e, f) || (onArc(e, f) && onArc(f, e))) cand[e].push_back(f);
     }
     dropShadowed(ends, e, p.station_step, cand[e]);
     std::sort(cand[e].begin(), cand[e].end());
@@ -299,14 +324,21 @@ LaneInstantiation instantiateLanes(const std::vector<Observation>& items,
     std::set<std::size_t> obs;
     std::size_t f = start;
     int in = entry;
+    long from = -1;  // the end of the previous fragment linked to this one
     while (!used[f]) {
       used[f] = true;
       ++inst.fragments;
       auto c = frags[f].centreline;
       if (in == 1) std::reverse(c.begin(), c.end());
+      if (from >= 0 && !straight(std::size_t(from), 2 * f + in)) {  // follow the arc, no chord
+        const auto bridge =
+            arcBridge(tail(std::size_t(from), true), tail(2 * f + in, false), p.station_step);
+        inst.centreline.insert(inst.centreline.end(), bridge.begin(), bridge.end());
+      }
       inst.centreline.insert(inst.centreline.end(), c.begin(), c.end());
       obs.insert(frags[f].obs.begin(), frags[f].obs.end());
-      const long next = link[2 * f + (1 - in)];
+      from = long(2 * f + (1 - in));
+      const long next = link[std::size_t(from)];
       if (next < 0) break;
       f = std::size_t(next) / 2;
       in = int(next % 2);
