@@ -266,3 +266,30 @@ TEST_CASE("map elements of true elements outside the scored scope count neither 
   CHECK(get(without, CrowdClass::kLaneLine).redundancy == Approx(40.0 / 140.0).margin(0.01));
   CHECK(get(without, CrowdClass::kPole).redundancy == Approx(2.0 / 3.0).margin(kExact));
 }
+
+TEST_CASE("a stop line mapped in part matches along its segment with its offset across it",
+          "[eval][map]") {
+  // truth: two stop lines across the road (x = 30 and x = 60, y from 0 to 3.5)
+  VectorMap truth;
+  truth.origin = {49.0, 8.4, 110.0};
+  truth.instances = {inst(1, CrowdClass::kStopLine, {{30, 0, 0}, {30, 3.5, 0}}),
+                     inst(2, CrowdClass::kStopLine, {{60, 0, 0}, {60, 3.5, 0}})};
+  // map: the first seen only from y = 2 to 3.5 (centre 1.0 m from the true centre, beyond
+  // nothing) and 0.1 m too far along x; the second whole, 0.2 m short
+  VectorMap map = truth;
+  map.instances[0].points = {{30.1, 2.0, 0}, {30.1, 3.5, 0}};
+  map.instances[1].points = {{59.8, 0, 0}, {59.8, 3.5, 0}};
+  MapEvalParams p;
+  p.discrete_tolerance = 0.5;  // the partial line's centre is 1.0 m from the true centre
+  const ClassMetrics& m = get(evaluateMap(map, truth, p), CrowdClass::kStopLine);
+  CHECK(m.completeness == Approx(1.0));
+  CHECK(m.redundancy == Approx(0.0));
+  CHECK(m.absolute.mean == Approx(0.15).margin(kExact));  // 0.1 and 0.2 across the lines
+  // relative: true centres 30 m apart, placed 30.1 and 59.8 -> 29.7 m
+  CHECK(m.relative.mean == Approx(0.3).margin(kExact));
+  // a pole (a point element) still matches by centre distance only
+  VectorMap pole_truth = truthMap(), pole_map = truthMap();
+  pole_map.instances[3].points = {{0.6, -3, 0}};
+  const ClassMetrics& pm = get(evaluateMap(pole_map, pole_truth, p), CrowdClass::kPole);
+  CHECK(pm.completeness == Approx(2.0 / 3.0));
+}

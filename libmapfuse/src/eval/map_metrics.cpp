@@ -190,10 +190,26 @@ ClassMetrics evaluateLines(const std::vector<const MapInstance*>& map,
   return m;
 }
 
+// Distance of a map element's centre c from a true element: from the true centre, or, for
+// segments (stop lines), from the true segment, so that a stop line seen only in part (a camera
+// cuts the stop lines of neighbouring lanes) matches at its placement error across the line.
+double elementDistance(const Vec3& c, const MapInstance& t, const Vec3& t_centre, bool segment,
+                       Vec3* displacement) {
+  if (!segment || t.points.size() < 2) {
+    if (displacement) *displacement = c - t_centre;
+    return (c - t_centre).norm();
+  }
+  Vec3 foot;
+  aggregate::distanceToPolyline2d(c, t.points, &foot);
+  const Vec3 d(c.x() - foot.x(), c.y() - foot.y(), c.z() - t_centre.z());
+  if (displacement) *displacement = d;
+  return d.norm();
+}
+
 ClassMetrics evaluateDiscrete(const std::vector<const MapInstance*>& map_all,
                               const std::vector<const MapInstance*>& truth,
                               const std::vector<const MapInstance*>& unscored,
-                              const MapEvalParams& p) {
+                              const MapEvalParams& p, bool segments) {
   ClassMetrics m;
   m.truth_count = truth.size();
   std::vector<Vec3> tc, uc, mc;
@@ -201,29 +217,37 @@ ClassMetrics evaluateDiscrete(const std::vector<const MapInstance*>& map_all,
   for (const auto* u : unscored) uc.push_back(centreOf(*u));
   // Out of scope: map elements that match no scored true element but an unscored one.
   std::vector<const MapInstance*> map;
+  auto near = [&](const Vec3& c, const std::vector<const MapInstance*>& ts,
+                  const std::vector<Vec3>& cs) {
+    for (std::size_t j = 0; j < ts.size(); ++j)
+      if (elementDistance(c, *ts[j], cs[j], segments, nullptr) <= p.discrete_tolerance) return true;
+    return false;
+  };
   for (const auto* i : map_all) {
     const Vec3 c = centreOf(*i);
-    auto near = [&](const Vec3& t) { return (t - c).norm() <= p.discrete_tolerance; };
-    if (std::none_of(tc.begin(), tc.end(), near) && std::any_of(uc.begin(), uc.end(), near))
-      continue;
+    if (!near(c, truth, tc) && near(c, unscored, uc)) continue;
     map.push_back(i);
     mc.push_back(c);
   }
   m.map_count = map.size();
-  // greedy one-to-one matching by increasing centre distance
+  // greedy one-to-one matching by increasing distance
   std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;
   for (std::size_t j = 0; j < tc.size(); ++j)
     for (std::size_t i = 0; i < mc.size(); ++i) {
-      const double d = (tc[j] - mc[i]).norm();
+      const double d = elementDistance(mc[i], *truth[j], tc[j], segments, nullptr);
       if (d <= p.discrete_tolerance) pairs.emplace_back(d, j, i);
     }
   std::sort(pairs.begin(), pairs.end());
   std::vector<int> match_of_truth(tc.size(), -1), match_of_map(mc.size(), -1);
+  std::vector<Vec3> placed(tc.size());  // true centre + the matched element's displacement
   std::vector<double> abs_errors;
   for (const auto& [d, j, i] : pairs) {
     if (match_of_truth[j] >= 0 || match_of_map[i] >= 0) continue;
     match_of_truth[j] = int(i);
     match_of_map[i] = int(j);
+    Vec3 disp;
+    elementDistance(mc[i], *truth[j], tc[j], segments, &disp);
+    placed[j] = tc[j] + disp;
     abs_errors.push_back(d);
   }
   m.matched_truth = m.matched_map = abs_errors.size();
@@ -238,8 +262,7 @@ ClassMetrics evaluateDiscrete(const std::vector<const MapInstance*>& map_all,
     for (std::size_t j = 0; j < tc.size(); ++j)
       if (j != a && (tc[j] - tc[a]).norm() <= best) best = (tc[j] - tc[a]).norm(), b = j;
     if (b == a || match_of_truth[a] < 0 || match_of_truth[b] < 0) continue;
-    const double rd_obs =
-        (mc[std::size_t(match_of_truth[a])] - mc[std::size_t(match_of_truth[b])]).norm();
+    const double rd_obs = (placed[a] - placed[b]).norm();
     rel_errors.push_back(std::abs(rd_obs - best));
   }
   m.relative = errorStats(rel_errors);
@@ -273,8 +296,9 @@ MapMetrics evaluateMap(const VectorMap& map_in, const VectorMap& truth, const Ma
       for (const auto& i : unscored->instances)
         if (i.cls == cls) ui.push_back(&i);
     if (mi.empty() && ti.empty()) continue;
+    const bool segments = cls == CrowdClass::kStopLine;
     ClassMetrics m = cls == CrowdClass::kLaneLine ? evaluateLines(mi, ti, ui, p)
-                                                  : evaluateDiscrete(mi, ti, ui, p);
+                                                  : evaluateDiscrete(mi, ti, ui, p, segments);
     m.cls = cls;
     out.classes.push_back(std::move(m));
   }
