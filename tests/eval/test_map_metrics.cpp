@@ -284,8 +284,10 @@ TEST_CASE("a stop line mapped in part matches along its segment with its offset 
   const ClassMetrics& m = get(evaluateMap(map, truth, p), CrowdClass::kStopLine);
   CHECK(m.completeness == Approx(1.0));
   CHECK(m.redundancy == Approx(0.0));
-  CHECK(m.absolute.mean == Approx(0.15).margin(kExact));  // 0.1 and 0.2 across the lines
-  // relative: true centres 30 m apart, placed 30.1 and 59.8 -> 29.7 m
+  // the partial one by its 0.1 m across the line, the whole one by its centre (0.2 m)
+  CHECK(m.absolute.mean == Approx(0.15).margin(kExact));
+  // relative: true centres 30 m apart, placed at x = 30.1 (partial: the true centre moved by
+  // its offset across) and 59.8 (its centre) -> 29.7 m
   CHECK(m.relative.mean == Approx(0.3).margin(kExact));
   // a pole (a point element) still matches by centre distance only
   VectorMap pole_truth = truthMap(), pole_map = truthMap();

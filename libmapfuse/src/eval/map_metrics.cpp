@@ -190,14 +190,16 @@ ClassMetrics evaluateLines(const std::vector<const MapInstance*>& map,
   return m;
 }
 
-// Distance of a map element's centre c from a true element: from the true centre, or, for
-// segments (stop lines), from the true segment, so that a stop line seen only in part (a camera
-// cuts the stop lines of neighbouring lanes) matches at its placement error across the line.
+// Distance of a map element's centre c from a true element: from the true centre; for
+// segments (stop lines) whose centre is farther than the tolerance from the true centre, from
+// the true segment, so that a stop line seen only in part (a camera cuts the stop lines of
+// neighbouring lanes) matches at its placement error across the line.
 double elementDistance(const Vec3& c, const MapInstance& t, const Vec3& t_centre, bool segment,
-                       Vec3* displacement) {
-  if (!segment || t.points.size() < 2) {
+                       double tolerance, Vec3* displacement) {
+  const double dc = (c - t_centre).norm();
+  if (dc <= tolerance || !segment || t.points.size() < 2) {
     if (displacement) *displacement = c - t_centre;
-    return (c - t_centre).norm();
+    return dc;
   }
   Vec3 foot;
   aggregate::distanceToPolyline2d(c, t.points, &foot);
@@ -220,7 +222,9 @@ ClassMetrics evaluateDiscrete(const std::vector<const MapInstance*>& map_all,
   auto near = [&](const Vec3& c, const std::vector<const MapInstance*>& ts,
                   const std::vector<Vec3>& cs) {
     for (std::size_t j = 0; j < ts.size(); ++j)
-      if (elementDistance(c, *ts[j], cs[j], segments, nullptr) <= p.discrete_tolerance) return true;
+      if (elementDistance(c, *ts[j], cs[j], segments, p.discrete_tolerance, nullptr) <=
+          p.discrete_tolerance)
+        return true;
     return false;
   };
   for (const auto* i : map_all) {
@@ -234,7 +238,8 @@ ClassMetrics evaluateDiscrete(const std::vector<const MapInstance*>& map_all,
   std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;
   for (std::size_t j = 0; j < tc.size(); ++j)
     for (std::size_t i = 0; i < mc.size(); ++i) {
-      const double d = elementDistance(mc[i], *truth[j], tc[j], segments, nullptr);
+      const double d =
+          elementDistance(mc[i], *truth[j], tc[j], segments, p.discrete_tolerance, nullptr);
       if (d <= p.discrete_tolerance) pairs.emplace_back(d, j, i);
     }
   std::sort(pairs.begin(), pairs.end());
@@ -246,7 +251,7 @@ ClassMetrics evaluateDiscrete(const std::vector<const MapInstance*>& map_all,
     match_of_truth[j] = int(i);
     match_of_map[i] = int(j);
     Vec3 disp;
-    elementDistance(mc[i], *truth[j], tc[j], segments, &disp);
+    elementDistance(mc[i], *truth[j], tc[j], segments, p.discrete_tolerance, &disp);
     placed[j] = tc[j] + disp;
     abs_errors.push_back(d);
   }
