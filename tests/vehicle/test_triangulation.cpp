@@ -73,3 +73,26 @@ TEST_CASE("tracks with too little parallax or too few frames are rejected") {
   CHECK_FALSE(r2.ok);
   CHECK(r2.reason == "observations");
 }
+
+TEST_CASE("tracks never seen within max_range are rejected, closer ones kept", "[vehicle]") {
+  std::mt19937_64 rng(8);
+  const Eigen::Vector3d P(45.0, 8.0, 2.5);  // a sign the vehicle turns away from
+  TriangulationSettings s;
+  s.max_range = 30.0;
+  // seen from 40 m down to 34 m ahead (7 frames 1 m apart): enough parallax, too far
+  const auto far = observe(P, 7, 1.0, rng, kPixelNoise, 5.0);
+  REQUIRE(far.size() == 7);
+  const auto r = triangulateTrack(test::syntheticK(), far, s);
+  CHECK_FALSE(r.ok);
+  CHECK(r.reason == "range");
+  CHECK(r.nearest_range > s.max_range);
+  // the same sign passed by: last seen ~13 m away
+  const auto near = observe(P, 8, 4.0, rng, kPixelNoise, 5.0);
+  const auto r2 = triangulateTrack(test::syntheticK(), near, s);
+  REQUIRE(r2.ok);
+  CHECK(r2.nearest_range < s.max_range);
+  CHECK((r2.p_world - P).norm() <= kTriangulationTol);
+  // max_range 0: no range test
+  s.max_range = 0.0;
+  CHECK(triangulateTrack(test::syntheticK(), far, s).reason != "range");
+}

@@ -46,6 +46,7 @@ void LsmBuildParams::validate() const {
   requireParam(max_pitch_correction > 0.0, S, "max_pitch_correction", max_pitch_correction, "> 0");
   requireParam(mask_min_area >= 1, S, "mask_min_area", mask_min_area, ">= 1");
   requireParam(min_parallax >= 0.0, S, "min_parallax", min_parallax, ">= 0");
+  requireParam(max_track_range > 0.0, S, "max_track_range", max_track_range, "> 0");
   requireParam(min_track_frames >= 2, S, "min_track_frames", min_track_frames, ">= 2");
   requireParam(track_sigma_pixel > 0.0, S, "track_sigma_pixel", track_sigma_pixel, "> 0");
   requireParam(huber_delta > 0.0, S, "huber_delta", huber_delta, "> 0");

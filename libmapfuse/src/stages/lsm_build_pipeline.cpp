@@ -153,6 +153,7 @@ ProcessedDrive processDrive(const LoadedDrive& d, const LsmBuildParams& p) {
   ts.sigma_pixel = p.track_sigma_pixel;
   ts.huber_delta = p.huber_delta;
   ts.max_reprojection_rms = p.max_reprojection_rms;
+  ts.max_range = p.max_track_range;
 #pragma omp parallel for schedule(dynamic)
   for (int k = 0; k < int(track_list.size()); ++k) {
     const Track& tr = *track_list[k];

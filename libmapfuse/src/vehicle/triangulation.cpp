@@ -5,6 +5,7 @@
 #include <Eigen/LU>
 #include <Eigen/SVD>
 #include <cmath>
+#include <limits>
 
 namespace mapfuse::vehicle {
 namespace {
@@ -131,6 +132,16 @@ TriangulationResult triangulateTrack(const Eigen::Matrix3d& K,
   }
   if (r.rms > s.max_reprojection_rms) {
     r.reason = "reprojection";
+    return r;
+  }
+  // Seen only far away (the vehicle turned off before passing it): depth rests on a short
+  // baseline at long range, and ego-motion errors, which the pixel covariance above does not
+  // hold, bias it by metres.
+  r.nearest_range = std::numeric_limits<double>::infinity();
+  for (const auto& o : obs)
+    r.nearest_range = std::min(r.nearest_range, (P - o.T_world_cam.translation()).norm());
+  if (s.max_range > 0 && r.nearest_range > s.max_range) {
+    r.reason = "range";
     return r;
   }
   r.ok = true;

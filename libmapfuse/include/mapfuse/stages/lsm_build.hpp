@@ -40,6 +40,7 @@ struct LsmBuildParams {
   double track_sigma_pixel = 1.0;            ///< px
   double huber_delta = 2.0;                  ///< sigmas
   double max_reprojection_rms = 4.0;         ///< px
+  double max_track_range = 30.0;             ///< m, aerial tracks never seen closer are rejected
   double association_radius = 0.6;           ///< m
   double point_spacing = 0.5;                ///< m
   double max_element_length = 30.0;          ///< m
@@ -86,6 +87,7 @@ struct LsmBuildParams {
     v("track_sigma_pixel", track_sigma_pixel, "px", "aerial key-point noise");
     v("huber_delta", huber_delta, "sigma", "robust loss threshold of the triangulation");
     v("max_reprojection_rms", max_reprojection_rms, "px", "worse tracks are rejected");
+    v("max_track_range", max_track_range, "m", "aerial tracks never seen closer are rejected");
     v("association_radius", association_radius, "m", "spatial merge radius of id-less markings");
     v("point_spacing", point_spacing, "m", "resampling step along merged lines");
     v("max_element_length", max_element_length, "m", "longer lines are split");

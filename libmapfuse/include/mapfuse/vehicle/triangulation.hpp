@@ -23,6 +23,7 @@ struct TriangulationSettings {
   double sigma_pixel = 1.5;           ///< px, observation 1-sigma (scales the residuals)
   double huber_delta = 2.0;           ///< in sigmas, Huber loss threshold (robust loss of eq. 3)
   double max_reprojection_rms = 4.0;  ///< px, tracks fitting worse are rejected
+  double max_range = 0.0;             ///< m, > 0: tracks never seen closer than this are rejected
   int max_iterations = 30;            ///< Levenberg-Marquardt iterations
 };
 
@@ -33,7 +34,8 @@ struct TriangulationResult {
   Eigen::Vector3d p_world = Eigen::Vector3d::Zero();         ///< m
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();  ///< m^2, (J^T J)^-1 sigma^2
   double parallax = 0.0;                                     ///< rad
-  double rms = 0.0;                                          ///< px, final reprojection RMS
+  double nearest_range = 0.0;  ///< m, closest camera-to-element distance of the track
+  double rms = 0.0;            ///< px, final reprojection RMS
   int iterations = 0;
   bool converged = false;
 };
