@@ -44,6 +44,7 @@ TEST_CASE("align pairs: best overlap ties like to like, spread partners join the
   const auto maps = twoGroups();
   AlignSettings s;
   s.max_partners = 2;
+  s.spread_partners = false;  // best overlap
   const auto best = detail::selectPairs(maps, s);
   // Within a group the copies overlap fully (1.0), across groups by (60 - 25) / 60 = 0.58.
   CHECK(crossPairs(best, maps) == 0);

@@ -26,11 +26,11 @@ struct AlignSettings {
   double submap_length = 60.0;  ///< m of keyframe path per submap
   double min_overlap =
       0.3;  ///< share of coarse points with a same-label point within overlap_radius
-  double overlap_radius = 4.0;   ///< m, overlap test radius (covers the GPS-level initial error)
-  int max_partners = 4;          ///< per submap, register with the best submaps of this many LSMs
-  bool spread_partners = false;  ///< choose them evenly spread over the overlapping LSMs instead
-  double coarse_radius = 8.0;    ///< m, displacement-voting search radius (coarse level)
-  double coarse_bin = 0.5;       ///< m, displacement histogram bin
+  double overlap_radius = 4.0;  ///< m, overlap test radius (covers the GPS-level initial error)
+  int max_partners = 4;         ///< per submap, register with the best submaps of this many LSMs
+  bool spread_partners = true;  ///< choose them evenly spread over the overlapping LSMs instead
+  double coarse_radius = 8.0;   ///< m, displacement-voting search radius (coarse level)
+  double coarse_bin = 0.5;      ///< m, displacement histogram bin
   double coarse_prior_sigma = 4.0;  ///< m, Gaussian prior on the relative shift (GPS level)
   int coarse_neighbors = 1;         ///< votes of pairs of submaps this many steps away are added
   /// vote weight per coarse (1 m) point by CrowdClass: landmarks count like metres of line
@@ -55,12 +55,12 @@ struct AlignSettings {
   double gba_huber = 1.0;                 ///< Huber delta on whitened GBA residuals
   int gba_rounds = 2;                     ///< association / solve rounds
   int gba_max_partners = 2;               ///< other traversals tied to each point (0 = all)
-  int gba_dof = 6;  ///< 6: full pose; 4: x, y, z, yaw (roll / pitch held where georef put them)
+  int gba_dof = 4;  ///< 6: full pose; 4: x, y, z, yaw (roll / pitch held where georef put them)
   int gba_line_stride = 2;  ///< GBA uses every n-th point of a line element, weighted sqrt(n)
   double gba_early_round_tolerance = 1e-3;  ///< LM stop of GBA rounds before the last
   int gba_cg_iterations = 50;   ///< > 0: GBA steps by CGNR (at most this many); 0: sparse Cholesky
   int solver_iterations = 100;  ///< Levenberg-Marquardt iterations per solve
-  double function_tolerance = 1e-4;  ///< LM stops when |cost change| / cost falls below
+  double function_tolerance = 1e-3;  ///< LM stops when |cost change| / cost falls below
   int threads = 2;                   ///< OpenMP threads over pairs
 };
 

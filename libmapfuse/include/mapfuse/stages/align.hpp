@@ -17,7 +17,7 @@ struct AlignParams {
   double min_overlap = 0.3;
   double overlap_radius = 4.0;
   int max_partners = 4;
-  std::string partner_choice = "overlap";
+  std::string partner_choice = "spread";
   double coarse_radius = 8.0;
   double coarse_bin = 0.5;
   double coarse_prior_sigma = 4.0;
@@ -40,12 +40,12 @@ struct AlignParams {
   double gba_huber = 1.0;
   int gba_rounds = 2;
   int gba_max_partners = 2;
-  int gba_dof = 6;
+  int gba_dof = 4;
   int gba_line_stride = 2;
   int gba_cg_iterations = 50;
   double gba_early_round_tolerance = 1e-3;
   int solver_iterations = 100;
-  double function_tolerance = 1e-4;
+  double function_tolerance = 1e-3;
   int threads = 2;
 
   template <class V>
