@@ -31,7 +31,7 @@ struct AlignSettings {
   bool spread_partners = true;  ///< choose them evenly spread over the overlapping LSMs instead
   double coarse_radius = 8.0;   ///< m, displacement-voting search radius (coarse level)
   double coarse_bin = 0.5;      ///< m, displacement histogram bin
-  double coarse_prior_sigma = 4.0;  ///< m, Gaussian prior on the relative shift (GPS level)
+  double coarse_prior_sigma = 8.0;  ///< m, Gaussian prior on the relative shift (GPS level)
   int coarse_neighbors = 1;         ///< votes of pairs of submaps this many steps away are added
   /// vote weight per coarse (1 m) point by CrowdClass: landmarks count like metres of line
   std::vector<double> coarse_class_weights = {1.0, 3.0, 3.0, 1.0, 10.0, 10.0, 10.0};

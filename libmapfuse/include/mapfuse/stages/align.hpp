@@ -20,7 +20,7 @@ struct AlignParams {
   std::string partner_choice = "spread";
   double coarse_radius = 8.0;
   double coarse_bin = 0.5;
-  double coarse_prior_sigma = 4.0;
+  double coarse_prior_sigma = 8.0;
   int coarse_neighbors = 1;
   double min_fitness = 0.3;
   double max_rmse = 0.5;
