@@ -151,15 +151,16 @@ for untiled, tiled in [("karlsruhe-50", "karlsruhe-50-tiled"), ("procedural-2km"
     lines += ["", f"Tiled ({by[tiled]['tiles']} tiles of {size} m, 50 m margins, stitch) against"
               f" untiled, {untiled} (issue 9: metrics within 5 %, no duplicate or missing instance at"
               " tile borders):", "",
-              "| class | instances untiled | tiled | completeness untiled | tiled | redundancy untiled | tiled | abs. error untiled m | tiled m |",
-              "|---|---|---|---|---|---|---|---|---|"]
+              "| class | instances untiled | tiled | completeness untiled | tiled | redundancy untiled | tiled | abs. error untiled m | tiled m | rel. precision untiled m | tiled m |",
+              "|---|---|---|---|---|---|---|---|---|---|---|"]
     f = lambda c, k: c.get(k) if c.get(k) is not None else float("nan")
     for c in a:
         if c in b:
             lines.append(f"| {c} | {a[c].get('map_count')} | {b[c].get('map_count')} |"
                          f" {f(a[c], 'completeness'):.3f} | {f(b[c], 'completeness'):.3f} |"
                          f" {f(a[c], 'redundancy'):.3f} | {f(b[c], 'redundancy'):.3f} |"
-                         f" {absmean(a[c]):.3f} | {absmean(b[c]):.3f} |")
+                         f" {absmean(a[c]):.3f} | {absmean(b[c]):.3f} |"
+                         f" {f(a[c], 'relative_precision_m'):.3f} | {f(b[c], 'relative_precision_m'):.3f} |")
 open(out, "w").write("\n".join(lines) + "\n")
 print(f"bench_chain: wrote {out}", file=sys.stderr)
 PY
