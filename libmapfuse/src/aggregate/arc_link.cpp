@@ -19,7 +19,7 @@ bool fitCircle2d(const std::vector<Eigen::Vector2d>& pts, Eigen::Vector2d* centr
     b(Eigen::Index(i)) = -q.squaredNorm();
   }
   const Eigen::Matrix3d AtA = A.transpose() * A;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(AtA);  // ascending eigenvalues
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(AtA);         // ascending eigenvalues
   if (eig.eigenvalues()(0) < 1e-9 * eig.eigenvalues()(2)) return false;  // (nearly) collinear
   const Eigen::Vector3d x = AtA.ldlt().solve(A.transpose() * b);
   const Eigen::Vector2d c(-x(0) / 2, -x(1) / 2);
