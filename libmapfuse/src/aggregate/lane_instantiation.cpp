@@ -269,7 +269,8 @@ LaneInstantiation instantiateLanes(const std::vector<Observation>& items,
   };
   // curves too tight for the straight test (roundabouts): both ends' last kArcTail metres on
   // one circle, the gap along it within link_distance (arc_link.hpp)
-  const ArcLinkLimits arc{p.link_distance, 4.0, 0.15};
+  ArcLinkLimits arc;  // radius >= 4 m, residual <= 0.15 m
+  arc.max_gap = p.link_distance;
   auto tail = [&](std::size_t e, bool towards_end) {  // end point last if towards_end
     const auto& c = frags[e / 2].centreline;
     std::vector<Vec3> t;
