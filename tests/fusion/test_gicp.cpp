@@ -227,3 +227,35 @@ TEST_CASE("GICP on real KITTI scans: known transform and cycle consistency") {
   CHECK(T01.translation().x() > 0.5);  // the car drives forward (x) about 0.7-0.9 m per frame
   CHECK(T01.translation().x() < 1.0);
 }
+
+TEST_CASE("SGICP on a lone straight line: lateral offset recovered, the free direction left alone",
+          "[fusion][gicp]") {
+  // A painted line along x, its points free along it (sigma 10 m) and tight across (5 cm), as
+  // align's element clouds are. Only the lateral offset and height are observable.
+  constexpr double kLateralTol = 0.02;  // m
+  auto line = [](double phase) {
+    Cloud c;
+    for (double x = phase; x < 60.0; x += 0.25) {
+      c.points.push_back({x, 0.0, 0.0});
+      c.covariances.push_back(Eigen::Vector3d(100.0, 0.0025, 0.0025).asDiagonal());
+      c.labels.push_back(0);
+    }
+    return c;
+  };
+  const Pose3 T_true = poseFromXyzRpy(0.0, 0.6, 0.05, 0.0, 0.0, 0.0);  // source seen 0.6 m aside
+  const Cloud source = transformCloud(line(0.1), T_true.inverse());
+  const GicpTarget target(line(0.0), 1.5);
+  GicpSettings s;
+  s.max_correspondence_distance = 1.5;
+  s.same_label_only = true;
+  s.min_information = 10.0;
+  const GicpResult r = alignGicp(target, source, Pose3::Identity(), s);
+  INFO("iterations " << r.iterations);
+  CHECK(r.converged);
+  CHECK(r.iterations < s.max_iterations);
+  CHECK(std::abs(r.T_target_source.translation().y() - 0.6) < kLateralTol);
+  CHECK(std::abs(r.T_target_source.translation().z() - 0.05) < kLateralTol);
+  CHECK(std::abs(r.T_target_source.translation().x()) < kLateralTol);  // left where it started
+  // the Hessian says so: its smallest eigenvalue is below the threshold
+  CHECK(Eigen::SelfAdjointEigenSolver<Matrix6d>(r.hessian).eigenvalues()(0) < s.min_information);
+}

@@ -84,7 +84,10 @@ std::vector<InterConstraint> registerSubmaps(const std::vector<Lsm>& lsms, const
       g.point_to_point = !gicp;
       g.lambda = 1e-3;
       g.huber_delta = gicp ? 3.0 : 0.0;
-      if (gicp) g.label_weights = weights;
+      if (gicp) {
+        g.label_weights = weights;
+        g.min_information = s.min_information;
+      }
       const GicpTarget target(A.cloud, dist);
       GicpResult lr = alignGicp(target, B.cloud, delta, g);
       if (lr.num_inliers >= g.min_inliers) delta = lr.T_target_source;

@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 
 #include "mapfuse/core/error.hpp"
@@ -126,9 +127,20 @@ GicpResult alignGicp(const GicpTarget& target, const Cloud& source,
     const Linearization lin = linearize(target, source, T, s);
     result.iterations = it + 1;
     if (lin.inliers < s.min_inliers) break;
-    Matrix6d H = lin.H;
-    H.diagonal().array() += s.lambda;
-    const Vector6d delta = H.ldlt().solve(-lin.b);
+    Vector6d delta = Vector6d::Zero();
+    if (s.min_information > 0) {
+      const Eigen::SelfAdjointEigenSolver<Matrix6d> es(lin.H);
+      for (int i = 0; i < 6; ++i) {
+        const double info = es.eigenvalues()(i);
+        if (info < s.min_information) continue;  // unobservable: stays where it started
+        const Vector6d v = es.eigenvectors().col(i);
+        delta -= v * (v.dot(lin.b) / (info + s.lambda));
+      }
+    } else {
+      Matrix6d H = lin.H;
+      H.diagonal().array() += s.lambda;
+      delta = H.ldlt().solve(-lin.b);
+    }
     if (!delta.allFinite()) break;
     T = T * expSE3(delta);
     if (delta.head<3>().norm() < s.translation_eps && delta.tail<3>().norm() < s.rotation_eps) {

@@ -31,6 +31,7 @@ void AlignParams::validate() const {
                ">= 1");
   requireParam(min_fitness >= 0 && min_fitness <= 1, st, "min_fitness", min_fitness, "in [0, 1]");
   requireParam(max_rmse > 0, st, "max_rmse", max_rmse, "> 0");
+  requireParam(min_information >= 0, st, "min_information", min_information, ">= 0");
   requireParam(max_iterations >= 1, st, "max_iterations", max_iterations, ">= 1");
   requireParam(pcm_gate > 0, st, "pcm_gate", pcm_gate, "> 0");
   requireParam(pcm_exact_max >= 0, st, "pcm_exact_max", pcm_exact_max, ">= 0");
@@ -73,6 +74,7 @@ fusion::AlignSettings AlignParams::settings() const {
   s.graph_rejection_rounds = graph_rejection_rounds;
   s.min_fitness = min_fitness;
   s.max_rmse = max_rmse;
+  s.min_information = min_information;
   s.max_iterations = max_iterations;
   s.pcm_gate = pcm_gate;
   s.pcm_exact_max = pcm_exact_max;

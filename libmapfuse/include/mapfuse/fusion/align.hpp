@@ -41,6 +41,7 @@ struct AlignSettings {
   std::vector<double> class_weights = {1.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0};  ///< w_l by CrowdClass
   double min_fitness = 0.3;               ///< accept a registration above this inlier fraction
   double max_rmse = 0.5;                  ///< m, and below this RMS residual
+  double min_information = 10.0;          ///< SGICP: Hessian directions below this are unobservable
   int max_iterations = 30;                ///< per pyramid level
   double pcm_gate = 16.81;                ///< chi2 (6 dof, 99%) of pairwise cycle consistency
   int pcm_exact_max = 40;                 ///< exact maximum clique up to this many constraints

@@ -27,8 +27,13 @@ struct GicpSettings {
   std::vector<double> label_huber_delta;  ///< per-label Huber threshold (overrides huber_delta)
   bool point_to_point = false;            ///< ignore covariances (plain point-to-point ICP)
   double lambda = 1e-6;                   ///< Levenberg damping added to the Hessian diagonal
-  int min_inliers = 6;                    ///< fewer correspondences than this: stop, not converged
-  int num_threads = 1;                    ///< OpenMP threads for the per-point loop
+  /// > 0: directions of the Hessian (information, when residuals are whitened by covariances)
+  /// with an eigenvalue below this are unobservable and the steps leave them alone (solution
+  /// remapping, Zhang et al. 2016): along a lone straight line the translation along it is free,
+  /// and undamped steps there oscillated until max_iterations instead of converging.
+  double min_information = 0.0;
+  int min_inliers = 6;  ///< fewer correspondences than this: stop, not converged
+  int num_threads = 1;  ///< OpenMP threads for the per-point loop
 };
 
 struct GicpResult {

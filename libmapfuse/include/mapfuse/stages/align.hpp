@@ -24,6 +24,7 @@ struct AlignParams {
   int coarse_neighbors = 1;
   double min_fitness = 0.3;
   double max_rmse = 0.5;
+  double min_information = 10.0;
   int max_iterations = 30;
   double pcm_gate = 16.81;
   int pcm_exact_max = 40;
@@ -64,6 +65,8 @@ struct AlignParams {
     v("coarse_neighbors", coarse_neighbors, "", "add votes of pairs of submaps this near");
     v("min_fitness", min_fitness, "", "accept registrations with inlier fraction above");
     v("max_rmse", max_rmse, "m", "accept registrations with RMS residual below");
+    v("min_information", min_information, "",
+      "SGICP leaves directions with less information alone (0: off)");
     v("max_iterations", max_iterations, "", "GICP iterations per pyramid level");
     v("pcm_gate", pcm_gate, "", "chi2 gate of PCM pairwise consistency (6 dof)");
     v("pcm_exact_max", pcm_exact_max, "", "exact maximum clique up to this many constraints");
