@@ -8,6 +8,7 @@
 #include <boost/geometry/index/rtree.hpp>
 #include <numeric>
 
+#include "box2d.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
 #include "mapfuse/core/vector_map.hpp"
 
@@ -16,16 +17,7 @@ namespace {
 
 namespace bg = boost::geometry;
 namespace bgi = boost::geometry::index;
-using P2 = bg::model::d2::point_xy<double>;
-using Box2 = bg::model::box<P2>;
 using BoxValue = std::pair<Box2, std::size_t>;
-
-Box2 boxOf(const std::vector<Eigen::Vector3d>& pts, double margin) {
-  Box2 b(P2(pts[0].x(), pts[0].y()), P2(pts[0].x(), pts[0].y()));
-  for (const auto& p : pts) bg::expand(b, P2(p.x(), p.y()));
-  return Box2(P2(b.min_corner().x() - margin, b.min_corner().y() - margin),
-              P2(b.max_corner().x() + margin, b.max_corner().y() + margin));
-}
 
 // Fraction of a's centreline points within `tol` of b's centreline.
 double coveredFraction(const Fragment& a, const Fragment& b, double tol) {
@@ -93,19 +85,21 @@ void mergeSideBySide(std::vector<Fragment>& frags, const LaneInstantiationParams
 
 void absorbStubs(std::vector<Fragment>& frags, const LaneInstantiationParams& p) {
   const double tol = p.station_step;
-  auto isStub = [&](const Fragment& f) { return polylineLength(f.centreline) < tol; };
+  std::vector<char> stub(frags.size());
+  for (std::size_t i = 0; i < frags.size(); ++i)
+    stub[i] = polylineLength(frags[i].centreline) < tol;
   const auto tree = fragmentBoxes(frags, tol);
   std::vector<int> parent(frags.size());
   std::iota(parent.begin(), parent.end(), 0);
   bool merged = false;
   for (std::size_t i = 0; i < frags.size(); ++i) {
-    if (!isStub(frags[i])) continue;
+    if (!stub[i]) continue;
     std::vector<BoxValue> hits;
     tree.query(bgi::intersects(boxOf(frags[i].centreline, tol)), std::back_inserter(hits));
     double best = tol;
     int target = -1;
     for (const auto& h : hits) {
-      if (h.second == i || isStub(frags[h.second])) continue;
+      if (h.second == i || stub[h.second]) continue;
       for (const auto& q : frags[i].centreline) {
         const double d = distanceToPolyline2d(q, frags[h.second].centreline);
         if (d <= best) best = d, target = int(h.second);

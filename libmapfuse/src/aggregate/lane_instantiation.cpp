@@ -12,6 +12,7 @@
 #include <optional>
 #include <set>
 
+#include "box2d.hpp"
 #include "lane_fragments.hpp"
 #include "mapfuse/aggregate/arc_link.hpp"
 #include "mapfuse/aggregate/dbscan.hpp"
@@ -28,11 +29,9 @@ constexpr double kArcTail = 4.0;             // m of a fragment's end the arc li
 namespace bg = boost::geometry;
 namespace bgi = boost::geometry::index;
 using Vec3 = Eigen::Vector3d;
-using P2 = bg::model::d2::point_xy<double>;
 using Line2 = bg::model::linestring<P2>;
 using Poly2 = bg::model::polygon<P2>;
 using MPoly2 = bg::model::multi_polygon<Poly2>;
-using Box2 = bg::model::box<P2>;
 using PointValue = std::pair<P2, std::size_t>;
 
 struct Piece {
@@ -90,13 +89,6 @@ Line2 toLine(const std::vector<Vec3>& pts) {
     if (l.empty() || std::hypot(p.x() - bg::get<0>(l.back()), p.y() - bg::get<1>(l.back())) > 1e-3)
       l.emplace_back(p.x(), p.y());
   return l;
-}
-
-Box2 boxOf(const std::vector<Vec3>& pts, double margin) {
-  Box2 b(P2(pts[0].x(), pts[0].y()), P2(pts[0].x(), pts[0].y()));
-  for (const auto& p : pts) bg::expand(b, P2(p.x(), p.y()));
-  return Box2(P2(b.min_corner().x() - margin, b.min_corner().y() - margin),
-              P2(b.max_corner().x() + margin, b.max_corner().y() + margin));
 }
 
 // The stage-1 polygon of a piece: simplified first (Douglas-Peucker, 2 cm: fewer polygon
@@ -271,9 +263,12 @@ LaneInstantiation instantiateLanes(const std::vector<Observation>& items,
   // one circle, the gap along it within link_distance (arc_link.hpp)
   ArcLinkLimits arc;  // radius >= 4 m, residual <= 0.15 m
   arc.max_gap = p.link_distance;
-  auto tail = [&](std::size_t e, bool towards_end) {  // end point last if towards_end
+  // each end's last kArcTail metres: from_end[e] starts at the end and runs inward, to_end[e]
+  // the reverse
+  std::vector<std::vector<Vec3>> from_end(2 * m), to_end(2 * m);
+  for (std::size_t e = 0; e < 2 * m; ++e) {
     const auto& c = frags[e / 2].centreline;
-    std::vector<Vec3> t;
+    auto& t = from_end[e];
     double run = 0;
     for (std::size_t k = 0; k < c.size(); ++k) {
       const std::size_t i = e % 2 == 0 ? k : c.size() - 1 - k;
@@ -281,12 +276,11 @@ LaneInstantiation instantiateLanes(const std::vector<Observation>& items,
       if (run > kArcTail) break;
       t.push_back(c[i]);
     }
-    if (towards_end) std::reverse(t.begin(), t.end());
-    return t;
-  };
+    to_end[e].assign(t.rbegin(), t.rend());
+  }
   auto onArc = [&](std::size_t e, std::size_t f) {
     return (ends[f].pos - ends[e].pos).head<2>().norm() <= p.link_distance &&
-           continuesOnArc(tail(e, true), tail(f, false), arc);
+           continuesOnArc(to_end[e], from_end[f], arc);
   };
   std::vector<std::vector<std::size_t>> cand(2 * m);
   for (std::size_t e = 0; e < 2 * m; ++e) {
@@ -333,7 +327,7 @@ LaneInstantiation instantiateLanes(const std::vector<Observation>& items,
       if (in == 1) std::reverse(c.begin(), c.end());
       if (from >= 0 && !straight(std::size_t(from), 2 * f + in)) {  // follow the arc, no chord
         const auto bridge =
-            arcBridge(tail(std::size_t(from), true), tail(2 * f + in, false), p.station_step);
+            arcBridge(to_end[std::size_t(from)], from_end[2 * f + in], p.station_step);
         inst.centreline.insert(inst.centreline.end(), bridge.begin(), bridge.end());
       }
       inst.centreline.insert(inst.centreline.end(), c.begin(), c.end());
