@@ -34,6 +34,23 @@ double distanceToTruth(const Vec3& p, const VectorMap& truth, CrowdClass c) {
   return best;
 }
 
+// A synthetic road with lane lines only, and its map aggregated with the default parameters.
+struct LaneRun {
+  test::SynthWorld world;
+  VectorMap map;
+  AggregatorStats stats;
+};
+test::SynthOptions lanesOnly() {
+  test::SynthOptions o;
+  o.discrete = false;
+  return o;
+}
+LaneRun aggregateLanes(const test::SynthOptions& o) {
+  LaneRun r{test::makeSynthWorld(o), {}, {}};
+  r.map = aggregateObservations(observe(r.world), AggregatorParams{}, &r.stats);
+  return r;
+}
+
 Vec3 centre(const MapInstance& m) {
   Vec3 c = Vec3::Zero();
   for (const auto& p : m.points) c += p;
@@ -44,11 +61,8 @@ Vec3 centre(const MapInstance& m) {
 
 TEST_CASE("a straight three-line road gives three lane instances on the truth",
           "[aggregate][lanes]") {
-  test::SynthOptions o;
-  o.discrete = false;
-  const auto w = test::makeSynthWorld(o);
-  AggregatorStats stats;
-  const VectorMap map = aggregateObservations(observe(w), AggregatorParams{}, &stats);
+  const test::SynthOptions o = lanesOnly();
+  const auto [w, map, stats] = aggregateLanes(o);
   const auto lanes = ofClass(map, CrowdClass::kLaneLine);
   REQUIRE(lanes.size() == 3);
   CHECK(stats.lanes.branch_ends == 0);
@@ -76,15 +90,12 @@ TEST_CASE("a dashed line observed dash by dash is one instance over its whole le
   // 10 drives offset by 0.15 m each: their mean is within ~0.15 m (3 sigma), plus Bezier error
   constexpr double kDashedLineTolerance = 0.25;  // m
   for (uint64_t seed : {1, 2, 3}) {
-    test::SynthOptions o;
-    o.discrete = false;
+    test::SynthOptions o = lanesOnly();
     o.dash_length = 3.0;
     o.dash_gap = 6.0;
     o.drive_sigma = 0.15;
     o.seed = seed;
-    const auto w = test::makeSynthWorld(o);
-    AggregatorStats stats;
-    const VectorMap map = aggregateObservations(observe(w), AggregatorParams{}, &stats);
+    const auto [w, map, stats] = aggregateLanes(o);
     const auto lanes = ofClass(map, CrowdClass::kLaneLine);
     CHECK(lanes.size() == 3);
     CHECK(stats.lanes.branch_ends == 0);
@@ -99,12 +110,9 @@ TEST_CASE("a dashed line observed dash by dash is one instance over its whole le
 }
 
 TEST_CASE("a fork splits its line into three instances", "[aggregate][lanes]") {
-  test::SynthOptions o;
-  o.discrete = false;
+  test::SynthOptions o = lanesOnly();
   o.fork = true;
-  const auto w = test::makeSynthWorld(o);
-  AggregatorStats stats;
-  const VectorMap map = aggregateObservations(observe(w), AggregatorParams{}, &stats);
+  const auto [w, map, stats] = aggregateLanes(o);
   // y = 3.5 and y = 7 lines, plus trunk before the fork, trunk after it and the branch
   CHECK(ofClass(map, CrowdClass::kLaneLine).size() == 5);
   CHECK(stats.lanes.branch_ends >= 1);
@@ -122,12 +130,9 @@ TEST_CASE("a fork splits its line into three instances", "[aggregate][lanes]") {
 }
 
 TEST_CASE("a merge ends both incoming lines and starts a new instance", "[aggregate][lanes]") {
-  test::SynthOptions o;
-  o.discrete = false;
+  test::SynthOptions o = lanesOnly();
   o.merge = true;
-  const auto w = test::makeSynthWorld(o);
-  AggregatorStats stats;
-  const VectorMap map = aggregateObservations(observe(w), AggregatorParams{}, &stats);
+  const auto [w, map, stats] = aggregateLanes(o);
   CHECK(ofClass(map, CrowdClass::kLaneLine).size() == 5);
   CHECK(stats.lanes.branch_ends >= 1);
 }

@@ -13,9 +13,10 @@ namespace {
 
 constexpr double kExact = 1e-9;  // metrics of hand-made maps are exact up to rounding
 
-std::vector<Vec3> line(double y, double length = 100.0) {
+// A straight line at height 0 along +x at `y`, from x0 to x0 + length, 11 points.
+std::vector<Vec3> line(double y, double length = 100.0, double x0 = 0.0) {
   std::vector<Vec3> p;
-  for (int i = 0; i <= 10; ++i) p.push_back({length * i / 10.0, y, 0.0});
+  for (int i = 0; i <= 10; ++i) p.push_back({x0 + length * i / 10.0, y, 0.0});
   return p;
 }
 
@@ -176,9 +177,7 @@ TEST_CASE("coverage keeps what is beside or ahead of a drive, not what lies behi
   const std::vector<Pose3> poses = driveAlongX();
   VectorMap t;
   t.origin = {49.0, 8.4, 110.0};
-  std::vector<Vec3> long_line;
-  for (int x = -30; x <= 130; x += 10) long_line.push_back({double(x), 3.0, 0.0});
-  t.instances = {inst(1, CrowdClass::kLaneLine, long_line),
+  t.instances = {inst(1, CrowdClass::kLaneLine, line(3.0, 160.0, -30.0)),
                  inst(2, CrowdClass::kStopLine, {{-5, -2, 0}, {-5, 2, 0}}),    // behind the start
                  inst(3, CrowdClass::kStopLine, {{105, -2, 0}, {105, 2, 0}}),  // ahead of the end
                  inst(4, CrowdClass::kPole, {{50, 11, 0}}, 6),                 // beside, in range
@@ -228,9 +227,8 @@ TEST_CASE("map elements of true elements outside the scored scope count neither 
   const std::vector<Pose3> poses = driveAlongX();
   VectorMap t;
   t.origin = {49.0, 8.4, 110.0};
-  std::vector<Vec3> lane;
-  for (int x = -40; x <= 100; x += 10) lane.push_back({double(x), 3.0, 0.0});
-  t.instances = {inst(1, CrowdClass::kLaneLine, lane), inst(2, CrowdClass::kPole, {{50, -3, 0}}, 6),
+  t.instances = {inst(1, CrowdClass::kLaneLine, line(3.0, 140.0, -40.0)),
+                 inst(2, CrowdClass::kPole, {{50, -3, 0}}, 6),
                  inst(3, CrowdClass::kPole, {{-20, -3, 0}}, 6)};  // behind the start
   VectorMap outside;
   const VectorMap scored = clipToCoverage(t, poses, CoverageWedge{12.0, 12.0, M_PI / 2}, &outside);
