@@ -204,6 +204,7 @@ TEST_CASE("align: GBA and pairing parameters out of range are refused by name") 
   refused([](stages::AlignParams& p) { p.gba_early_round_tolerance = 1; },
           "gba_early_round_tolerance");
   refused([](stages::AlignParams& p) { p.partner_choice = "best"; }, "partner_choice");
+  refused([](stages::AlignParams& p) { p.min_information = -1; }, "min_information");
   stages::AlignParams four;
   four.gba_dof = 4;
   CHECK_NOTHROW(four.validate());

@@ -43,6 +43,10 @@ TEST_CASE("configs/lsm-build.json mirrors the defaults, which are valid") {
   bad.tilt_window = -1.0;
   CHECK_THROWS_AS(bad.validate(), ConfigError);
   CHECK_THROWS_WITH(bad.validate(), Catch::Contains("tilt_window"));
+  bad = {};
+  bad.max_track_range = 0.0;
+  CHECK_THROWS_AS(bad.validate(), ConfigError);
+  CHECK_THROWS_WITH(bad.validate(), Catch::Contains("max_track_range"));
 }
 
 TEST_CASE("lsm-build writes an LSM that reads back, validates and keeps the GPS fixes") {
