@@ -7,6 +7,8 @@
 #include <random>
 
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/png_frames.hpp"
 #include "mapfuse/io/png_writer.hpp"
 
 using namespace mapfuse;
@@ -57,5 +59,24 @@ TEST_CASE("png writer: writes atomically and rejects what PNG cannot hold", "[io
   CHECK_THROWS_AS(io::encodePng(cv::Mat()), InputError);
   CHECK_THROWS_AS(io::encodePng(cv::Mat(4, 4, CV_16UC1, cv::Scalar(1))), InputError);
   CHECK_THROWS_AS(io::encodePng(cv::Mat(4, 4, CV_8UC2, cv::Scalar(1, 2))), InputError);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("png frames: OpenCV's encoder, written atomically", "[io][png]") {
+  const auto dir = std::filesystem::temp_directory_path() / "mapfuse_png_frames_test";
+  std::filesystem::create_directories(dir);
+  for (const int type : {CV_8UC1, CV_8UC3, CV_16UC1}) {
+    cv::Mat img = testImage(CV_8UC1);
+    if (type == CV_16UC1) img.convertTo(img, CV_16UC1, 257.0);
+    if (type == CV_8UC3) img = testImage(CV_8UC3);
+    io::writePngFrame(dir / "f.png", img);
+    const cv::Mat back = cv::imread((dir / "f.png").string(), cv::IMREAD_UNCHANGED);
+    REQUIRE(back.type() == type);
+    CHECK(cv::countNonZero(back.reshape(1) != img.reshape(1)) == 0);
+  }
+  // A failed encode names the file and leaves the picture already there untouched.
+  const std::string before = io::readBytes(dir / "f.png");
+  CHECK_THROWS_WITH(io::writePngFrame(dir / "f.png", cv::Mat()), Catch::Contains("f.png"));
+  CHECK(io::readBytes(dir / "f.png") == before);
   std::filesystem::remove_all(dir);
 }

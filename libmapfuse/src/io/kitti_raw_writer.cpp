@@ -4,10 +4,9 @@
 #include <cstdio>
 #include <cstring>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/png_frames.hpp"
 
 namespace mapfuse::io {
 namespace {
@@ -149,9 +148,7 @@ void writePngBgr(const std::filesystem::path& path, int width, int height,
   if (width <= 0 || height <= 0 || bgr.size() != static_cast<std::size_t>(width) * height * 3)
     throw InputError(path.string() + ": image size does not match its pixels");
   const cv::Mat img(height, width, CV_8UC3, const_cast<uint8_t*>(bgr.data()));
-  std::vector<uint8_t> png;
-  if (!cv::imencode(".png", img, png)) throw IoError(path.string(), "PNG encoding failed");
-  writeBytesAtomic(path, std::string(png.begin(), png.end()));
+  writePngFrame(path, img);
 }
 
 geo::OxtsRecord oxtsFromPose(const Pose3& T_world_imu, const MercatorAnchor& a) {

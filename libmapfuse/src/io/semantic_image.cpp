@@ -6,6 +6,7 @@
 #include "mapfuse/core/classes.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/png_frames.hpp"
 
 namespace mapfuse::io {
 namespace fs = std::filesystem;
@@ -136,9 +137,7 @@ void writeSemanticImage(const fs::path& path, const SemanticImage& image) {
     for (uint8_t l : image.data)
       if (l >= kNumLidarClasses) throw InputError(path.string() + ": label id outside 0..7");
     const cv::Mat m(image.height, image.width, CV_8UC1, const_cast<uint8_t*>(image.data.data()));
-    std::vector<uint8_t> buf;
-    if (!cv::imencode(".png", m, buf)) throw IoError(path.string(), "PNG encoding failed");
-    writeBytesAtomic(path, std::string(buf.begin(), buf.end()));
+    writePngFrame(path, m);
   } else {
     throw IoError(path.string(), "unknown semantics extension (want .png or .prob)");
   }

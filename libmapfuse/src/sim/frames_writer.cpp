@@ -3,7 +3,6 @@
 #include <cmath>
 #include <map>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <random>
 #include <sstream>
@@ -12,6 +11,7 @@
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
+#include "mapfuse/io/png_frames.hpp"
 
 namespace mapfuse::sim {
 
@@ -261,12 +261,7 @@ FramesStats writeFramesDrive(const std::filesystem::path& dir, const World& worl
                  {{"frame", f}, {"stamp", d.stamps[k]}, {"ground", ground}, {"aerial", aerial}})
                  .dump() +
              "\n";
-    if (FP.masks) {
-      std::vector<uchar> png;
-      if (!cv::imencode(".png", mask, png))
-        throw IoError((dir / name).string(), "PNG encoding failed");
-      io::writeBytesAtomic(dir / name, std::string(png.begin(), png.end()));
-    }
+    if (FP.masks) io::writePngFrame(dir / name, mask);
     ++stats.frames;
   }
   io::writeBytesAtomic(dir / "frames.csv", frames_csv);

@@ -1,16 +1,15 @@
 #include "mapfuse/stages/lidar_semantic_map.hpp"
 
 #include <chrono>
-#include <opencv2/imgcodecs.hpp>
 
 #include "mapfuse/core/classes.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/core/progress.hpp"
-#include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/kitti_poses.hpp"
 #include "mapfuse/io/pcd.hpp"
 #include "mapfuse/io/ply.hpp"
+#include "mapfuse/io/png_frames.hpp"
 #include "mapfuse/io/semantic_kitti.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/velodyne.hpp"
@@ -256,10 +255,7 @@ json runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,
   io::writePcd(output / "map.pcd", cloud);
   Eigen::Vector2d topdown_origin;
   const cv::Mat img = lidar::renderTopDown(map, p.topdown_resolution, &topdown_origin);
-  std::vector<uint8_t> png;
-  if (!cv::imencode(".png", img, png))
-    throw IoError((output / "topdown.png").string(), "PNG encoding failed");
-  io::writeBytesAtomic(output / "topdown.png", std::string(png.begin(), png.end()));
+  io::writePngFrame(output / "topdown.png", img);
   io::writeKittiOdometryPoses(output / "poses.txt", poses);
   std::size_t label_files = 0, labelled_points = 0, scan_points = 0;
   if (p.write_scan_labels) {

@@ -1,12 +1,11 @@
 #include "mapfuse/stages/lsm_build.hpp"
 
 #include <chrono>
-#include <opencv2/imgcodecs.hpp>
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
-#include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/lsm_io.hpp"
+#include "mapfuse/io/png_frames.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/stages/lsm_build_inputs.hpp"
 #include "mapfuse/stages/lsm_build_pipeline.hpp"
@@ -85,10 +84,7 @@ LsmBuildResult runLsmBuild(const LsmBuildInputs& in, const LsmBuildParams& p) {
                        ls.bev_resolution});
     const double res_m = tiles.empty() ? 0.2 : 0.05;
     const cv::Mat img = vehicle::renderTopDown(proc.lsm, drive.T_odom_body, res_m, tiles);
-    std::vector<uchar> png;
-    cv::imencode(".png", img, png);
-    io::writeBytesAtomic(in.out / (drive.drive_id + ".bev.png"),
-                         std::string(png.begin(), png.end()));
+    io::writePngFrame(in.out / (drive.drive_id + ".bev.png"), img);
   }
   res.summary = proc.stats;
   res.summary["drive_id"] = drive.drive_id;

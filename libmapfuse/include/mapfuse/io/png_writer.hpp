@@ -2,7 +2,8 @@
 /// @file PNG encoding with zlib alone. The tools that only write pictures (aggregate, evaluate,
 /// stitch) use it instead of OpenCV's imgcodecs, whose Debian build links GDAL and ~140 shared
 /// libraries: 0.12 s of dynamic loading at every start of a per-drive or per-tile job.
-/// Tools that write PNGs per frame (simulate, lsm-build, lidar-semantic-map) keep cv::imencode:
+/// Tools that write PNGs per frame (simulate, lsm-build, lidar-semantic-map) use
+/// io::writePngFrame (png_frames.hpp, cv::imencode):
 /// this encoder tries every row filter and deflates at level 6, which suits one map picture but
 /// is slow on photographic frames (1242x375 RGB: 182 ms vs OpenCV's 11 ms; a 1280x720 label
 /// mask: 7 ms vs 2 ms, half the bytes).
