@@ -3,6 +3,7 @@
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
+#include "mapfuse/stages/balance.hpp"
 #include "mapfuse/stages/stitch.hpp"
 #include "mapfuse/stages/tile.hpp"
 #include "support/test_support.hpp"
@@ -32,9 +33,11 @@ Lsm straightDrive(const std::string& id, double y) {
 }
 }  // namespace
 
-TEST_CASE("configs/tile.json and configs/stitch.json mirror the defaults", "[tiling][config]") {
+TEST_CASE("configs/tile.json, balance.json and stitch.json mirror the defaults",
+          "[tiling][config]") {
   const std::filesystem::path configs = std::filesystem::path(MAPFUSE_SOURCE_DIR) / "configs";
   CHECK(io::readDocument(configs / "tile.json") == paramsToJson(stages::TileParams{}));
+  CHECK(io::readDocument(configs / "balance.json") == paramsToJson(stages::BalanceParams{}));
   CHECK(io::readDocument(configs / "stitch.json") == paramsToJson(tiling::StitchParams{}));
 }
 
