@@ -6,7 +6,7 @@
 #   make -j2 -f scripts/crowd.mk LSM_DIR=drives/ WORK=out/crowd            # LSMs as input
 #   make -j2 -f scripts/crowd.mk FRAMES_DIR=frames/ WORK=out/crowd         # raw drives as input
 #   ... TRUTH=truth/vector_map.json TRUTH_TRAJ=truth/   # adds evaluate
-#   ... TILE_SIZE=500                                    # align + aggregate per tile, then stitch
+#   ... TILE_SIZE=500                          # align per tile, balance, aggregate per tile, stitch
 #
 # Variables: BIN (tools, default build/bin), METHOD (align method, default gba_sgicp),
 # CONFIG_DIR (folder with <stage>.json configs; default: none, built-in defaults),
@@ -83,27 +83,36 @@ $(ALIGN_SUMMARY): $(GEOREF)
 $(MAP_SUMMARY): $(ALIGN_SUMMARY)
 	$(BIN)/aggregate $(Q) $(call cfg,aggregate) -o $(WORK)/aggregate $(ALIGNED)
 else
-# ---- tiled: tile, then align + aggregate per tile (sub-make over the tile list), stitch ----
+# ---- tiled: tile; align per tile; balance (one step over all tiles: places every tile's
+# registration groups consistently); aggregate per tile; stitch. Per-tile steps run in sub-makes
+# over the tile list, which exists only once `tile` has run. ----
+BALANCE_SUMMARY := $(WORK)/balance/balance.summary.json
 $(WORK)/tiles/tiles.txt: $(GEOREF)
 	@mkdir -p $(WORK)/tiles
 	$(BIN)/tile $(Q) $(call cfg,tile) --tile-size $(TILE_SIZE) --margin $(TILE_MARGIN) -o $(WORK)/tiles $(GEOREF) > $@.tmp && mv $@.tmp $@
 
-$(MAP_SUMMARY): $(WORK)/tiles/tiles.txt
-	$(MAKE) -f $(lastword $(MAKEFILE_LIST)) tiles-run TILES="$$(cat $<)"
+$(BALANCE_SUMMARY): $(WORK)/tiles/tiles.txt
+	$(MAKE) -f $(lastword $(MAKEFILE_LIST)) tiles-align TILES="$$(cat $<)"
+	$(BIN)/balance $(Q) $(call cfg,balance) --tiles $(WORK)/tiles/tiles.json -o $(WORK)/balance >/dev/null
+
+$(MAP_SUMMARY): $(BALANCE_SUMMARY)
+	$(MAKE) -f $(lastword $(MAKEFILE_LIST)) tiles-aggregate TILES="$$(cat $(WORK)/tiles/tiles.txt)"
 	$(BIN)/stitch $(Q) $(call cfg,stitch) --tiles $(WORK)/tiles/tiles.json -o $(MAP) \
-	  $$(sed 's|.*|$(WORK)/tiles/&/aggregate/map.cbor|' $<)
+	  $$(sed 's|.*|$(WORK)/tiles/&/aggregate/map.cbor|' $(WORK)/tiles/tiles.txt)
 endif
 
 # Per-tile align summaries are intermediate files of pattern rules: keep them (and everything
-# else) so that a rerun does not redo finished tiles. Aligned LSMs are named like the tile's
-# inputs (a $(wildcard) of align/ would see make's stale directory cache).
+# else) so that a rerun does not redo finished tiles. Output LSMs are named like the tile's
+# inputs (a $(wildcard) of an output folder would see make's stale directory cache).
 .SECONDARY:
-.PHONY: tiles-run
-tiles-run: $(foreach t,$(TILES),$(WORK)/tiles/$(t)/aggregate/aggregate.summary.json)
+.PHONY: tiles-align tiles-aggregate
+tile_inputs = $(wildcard $(WORK)/tiles/$(1)/*.cbor $(WORK)/tiles/$(1)/*.json)
+tiles-align: $(foreach t,$(TILES),$(WORK)/tiles/$(t)/align/align.summary.json)
+tiles-aggregate: $(foreach t,$(TILES),$(WORK)/tiles/$(t)/aggregate/aggregate.summary.json)
 $(WORK)/tiles/%/align/align.summary.json:
-	$(BIN)/align $(Q) $(call cfg,align) --method $(METHOD) -o $(WORK)/tiles/$*/align $(wildcard $(WORK)/tiles/$*/*.cbor $(WORK)/tiles/$*/*.json)
-$(WORK)/tiles/%/aggregate/aggregate.summary.json: $(WORK)/tiles/%/align/align.summary.json
-	$(BIN)/aggregate $(Q) $(call cfg,aggregate) -o $(WORK)/tiles/$*/aggregate $(patsubst $(WORK)/tiles/$*/%,$(WORK)/tiles/$*/align/%,$(wildcard $(WORK)/tiles/$*/*.cbor $(WORK)/tiles/$*/*.json))
+	$(BIN)/align $(Q) $(call cfg,align) --method $(METHOD) -o $(WORK)/tiles/$*/align $(call tile_inputs,$*)
+$(WORK)/tiles/%/aggregate/aggregate.summary.json: $(WORK)/balance/balance.summary.json
+	$(BIN)/aggregate $(Q) $(call cfg,aggregate) -o $(WORK)/tiles/$*/aggregate $(patsubst $(WORK)/tiles/$*/%,$(WORK)/balance/$*/%,$(call tile_inputs,$*))
 
 # ---- evaluate against ground truth (trajectory metrics untiled only: a tiled run has no single
 # aligned copy of each drive) ----
