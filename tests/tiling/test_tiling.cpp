@@ -126,6 +126,31 @@ TEST_CASE("stitching 2x2 tile maps gives back each instance once and the line wh
     CHECK(out.instances[i].id == int64_t(i + 1));
 }
 
+TEST_CASE("a stop line across a tile border stays one segment from the tile owning its centre",
+          "[tiling]") {
+  const TileGrid grid(100.0, 20.0);
+  // Both tiles hold the whole stop line (margins); the east tile saw it 0.1 m further north.
+  auto stopLine = [](double dy) {
+    VectorMap m;
+    m.origin = {49.0, 8.4, 110.0};
+    MapInstance s;
+    s.id = 1;
+    s.cls = CrowdClass::kStopLine;
+    s.points = {{97.0, 10.0 + dy, 0.0}, {104.0, 10.5 + dy, 0.0}};  // centre x = 100.5: east tile
+    m.instances.push_back(s);
+    return m;
+  };
+  StitchReport report;
+  const VectorMap out = stitchTiles({{TileKey{0, 0}, stopLine(0.0)}, {TileKey{1, 0}, stopLine(0.1)}},
+                                    grid, StitchParams{}, report);
+  REQUIRE(out.instances.size() == 1);
+  const auto& kept = out.instances[0].points;
+  REQUIRE(kept.size() == 2);  // a segment, not two clipped pieces joined at the border
+  CHECK((kept[0] - Eigen::Vector3d(97.0, 10.1, 0.0)).norm() < kExact);
+  CHECK((kept[1] - Eigen::Vector3d(104.0, 10.6, 0.0)).norm() < kExact);
+  CHECK(report.joins == 0);
+}
+
 TEST_CASE("stitching refuses maps with different origins", "[tiling]") {
   const TileGrid grid(100.0, 20.0);
   VectorMap a = truthMap(), b = truthMap();

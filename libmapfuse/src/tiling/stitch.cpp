@@ -180,7 +180,9 @@ VectorMap stitchTiles(const std::vector<std::pair<TileKey, VectorMap>>& tiles, c
     const Rect core = grid.core(key);
     for (const auto& inst : map.instances) {
       ++report.instances_in;
-      if (geometryKind(inst.cls) != GeometryKind::kLine) {
+      // Discrete elements, and stop lines (segments of a few metres, always whole inside the
+      // margins): the tile that owns the centre keeps the element whole, never cut and rejoined.
+      if (geometryKind(inst.cls) != GeometryKind::kLine || inst.cls == CrowdClass::kStopLine) {
         const Eigen::Vector3d c = centroid(inst.points);
         if (core.ownsPoint(c.x(), c.y()))
           out.instances.push_back(inst);
