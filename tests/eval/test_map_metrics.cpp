@@ -279,7 +279,8 @@ TEST_CASE("a stop line mapped in part matches along its segment with its offset 
   map.instances[1].points = {{59.8, 0, 0}, {59.8, 3.5, 0}};
   MapEvalParams p;
   p.discrete_tolerance = 0.5;  // the partial line's centre is 1.0 m from the true centre
-  const ClassMetrics& m = get(evaluateMap(map, truth, p), CrowdClass::kStopLine);
+  const MapMetrics metrics = evaluateMap(map, truth, p);  // get() refers into it
+  const ClassMetrics& m = get(metrics, CrowdClass::kStopLine);
   CHECK(m.completeness == Approx(1.0));
   CHECK(m.redundancy == Approx(0.0));
   // the partial one by its 0.1 m across the line, the whole one by its centre (0.2 m)
@@ -290,6 +291,27 @@ TEST_CASE("a stop line mapped in part matches along its segment with its offset 
   // a pole (a point element) still matches by centre distance only
   VectorMap pole_truth = truthMap(), pole_map = truthMap();
   pole_map.instances[3].points = {{0.6, -3, 0}};
-  const ClassMetrics& pm = get(evaluateMap(pole_map, pole_truth, p), CrowdClass::kPole);
+  const MapMetrics pole_metrics = evaluateMap(pole_map, pole_truth, p);
+  const ClassMetrics& pm = get(pole_metrics, CrowdClass::kPole);
   CHECK(pm.completeness == Approx(2.0 / 3.0));
+}
+
+TEST_CASE("a stop line's centre lies along its length, whatever its vertices", "[eval][map]") {
+  // A stitched stop line keeps the vertex where its two tiles' pieces were joined (here 1 m
+  // from one end of a 7 m line); its errors must equal those of the same segment as 2 points.
+  VectorMap truth;
+  truth.origin = {49.0, 8.4, 110.0};
+  truth.instances = {inst(1, CrowdClass::kStopLine, {{30, 0, 0}, {30, 7, 0}}),
+                     inst(2, CrowdClass::kStopLine, {{60, 0, 0}, {60, 7, 0}})};
+  VectorMap segment = truth, joined = truth;
+  segment.instances[0].points = {{30.2, 0, 0}, {30.2, 7, 0}};
+  joined.instances[0].points = {{30.2, 0, 0}, {30.2, 1, 0}, {30.2, 7, 0}};
+  MapEvalParams p;
+  const MapMetrics ma = evaluateMap(segment, truth, p), mb = evaluateMap(joined, truth, p);
+  const ClassMetrics& a = get(ma, CrowdClass::kStopLine);
+  const ClassMetrics& b = get(mb, CrowdClass::kStopLine);
+  CHECK(b.completeness == Approx(1.0));
+  CHECK(b.absolute.mean == Approx(a.absolute.mean).margin(kExact));
+  CHECK(b.absolute.mean == Approx(0.1).margin(kExact));  // (0.2 + 0) / 2
+  CHECK(b.relative.mean == Approx(a.relative.mean).margin(kExact));
 }

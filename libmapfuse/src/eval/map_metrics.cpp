@@ -81,8 +81,20 @@ class SegmentIndex {
   bgi::rtree<SegValue, bgi::rstar<16>> tree_;
 };
 
+// Centre of an element: of a line (a stop line) along its length, so that a vertex where a
+// stitched line was joined does not pull it; of a polygon or point, the mean of its vertices.
 Vec3 centreOf(const MapInstance& m) {
   Vec3 c = Vec3::Zero();
+  if (geometryKind(m.cls) == GeometryKind::kLine) {
+    double length = 0.0;
+    for (std::size_t i = 0; i + 1 < m.points.size(); ++i) {
+      const double l = (m.points[i + 1] - m.points[i]).norm();
+      c += 0.5 * l * (m.points[i] + m.points[i + 1]);
+      length += l;
+    }
+    if (length > 0.0) return c / length;
+    c.setZero();
+  }
   for (const auto& p : m.points) c += p;
   return c / double(m.points.size());
 }
