@@ -133,10 +133,10 @@ lines += table(lambda cls, k, t: pooled(cls, k, t, seeds), True)
 lines += ["", "Mean of the per-seed values, untiled / tiled (difference):", ""]
 lines += table(per_seed_mean, False)
 lines += ["", "Notes: the crosswalk absolute error counts a crosswalk that only the tiled run matches"
-          " when one seed's untiled map misses it (seed 12 on 2026-11-24: 1.42 m off; without it"
-          " the two runs agree to 0.1 %). The same 16 seeds before the tiled chain had `balance`"
-          " (commit 6e93330, pooled): signs +7 % (+1..+17), poles +5 % (-0..+13), crosswalks +10 %"
-          " absolute error, lane redundancy +2 %."]
+          " where one seed's untiled map misses it (seed 12 on 2026-11-24: 1.41 m off; without it"
+          " the tiled error is 2 % below the untiled one). The same 16 seeds before the tiled chain"
+          " had `balance` (commit 6e93330, pooled): signs +7 % (+1..+17), poles +5 % (-0..+13),"
+          " crosswalks +10 % absolute error, lane redundancy +2 %."]
 open(out, "w").write("\n".join(lines) + "\n")
 print(f"bench_tiling: wrote {out}", file=sys.stderr)
 PY

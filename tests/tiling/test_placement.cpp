@@ -3,26 +3,30 @@
 #include <random>
 
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/tiling/piece_links.hpp"
 #include "mapfuse/tiling/placement.hpp"
 
 using namespace mapfuse;
 using namespace mapfuse::tiling;
 
 namespace {
-constexpr double kPlacementTol = 0.05;  // m: balanced tile vs the batch-wide mean georef error
-constexpr double kAlignNoise = 0.03;    // m: per-piece noise of a tile's align shift
-constexpr double kPieceSeconds = 20.0;  // s: time a drive spends in one tile
-constexpr double kDriftGain = 0.3;      // worst tile offset after / before, drifting errors
+constexpr double kPlacementTol = 0.05;  // m: balanced group vs the batch-wide mean georef error
+constexpr double kAlignNoise = 0.03;    // m: per-keyframe noise of a tile's align shift
+constexpr int kPieceKeyframes = 20;     // keyframes (1 s apart) a drive has in one tile's core
+constexpr int kMargin = 3;              // keyframes a piece reaches into each neighbour tile
+constexpr double kDriftGain = 0.3;      // worst group offset after / before, drifting errors
 
 // Drives along a row of tiles, each with a GPS-like georef error (1-3 m, random direction,
-// random walk in time) and a contiguous run of tiles; in every tile the drives fall into
-// `groups` registration groups (say, roads that do not meet inside the tile). Align puts each
-// group at the mean georef error of its own pieces, o_g; piece shift s_p = o_g - e_p + noise.
+// random walk in time, per keyframe) over a contiguous run of tiles; a piece holds the drive's
+// keyframes in its tile's core plus kMargin on each side (shared with the neighbour's piece).
+// In every tile the drives fall into `groups` registration groups (roads that do not meet
+// inside the tile). Align puts each group at the mean georef error of its keyframes, o_g, and
+// shifts keyframe k by s = o_g - e_k + noise.
 struct RowWorld {
   std::vector<TilePiece> pieces;
-  std::vector<Eigen::Vector3d> errors;    // e_p per piece
-  std::map<GroupKey, Eigen::Vector3d> o;  // per group, as independent align leaves it
-  Eigen::Vector3d batch_mean = Eigen::Vector3d::Zero();
+  std::vector<std::vector<Eigen::Vector3d>> errors;  // e_k per piece and keyframe
+  std::map<GroupKey, Eigen::Vector3d> o;             // per group, as independent align leaves it
+  Eigen::Vector3d batch_mean = Eigen::Vector3d::Zero();  // over distinct drive keyframes
 };
 
 RowWorld rowWorld(int tiles, int drives, unsigned seed, double walk = 0.05, int groups = 1) {
@@ -30,33 +34,46 @@ RowWorld rowWorld(int tiles, int drives, unsigned seed, double walk = 0.05, int 
   std::uniform_real_distribution<double> U(0.0, 1.0);
   std::normal_distribution<double> N01(0.0, 1.0);
   RowWorld w;
+  int distinct = 0;
   for (int d = 0; d < drives; ++d) {
     const int a = int(U(rng) * tiles), b = std::min(tiles - 1, a + int(U(rng) * tiles));
     const double mag = 1.0 + 2.0 * U(rng), dir = 2.0 * M_PI * U(rng);
     Eigen::Vector3d e(mag * std::cos(dir), mag * std::sin(dir), 0.5 * N01(rng));
+    const int n = (b - a + 1) * kPieceKeyframes;
+    std::vector<Eigen::Vector3d> drive_e;
+    for (int k = 0; k < n; ++k) {
+      if (k > 0) e.head<2>() += walk * Eigen::Vector2d(N01(rng), N01(rng));  // 1 s steps
+      drive_e.push_back(e);
+      w.batch_mean += e;
+      ++distinct;
+    }
     for (int t = a; t <= b; ++t) {
-      if (t > a)
-        e.head<2>() += walk * std::sqrt(kPieceSeconds) * Eigen::Vector2d(N01(rng), N01(rng));
       TilePiece p;
       p.group = GroupKey{TileKey{t, 0}, d % groups};
       p.drive = "drive" + std::to_string(d);
-      p.stamp = 1000.0 * d + kPieceSeconds * t;
-      p.keyframes = 20;
+      std::vector<Eigen::Vector3d> pe;
+      const int k0 = std::max(0, (t - a) * kPieceKeyframes - kMargin);
+      const int k1 = std::min(n, (t - a + 1) * kPieceKeyframes + kMargin);
+      for (int k = k0; k < k1; ++k) {
+        p.keyframes.push_back({k, 1000.0 * d + k, Eigen::Vector3d::Zero()});
+        pe.push_back(drive_e[k]);
+      }
       w.pieces.push_back(p);
-      w.errors.push_back(e);
+      w.errors.push_back(pe);
     }
   }
+  w.batch_mean /= double(distinct);
   std::map<GroupKey, int> count;
-  for (std::size_t i = 0; i < w.pieces.size(); ++i) {
-    w.o.emplace(w.pieces[i].group, Eigen::Vector3d::Zero()).first->second += w.errors[i];
-    ++count[w.pieces[i].group];
-    w.batch_mean += w.errors[i];
-  }
-  for (auto& [key, sum] : w.o) sum /= count[key];
-  w.batch_mean /= double(w.pieces.size());
   for (std::size_t i = 0; i < w.pieces.size(); ++i)
-    w.pieces[i].shift = w.o[w.pieces[i].group] - w.errors[i] +
-                        kAlignNoise * Eigen::Vector3d(N01(rng), N01(rng), N01(rng));
+    for (const auto& e : w.errors[i]) {
+      w.o.emplace(w.pieces[i].group, Eigen::Vector3d::Zero()).first->second += e;
+      ++count[w.pieces[i].group];
+    }
+  for (auto& [key, sum] : w.o) sum /= count[key];
+  for (std::size_t i = 0; i < w.pieces.size(); ++i)
+    for (std::size_t k = 0; k < w.errors[i].size(); ++k)
+      w.pieces[i].keyframes[k].shift = w.o[w.pieces[i].group] - w.errors[i][k] +
+                                       kAlignNoise * Eigen::Vector3d(N01(rng), N01(rng), N01(rng));
   return w;
 }
 
@@ -109,35 +126,31 @@ TEST_CASE("one group alone keeps its place", "[tiling][placement]") {
   CHECK(shifts.begin()->second.head<2>().norm() < kPlacementTol);
 }
 
-TEST_CASE("a piece whose alignment went wrong does not move its group", "[tiling][placement]") {
+TEST_CASE("a piece align could not register follows its drive", "[tiling][placement]") {
   RowWorld w = rowWorld(5, 30, 5, 0.0);
-  PlacementReport clean_report;
-  const auto clean = solvePlacement(w.pieces, PlacementParams{}, clean_report);
-  // A drive over tiles 1-3 with a 2.5 m georef error that tile 2's align left where it was.
+  // A drive over tiles 1-3 with a 2.5 m georef error: registered in tiles 1 and 3, left where
+  // GPS put it in tile 2, where it is a group of its own (balance links nothing to it).
+  const Eigen::Vector3d e(2.5, 0.0, 0.0);
   for (int t = 1; t <= 3; ++t) {
     TilePiece p;
-    p.group = GroupKey{TileKey{t, 0}, 0};
+    p.group = GroupKey{TileKey{t, 0}, t == 2 ? 1 : 0};
     p.drive = "refused";
-    p.stamp = 1e6 + kPieceSeconds * t;
-    p.keyframes = 20;
-    p.shift = w.o[p.group] - Eigen::Vector3d(2.5, 0.0, 0.0);
-    if (t == 2) p.shift.setZero();
+    for (int k = 0; k < kPieceKeyframes; ++k) {
+      const int id = (t - 1) * kPieceKeyframes + k;
+      const Eigen::Vector3d s =
+          t == 2 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(w.o[p.group] - e);
+      p.keyframes.push_back({id, 1e6 + id, s});
+    }
     w.pieces.push_back(p);
   }
   PlacementReport report;
-  const auto robust = solvePlacement(w.pieces, PlacementParams{}, report);
-  CHECK(report.downweighted >= 1);
-  // The new drive moves the batch mean (and so every tile alike); tile 2 keeps its place
-  // relative to its neighbours.
-  const auto relative = [](const auto& shifts) {
-    return Eigen::Vector3d(shifts.at(GroupKey{TileKey{2, 0}, 0}) -
-                           shifts.at(GroupKey{TileKey{1, 0}, 0}));
-  };
-  CHECK((relative(robust) - relative(clean)).head<2>().norm() < kPlacementTol);
-  PlacementParams plain;
-  plain.rounds = 1;  // plain least squares: the refused piece drags its tile
-  const auto dragged = solvePlacement(w.pieces, plain, report);
-  CHECK((relative(dragged) - relative(clean)).head<2>().norm() > kPlacementTol);
+  const auto shifts = solvePlacement(w.pieces, PlacementParams{}, report);
+  // Placed, the lone piece sits where its drive sits in tiles 1 and 3 (true + the same common
+  // offset as everything else): its shift is (o_1 + shift_1) - e relative to georef.
+  const GroupKey one{TileKey{1, 0}, 0}, lone{TileKey{2, 0}, 1};
+  const Eigen::Vector3d placed_drive = w.o[one] + shifts.at(one) - e;  // aligned + shift - georef
+  CHECK((shifts.at(lone) - placed_drive).head<2>().norm() < kPlacementTol);
+  CHECK(shifts.at(lone).head<2>().norm() > 2.0);  // it moved by about its georef error
 }
 
 TEST_CASE("placement pieces: drive of a split run, shift by keyframe id", "[tiling][placement]") {
@@ -159,9 +172,11 @@ TEST_CASE("placement pieces: drive of a split run, shift by keyframe id", "[tili
   }
   const TilePiece p = measurePiece(georef, aligned);
   CHECK(p.drive == "d");
-  CHECK(p.keyframes == 3);
-  CHECK(p.stamp == Approx(2.0));
-  CHECK((p.shift - Eigen::Vector3d(0.3, -0.6, 0.1)).norm() < 1e-12);
+  REQUIRE(p.keyframes.size() == 3);
+  CHECK(p.keyframes[0].id == 11);
+  CHECK(p.keyframes[2].stamp == Approx(3.0));
+  for (const auto& k : p.keyframes)
+    CHECK((k.shift - Eigen::Vector3d(0.3, -0.6, 0.1)).norm() < 1e-12);
 
   aligned.drive_id = "other";
   CHECK_THROWS_AS(measurePiece(georef, aligned), InputError);
@@ -180,12 +195,37 @@ TEST_CASE("registration groups are the connected components of the kept links", 
 TEST_CASE("placement parameters are validated with their field names", "[tiling][config]") {
   PlacementParams p;
   CHECK_NOTHROW(p.validate());
-  p.piece_sigma = 0.0;
-  CHECK_THROWS_WITH(p.validate(), Catch::Contains("BalanceParams::piece_sigma"));
+  p.keyframe_sigma = 0.0;
+  CHECK_THROWS_WITH(p.validate(), Catch::Contains("BalanceParams::keyframe_sigma"));
   p = PlacementParams{};
   p.rounds = 0;
   CHECK_THROWS_AS(p.validate(), ConfigError);
   p = PlacementParams{};
   p.robust_scale = -1.0;
   CHECK_THROWS_AS(p.validate(), ConfigError);
+}
+
+TEST_CASE("pieces whose elements coincide after alignment are linked", "[tiling][placement]") {
+  // Lane points every 0.75 m along y = 1.75 in three pieces: b on a within 0.1 m, c 1 m aside;
+  // d holds the same points as a but as poles (another class).
+  auto piece = [](double dy, CrowdClass cls) {
+    Lsm lsm;
+    lsm.frame = LsmFrame::kEnu;
+    Keyframe k;
+    k.id = 7;
+    lsm.keyframes.push_back(k);
+    Element e;
+    e.anchor = 7;
+    e.cls = cls;
+    for (int i = 0; i < 40; ++i) e.points_body.emplace_back(0.75 * i, 1.75 + dy, 0.0);
+    e.covariances.assign(e.points_body.size(), Eigen::Matrix3d::Identity() * 0.01);
+    lsm.elements.push_back(e);
+    return lsm;
+  };
+  const std::vector<Lsm> lsms = {piece(0.0, CrowdClass::kLaneLine),
+                                 piece(0.1, CrowdClass::kLaneLine),
+                                 piece(1.0, CrowdClass::kLaneLine), piece(0.0, CrowdClass::kPole)};
+  CHECK(agreeingPieces(lsms, 0.3, 10) == std::vector<std::pair<int, int>>{{0, 1}});
+  CHECK(agreeingPieces(lsms, 0.3, 41).empty());      // 40 coinciding points are not enough
+  CHECK(agreeingPieces(lsms, 1.2, 10).size() == 3);  // c joins a and b at 1.2 m
 }

@@ -12,6 +12,7 @@
 #include "mapfuse/io/json_view.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/stage_report.hpp"
+#include "mapfuse/tiling/piece_links.hpp"
 
 namespace mapfuse::stages {
 
@@ -21,6 +22,8 @@ void BalanceParams::validate() const {
   placement.validate();
   requireParam(!aligned_subdir.empty(), "BalanceParams", "aligned_subdir", aligned_subdir,
                "not empty");
+  requireParam(link_distance > 0.0, "BalanceParams", "link_distance", link_distance, "> 0");
+  requireParam(link_min_points >= 1, "BalanceParams", "link_min_points", link_min_points, ">= 1");
 }
 
 namespace {
@@ -32,46 +35,77 @@ struct PieceFiles {
   fs::path input, aligned;
 };
 
-// Group of every input of one tile: connected components of the registrations align's pose
-// graph kept (PCM-consistent, not rejected as graph outliers), read from its summary.
-std::vector<PieceFiles> tilePieces(const io::JsonView& tile, const fs::path& tiles_dir,
-                                   const std::string& aligned_subdir) {
-  const std::string name = tile.at("name").string();
-  const tiling::TileKey key{tile.at("ix").integer(), tile.at("iy").integer()};
-  const fs::path align_dir = tiles_dir / name / aligned_subdir;
-  const fs::path summary_path = align_dir / "align.summary.json";
-  if (!fs::exists(summary_path))
-    throw InputError(summary_path.string() + ": missing; run align on tile " + name +
-                     " first (balance needs every tile's align output)");
+// Registrations align's pose graph kept (PCM-consistent, not rejected as graph outliers), as
+// index pairs into the tile's list of inputs.
+std::vector<std::pair<int, int>> keptRegistrations(const fs::path& summary_path,
+                                                   const std::vector<PieceFiles>& files) {
   const io::Json summary_doc = io::readDocument(summary_path);
   const io::JsonView summary(summary_doc, summary_path.string());
   const io::JsonView inputs = summary.at("inputs");
-  std::map<std::string, int> index_of;  // file name -> align's input index
-  for (std::size_t i = 0; i < inputs.size(); ++i)
-    index_of[fs::path(inputs.at(i).string()).filename().string()] = int(i);
+  std::map<std::string, int> piece_of;  // file name -> index in `files`
+  for (std::size_t i = 0; i < files.size(); ++i)
+    piece_of[files[i].input.filename().string()] = int(i);
+  std::vector<int> piece(inputs.size(), -1);  // align's input index -> index in `files`
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const auto it = piece_of.find(fs::path(inputs.at(i).string()).filename().string());
+    if (it != piece_of.end()) piece[i] = it->second;
+  }
   std::vector<std::pair<int, int>> links;
   const io::JsonView pairs = summary.at("pairs");
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const io::JsonView p = pairs.at(i);
-    if (p.at("accepted").boolean() && p.at("pcm_consistent").boolean() &&
-        !p.at("graph_outlier").boolean())
-      links.emplace_back(int(p.at("lsm_a").integer()), int(p.at("lsm_b").integer()));
+    if (!p.at("accepted").boolean() || !p.at("pcm_consistent").boolean() ||
+        p.at("graph_outlier").boolean())
+      continue;
+    const int64_t a = p.at("lsm_a").integer(), b = p.at("lsm_b").integer();
+    if (a < 0 || b < 0 || a >= int64_t(piece.size()) || b >= int64_t(piece.size()))
+      p.fail("lsm_a / lsm_b outside the summary's inputs");
+    if (piece[a] >= 0 && piece[b] >= 0) links.emplace_back(piece[a], piece[b]);
   }
-  const std::vector<int> group = tiling::registrationGroups(int(inputs.size()), links);
+  return links;
+}
 
-  std::vector<PieceFiles> out;
+// The pieces of one tile, in groups, with what align did to each.
+std::vector<std::pair<PieceFiles, tiling::TilePiece>> measureTile(const io::JsonView& tile,
+                                                                  const fs::path& tiles_dir,
+                                                                  const BalanceParams& params) {
+  const std::string name = tile.at("name").string();
+  const tiling::TileKey key{tile.at("ix").integer(), tile.at("iy").integer()};
+  const fs::path align_dir = tiles_dir / name / params.aligned_subdir;
+  const fs::path summary_path = align_dir / "align.summary.json";
+  if (!fs::exists(summary_path))
+    throw InputError(summary_path.string() + ": missing; run align on tile " + name +
+                     " first (balance needs every tile's align output)");
+  std::vector<PieceFiles> files;
+  std::vector<Lsm> inputs, aligned;
   const io::JsonView lsms = tile.at("lsms");
   for (std::size_t i = 0; i < lsms.size(); ++i) {
     PieceFiles f;
     f.tile_name = name;
     f.input = tiles_dir / lsms.at(i).string();
     f.aligned = align_dir / f.input.filename();
-    const auto it = index_of.find(f.input.filename().string());
-    if (it == index_of.end() || !fs::exists(f.aligned))
+    if (!fs::exists(f.aligned))
       throw InputError(f.aligned.string() + ": align's output for " + f.input.string() +
                        " is missing (align tile " + name + " again)");
-    f.group = {key, group[it->second]};
-    out.push_back(f);
+    inputs.push_back(io::readLsm(f.input));
+    aligned.push_back(io::readLsm(f.aligned));
+    files.push_back(f);
+  }
+  auto links = keptRegistrations(summary_path, files);
+  const auto agreeing =
+      tiling::agreeingPieces(aligned, params.link_distance, params.link_min_points);
+  links.insert(links.end(), agreeing.begin(), agreeing.end());
+  const std::vector<int> group = tiling::registrationGroups(int(files.size()), links);
+
+  std::vector<std::pair<PieceFiles, tiling::TilePiece>> out;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    files[i].group = {key, group[i]};
+    try {
+      out.emplace_back(files[i], tiling::measurePiece(inputs[i], aligned[i]));
+    } catch (const InputError& e) {
+      throw InputError(files[i].aligned.string() + ": " + e.what());
+    }
+    out.back().second.group = files[i].group;
   }
   return out;
 }
@@ -87,26 +121,20 @@ nlohmann::json runBalance(const fs::path& tiles_json, const fs::path& out,
   manifest.checkFormat("mapfuse.tiles", 1);
   const fs::path tiles_dir = tiles_json.parent_path();
 
+  // Pass 1, tile by tile: groups and what align did to every piece. Pass 2 reads the aligned
+  // LSMs again, one at a time, so that memory holds one tile, not the whole batch.
   std::vector<PieceFiles> files;
-  const io::JsonView tiles = manifest.at("tiles");
-  for (std::size_t t = 0; t < tiles.size(); ++t) {
-    auto piece_files = tilePieces(tiles.at(t), tiles_dir, params.aligned_subdir);
-    files.insert(files.end(), piece_files.begin(), piece_files.end());
-  }
-
-  // Pass 1: what align did to every piece. Pass 2 reads the aligned LSMs again, one at a time,
-  // so that memory holds keyframe means, not the whole batch.
   std::vector<tiling::TilePiece> pieces;
-  Progress progress("LSMs", 2 * files.size());
-  for (const auto& f : files) {
-    try {
-      pieces.push_back(tiling::measurePiece(io::readLsm(f.input), io::readLsm(f.aligned)));
-    } catch (const InputError& e) {
-      throw InputError(f.aligned.string() + ": " + e.what());
+  const io::JsonView tiles = manifest.at("tiles");
+  std::size_t total = 0;
+  for (std::size_t t = 0; t < tiles.size(); ++t) total += tiles.at(t).at("lsms").size();
+  Progress progress("LSMs", 2 * total);
+  for (std::size_t t = 0; t < tiles.size(); ++t)
+    for (auto& [f, piece] : measureTile(tiles.at(t), tiles_dir, params)) {
+      files.push_back(f);
+      pieces.push_back(piece);
+      progress.advance();
     }
-    pieces.back().group = f.group;
-    progress.advance();
-  }
   tiling::PlacementReport report;
   const auto shifts = tiling::solvePlacement(pieces, params.placement, report);
 
@@ -136,6 +164,21 @@ nlohmann::json runBalance(const fs::path& tiles_json, const fs::path& out,
   }
   int singletons = 0;
   for (const auto& [key, n] : group_size) singletons += n == 1;
+  // Per tile: its groups and the move of its largest one (most of the tile's map).
+  std::map<std::string, std::pair<int, tiling::GroupKey>> main_group;  // pieces, group
+  std::map<std::string, int> groups_in;
+  for (const auto& [key, n] : group_size) {
+    ++groups_in[key.tile.name()];
+    auto& m = main_group[key.tile.name()];
+    if (n > m.first) m = {n, key};
+  }
+  nlohmann::json per_tile = nlohmann::json::object();
+  for (const auto& [name, m] : main_group) {
+    const Eigen::Vector3d& s = shifts.at(m.second);
+    per_tile[name] = {{"groups", groups_in[name]},
+                      {"largest_group_pieces", m.first},
+                      {"largest_group_shift_m", {s.x(), s.y(), s.z()}}};
+  }
 
   io::writeResolvedConfig(out, "balance", paramsToJson(params));
   const double seconds =
@@ -145,10 +188,12 @@ nlohmann::json runBalance(const fs::path& tiles_json, const fs::path& out,
                             {"single_piece_groups", singletons},
                             {"pieces", report.pieces},
                             {"drives", report.drives},
+                            {"keyframes", report.keyframes},
                             {"downweighted_pieces", report.downweighted},
                             {"rms_residual_m", report.rms_residual},
                             {"max_shift_m", report.max_shift},
                             {"largest_shifts", largest},
+                            {"per_tile", per_tile},
                             {"seconds", seconds}};
   io::writeSummary(out, "balance", summary);
   MAPFUSE_INFO("balance: " << report.pieces << " pieces of " << report.drives << " drives in "

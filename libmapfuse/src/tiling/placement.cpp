@@ -14,7 +14,7 @@
 namespace mapfuse::tiling {
 
 void PlacementParams::validate() const {
-  requireParam(piece_sigma > 0.0, "BalanceParams", "piece_sigma", piece_sigma, "> 0");
+  requireParam(keyframe_sigma > 0.0, "BalanceParams", "keyframe_sigma", keyframe_sigma, "> 0");
   requireParam(bias_walk >= 0.0, "BalanceParams", "bias_walk", bias_walk, ">= 0");
   requireParam(robust_scale > 0.0, "BalanceParams", "robust_scale", robust_scale, "> 0");
   requireParam(rounds >= 1, "BalanceParams", "rounds", rounds, ">= 1");
@@ -37,14 +37,11 @@ TilePiece measurePiece(const Lsm& georef, const Lsm& aligned) {
   for (const auto& k : aligned.keyframes) {
     const auto it = before.find(k.id);
     if (it == before.end()) continue;
-    p.shift += k.T_frame_body.translation() - it->second->T_frame_body.translation();
-    p.stamp += k.stamp;
-    ++p.keyframes;
+    p.keyframes.push_back(
+        {k.id, k.stamp, k.T_frame_body.translation() - it->second->T_frame_body.translation()});
   }
-  if (p.keyframes == 0)
+  if (p.keyframes.empty())
     throw InputError("aligned LSM " + aligned.drive_id + " shares no keyframe id with its input");
-  p.shift /= p.keyframes;
-  p.stamp /= p.keyframes;
   return p;
 }
 
@@ -86,7 +83,7 @@ std::map<GroupKey, Eigen::Vector3d> solvePlacement(const std::vector<TilePiece>&
                                                    PlacementReport& report) {
   params.validate();
   report = PlacementReport{};
-  // Unknowns: o_g for every group (0..G-1), then e_p for every piece (G..G+P-1).
+  // Unknowns: o_g for every group (0..G-1), then e_k for every distinct drive keyframe.
   std::map<GroupKey, int> group_index;
   std::set<TileKey> tiles;
   for (const auto& p : pieces) {
@@ -95,43 +92,58 @@ std::map<GroupKey, Eigen::Vector3d> solvePlacement(const std::vector<TilePiece>&
   }
   int next = 0;
   for (auto& [key, index] : group_index) index = next++;
-  const int G = int(group_index.size()), P = int(pieces.size()), N = G + P;
+  const int G = next;
+  std::map<std::pair<std::string, int64_t>, int> kf_index;  // (drive, keyframe id) -> unknown
+  std::map<std::string, std::map<double, int>> by_drive;    // drive -> stamp -> unknown
+  std::vector<std::vector<int>> unknown_of(pieces.size());  // per piece and keyframe
+  for (std::size_t p = 0; p < pieces.size(); ++p)
+    for (const auto& k : pieces[p].keyframes) {
+      const auto [it, added] = kf_index.emplace(std::make_pair(pieces[p].drive, k.id), 0);
+      if (added) {
+        it->second = G + int(kf_index.size()) - 1;
+        by_drive[pieces[p].drive].emplace(k.stamp, it->second);
+      }
+      unknown_of[p].push_back(it->second);
+    }
+  const int N = G + int(kf_index.size());
   report.tiles = int(tiles.size());
   report.groups = G;
-  report.pieces = P;
-  if (P == 0) return {};
-
-  // A drive's consecutive pieces (in time) share its georef error up to a random walk.
-  std::map<std::string, std::vector<int>> by_drive;
-  for (int p = 0; p < P; ++p) by_drive[pieces[p].drive].push_back(p);
+  report.pieces = int(pieces.size());
   report.drives = int(by_drive.size());
+  report.keyframes = int(kf_index.size());
+  if (pieces.empty()) return {};
+
+  // A drive's consecutive keyframes share its georef error up to a random walk.
   Triplets walk;
-  for (auto& [drive, list] : by_drive) {
-    std::sort(list.begin(), list.end(),
-              [&](int a, int b) { return pieces[a].stamp < pieces[b].stamp; });
-    for (std::size_t i = 1; i < list.size(); ++i) {
-      const double dt = std::abs(pieces[list[i]].stamp - pieces[list[i - 1]].stamp);
-      const double var = params.bias_walk * params.bias_walk * dt + 1e-4;
-      addDifference(walk, G + list[i - 1], G + list[i], 1.0 / var);
+  for (const auto& [drive, stamps] : by_drive) {
+    auto prev = stamps.end();
+    for (auto it = stamps.begin(); it != stamps.end(); prev = it++) {
+      if (prev == stamps.end()) continue;
+      const double var = params.bias_walk * params.bias_walk * (it->first - prev->first) + 1e-4;
+      addDifference(walk, prev->second, it->second, 1.0 / var);
     }
   }
 
-  const double w_obs = 1.0 / (params.piece_sigma * params.piece_sigma);
-  // Gauge: georef errors are zero-mean over the batch. A vanishing prior on every e_p, weighted
-  // by its keyframes, fixes the one common shift that the observations leave free.
+  const double w_obs = 1.0 / (params.keyframe_sigma * params.keyframe_sigma);
+  // Gauge: georef errors are zero-mean over the batch. A vanishing prior on every e_k fixes the
+  // one common shift that the observations leave free.
   const double w_gauge = 1e-6 * w_obs;
-  std::vector<double> robust(P, 1.0);
+  std::vector<double> robust(pieces.size(), 1.0);
   Eigen::MatrixXd x = Eigen::MatrixXd::Zero(N, 3);
   for (int round = 0; round < params.rounds; ++round) {
     Triplets A = walk;
+    for (int i = G; i < N; ++i) A.emplace_back(i, i, w_gauge);
     Eigen::MatrixXd b = Eigen::MatrixXd::Zero(N, 3);
-    for (int p = 0; p < P; ++p) {
-      const int g = group_index.at(pieces[p].group), e = G + p;
+    for (std::size_t p = 0; p < pieces.size(); ++p) {
+      const int g = group_index.at(pieces[p].group);
       const double w = w_obs * robust[p];
-      addDifference(A, g, e, w);  // residual o_g - e_p - s_p
-      b.row(g) += w * pieces[p].shift.transpose();
-      b.row(e) -= w * pieces[p].shift.transpose();
-      A.emplace_back(e, e, w_gauge * pieces[p].keyframes);
+      for (std::size_t j = 0; j < pieces[p].keyframes.size(); ++j) {
+        const int e = unknown_of[p][j];
+        const Eigen::RowVector3d s = pieces[p].keyframes[j].shift.transpose();
+        addDifference(A, g, e, w);  // residual o_g - e_k - s_tk
+        b.row(g) += w * s;
+        b.row(e) -= w * s;
+      }
     }
     Eigen::SparseMatrix<double> M(N, N);
     M.setFromTriplets(A.begin(), A.end());
@@ -139,17 +151,26 @@ std::map<GroupKey, Eigen::Vector3d> solvePlacement(const std::vector<TilePiece>&
     if (ldlt.info() != Eigen::Success) throw Error("balance: the placement system is singular");
     x = ldlt.solve(b);
 
+    // Reweight each piece by its mean residual: a piece aligned wrongly is off as a whole.
     double sum_sq = 0.0;
+    int count = 0;
     report.downweighted = 0;
-    for (int p = 0; p < P; ++p) {
+    for (std::size_t p = 0; p < pieces.size(); ++p) {
       const int g = group_index.at(pieces[p].group);
-      const Eigen::Vector3d r = x.row(g).transpose() - x.row(G + p).transpose() - pieces[p].shift;
-      const double u = r.head<2>().norm() / params.robust_scale;
-      sum_sq += r.head<2>().squaredNorm();
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+      for (std::size_t j = 0; j < pieces[p].keyframes.size(); ++j) {
+        const Eigen::Vector3d r = x.row(g).transpose() - x.row(unknown_of[p][j]).transpose() -
+                                  pieces[p].keyframes[j].shift;
+        mean += r;
+        sum_sq += r.head<2>().squaredNorm();
+        ++count;
+      }
+      mean /= double(pieces[p].keyframes.size());
+      const double u = mean.head<2>().norm() / params.robust_scale;
       robust[p] = 1.0 / (1.0 + u * u);
       if (u > 1.0) ++report.downweighted;
     }
-    report.rms_residual = std::sqrt(sum_sq / P);
+    report.rms_residual = std::sqrt(sum_sq / count);
   }
 
   std::map<GroupKey, Eigen::Vector3d> shifts;

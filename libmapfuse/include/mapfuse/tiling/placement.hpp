@@ -3,19 +3,22 @@
 /// georef error across the tiles it runs through, as one untiled align would.
 ///
 /// Inside a tile, `align` registers drive pieces to each other; each connected *group* of pieces
-/// (linked by the registrations its pose graph kept) ends up at the mean georef error of its own
-/// pieces, o_g, because nothing else pins it. Untiled, the same drives are also tied to drives
-/// they meet elsewhere, through their odometry, so a group that only sees a few drives in one
-/// tile is still placed by the whole batch. A drive keeps its georef error e_p (GPS bias,
-/// drifting slowly in time) from one tile to the next, so the shift align applied to piece p,
+/// (linked by the registrations its pose graph kept, or agreeing after GBA) ends up at the mean
+/// georef error of its own pieces, o_g, because nothing else pins it. Untiled, the same drives
+/// are also tied to the drives they meet elsewhere, through their odometry, so a group that
+/// only sees a few drives in one tile is still placed by the whole batch. A drive keyframe keeps
+/// its georef error e_k whichever tile it is seen in (neighbouring tiles share the keyframes of
+/// their overlap margins), and e_k drifts slowly along the drive (a GPS bias: random walk in
+/// time). So the shift align applied to keyframe k in tile t,
 ///
-///   s_p = mean over p's keyframes of (aligned - georef) = o_g(p) - e_p,
+///   s_tk = aligned - georef position = o_g(t, k) - e_k,
 ///
-/// observed for every piece of every tile, determines all o_g and e_p together up to one common
-/// shift, fixed by taking the batch's georef errors as zero-mean (the untiled run's assumption).
-/// Moving every group by -o_g then puts all groups of all tiles where one untiled graph would.
-/// Linear least squares (per axis, one sparse normal matrix), iteratively reweighted (Cauchy) so
-/// that a piece whose alignment went wrong does not move its group.
+/// observed for every keyframe of every tile, determines all o_g and e_k together up to one
+/// common shift, fixed by taking the batch's georef errors as zero-mean (the untiled run's
+/// assumption). Moving every group by -o_g then puts all groups of all tiles where one untiled
+/// graph would. Linear least squares (per axis, one sparse normal matrix), iteratively
+/// reweighted per piece (Cauchy) so that a piece whose alignment went wrong does not move its
+/// group.
 #include <Eigen/Core>
 #include <map>
 #include <string>
@@ -28,14 +31,14 @@
 namespace mapfuse::tiling {
 
 struct PlacementParams {
-  double piece_sigma = 0.1;   ///< m: 1-sigma of one piece's mean align shift
-  double bias_walk = 0.05;    ///< m/sqrt(s): random walk of a drive's georef error in time
-  double robust_scale = 0.3;  ///< m: Cauchy scale; a piece this far off the model counts half
-  int rounds = 4;             ///< reweighting rounds (1 = plain least squares)
+  double keyframe_sigma = 0.1;  ///< m: 1-sigma of align's shift of one keyframe
+  double bias_walk = 0.05;      ///< m/sqrt(s): random walk of a drive's georef error in time
+  double robust_scale = 0.3;    ///< m: Cauchy scale; a piece this far off the model counts half
+  int rounds = 4;               ///< reweighting rounds (1 = plain least squares)
 
   template <class V>
   void visit(V& v) {
-    v("piece_sigma", piece_sigma, "m", "1-sigma of a drive piece's mean align shift");
+    v("keyframe_sigma", keyframe_sigma, "m", "1-sigma of align's shift of one keyframe");
     v("bias_walk", bias_walk, "m/sqrt(s)", "random walk of a drive's georef error in time");
     v("robust_scale", robust_scale, "m",
       "Cauchy scale of piece residuals (pieces further off count less)");
@@ -54,13 +57,18 @@ struct GroupKey {
   bool operator==(const GroupKey& o) const { return tile == o.tile && group == o.group; }
 };
 
+/// What align did to one keyframe of a piece: aligned - georef position (ENU, m).
+struct KeyframeShift {
+  int64_t id = 0;
+  double stamp = 0.0;  ///< s
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+};
+
 /// What align did to one drive piece.
 struct TilePiece {
   GroupKey group;
-  std::string drive;                                ///< drive identity (see driveOfPiece)
-  double stamp = 0.0;                               ///< s: mean keyframe time of the piece
-  Eigen::Vector3d shift = Eigen::Vector3d::Zero();  ///< m: mean aligned - georef position (ENU)
-  int keyframes = 0;
+  std::string drive;  ///< drive identity (see driveOfPiece)
+  std::vector<KeyframeShift> keyframes;
 };
 
 /// @brief The drive a tile piece belongs to: its drive_id without a trailing ".run<k>" (tile
@@ -81,8 +89,9 @@ struct PlacementReport {
   int groups = 0;
   int pieces = 0;
   int drives = 0;
+  int keyframes = 0;          ///< distinct drive keyframes (unknowns e_k)
   int downweighted = 0;       ///< pieces further than robust_scale off the model, last round
-  double rms_residual = 0.0;  ///< m, horizontal, over pieces, last round
+  double rms_residual = 0.0;  ///< m, horizontal, over every keyframe of every piece, last round
   double max_shift = 0.0;     ///< m, largest horizontal group shift
 };
 
