@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # e2e: the batch layer on a small simulated sample (6 drives). scripts/crowd.mk untiled and
-# tiled (TILE_SIZE 300 m -> several tiles, then stitch), the Snakemake workflow (scripts/Snakefile)
+# tiled (TILE_SIZE 300 m -> several tiles, align per tile, balance, aggregate per tile, stitch;
+# a second make redoes nothing), the Snakemake workflow (scripts/Snakefile)
 # untiled and tiled giving byte-identical maps, a second make run that redoes nothing, and a batch
 # killed mid-way whose rerun keeps the finished drives and ends with the same map.
 set -euo pipefail
@@ -29,11 +30,16 @@ SK=(snakemake -q -s "$SRC/scripts/Snakefile" --cores 2 --config lsm_dir=sim/lsm 
 "${MK[@]}" WORK=mkt TILE_SIZE=300 >/dev/null
 tiles=$(wc -l < mkt/tiles/tiles.txt)
 (( tiles >= 4 )) || fail "expected >= 4 tiles, got $tiles"
-python3 - mkt/stitch/stitch.summary.json <<'PY' || fail "stitch summary"
+python3 - mkt/stitch/stitch.summary.json mkt/balance/balance.summary.json <<'PY' || fail "stitch / balance summary"
 import json, sys
 s = json.load(open(sys.argv[1]))
 assert s["tiles"] >= 4, s
+b = json.load(open(sys.argv[2]))
+assert b["tiles"] == s["tiles"] and b["pieces"] >= b["tiles"] and b["groups"] >= b["tiles"], b
+assert b["rms_residual_m"] < 0.5, b
 PY
+[[ "$(make -f "$SRC/scripts/crowd.mk" BIN="$BIN" LSM_DIR=sim/lsm TRUTH=sim/truth/vector_map.json \
+      WORK=mkt TILE_SIZE=300)" == *"Nothing to be done"* ]] || fail "tiled make rerun redid work"
 
 # ---- Snakemake, the same rules: byte-identical maps
 "${SK[@]}" work=sk >/dev/null 2>sk.log || { cat sk.log; fail "snakemake untiled"; }
