@@ -70,4 +70,23 @@ sleep 1
 stamp_after=$(stamps "${finished[@]}")
 [[ "$stamp_before" == "$stamp_after" ]] || fail "rerun redid finished georef drives"
 cmp -s kill/aggregate/map.cbor mk/aggregate/map.cbor || fail "map after kill + rerun differs"
+
+# ---- tiled, killed once some tiles are aligned: the rerun keeps those tiles' align output and
+# ends with the same map as the uninterrupted tiled run
+setsid "${MK[@]}" WORK=killt TILE_SIZE=300 >/dev/null 2>&1 &
+pid=$!
+for _ in $(seq 1 1200); do
+  aligned_tiles=(killt/tiles/*/align/align.summary.json)
+  (( ${#aligned_tiles[@]} >= 2 )) && break
+  sleep 0.05
+done
+kill -TERM -- -"$pid" 2>/dev/null || true
+wait "$pid" 2>/dev/null || true
+aligned_tiles=(killt/tiles/*/align/align.summary.json)
+echo "kill tiled: ${#aligned_tiles[@]} tiles aligned before the kill"
+stamp_before=$(stamps "${aligned_tiles[@]}")
+sleep 1
+"${MK[@]}" WORK=killt TILE_SIZE=300 >/dev/null
+[[ "$stamp_before" == "$(stamps "${aligned_tiles[@]}")" ]] || fail "tiled rerun redid aligned tiles"
+cmp -s killt/stitch/map.cbor mkt/stitch/map.cbor || fail "tiled map after kill + rerun differs"
 echo "batch_pipelines: ok ($tiles tiles)"

@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <functional>
 #include <random>
 
 #include "mapfuse/core/error.hpp"
@@ -19,8 +20,8 @@ constexpr double kDriftGain = 0.3;      // worst group offset after / before, dr
 // Drives along a row of tiles, each with a GPS-like georef error (1-3 m, random direction,
 // random walk in time, per keyframe) over a contiguous run of tiles; a piece holds the drive's
 // keyframes in its tile's core plus kMargin on each side (shared with the neighbour's piece).
-// In every tile the drives fall into `groups` registration groups (roads that do not meet
-// inside the tile). Align puts each group at the mean georef error of its keyframes, o_g, and
+// In every tile the drives fall into the registration groups `group_of` says (roads that do not
+// meet inside the tile). Align puts each group at the mean georef error of its keyframes, o_g, and
 // shifts keyframe k by s = o_g - e_k + noise.
 struct RowWorld {
   std::vector<TilePiece> pieces;
@@ -29,7 +30,11 @@ struct RowWorld {
   Eigen::Vector3d batch_mean = Eigen::Vector3d::Zero();  // over distinct drive keyframes
 };
 
-RowWorld rowWorld(int tiles, int drives, unsigned seed, double walk = 0.05, int groups = 1) {
+using GroupOf = std::function<int(int drive, int tile)>;
+
+RowWorld rowWorld(
+    int tiles, int drives, unsigned seed, double walk = 0.05,
+    const GroupOf& group_of = [](int, int) { return 0; }) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> U(0.0, 1.0);
   std::normal_distribution<double> N01(0.0, 1.0);
@@ -49,7 +54,7 @@ RowWorld rowWorld(int tiles, int drives, unsigned seed, double walk = 0.05, int 
     }
     for (int t = a; t <= b; ++t) {
       TilePiece p;
-      p.group = GroupKey{TileKey{t, 0}, d % groups};
+      p.group = GroupKey{TileKey{t, 0}, group_of(d, t)};
       p.drive = "drive" + std::to_string(d);
       std::vector<Eigen::Vector3d> pe;
       const int k0 = std::max(0, (t - a) * kPieceKeyframes - kMargin);
@@ -87,19 +92,41 @@ double worstOffset(const RowWorld& w, const std::map<GroupKey, Eigen::Vector3d>&
 }
 }  // namespace
 
-TEST_CASE("tiles are placed at the batch-wide mean georef error", "[tiling][placement]") {
+TEST_CASE("groups are placed at the batch-wide mean georef error", "[tiling][placement]") {
+  // Even drives and odd drives take different roads through odd tiles and meet in even ones.
+  const GroupOf junctions = [](int d, int t) { return t % 2 == 0 ? 0 : d % 2; };
   for (unsigned seed : {1u, 2u, 4u}) {
-    const RowWorld w = rowWorld(6, 40, seed, 0.0);
-    // Independent tiles each sit at their own drives' mean: a real offset between them.
-    INFO("seed " << seed << ": independent tiles up to " << worstOffset(w, {}) << " m off");
+    const RowWorld w = rowWorld(6, 40, seed, 0.0, junctions);
+    // Independent groups each sit at their own drives' mean: a real offset between them.
+    INFO("seed " << seed << ": independent groups up to " << worstOffset(w, {}) << " m off");
     REQUIRE(worstOffset(w, {}) > 3 * kPlacementTol);
     PlacementReport report;
     const auto shifts = solvePlacement(w.pieces, PlacementParams{}, report);
-    CHECK(shifts.size() == 6);
+    CHECK(shifts.size() == w.o.size());
     CHECK(report.tiles == 6);
+    CHECK(report.groups == int(w.o.size()));
     CHECK(report.drives == 40);
     CHECK(report.pieces == int(w.pieces.size()));
     CHECK(worstOffset(w, shifts) < kPlacementTol);
+  }
+}
+
+TEST_CASE("drives that never meet are placed by their own GPS", "[tiling][placement]") {
+  // Even and odd drives never share a group: nothing ties the two sets, so each is placed at
+  // the mean georef error of its own drives, as an untiled run would place them.
+  const RowWorld w = rowWorld(6, 40, 1, 0.0, [](int d, int) { return d % 2; });
+  PlacementReport report;
+  const auto shifts = solvePlacement(w.pieces, PlacementParams{}, report);
+  for (int parity = 0; parity < 2; ++parity) {
+    std::map<std::pair<std::string, int64_t>, Eigen::Vector3d> distinct;  // each keyframe once
+    for (std::size_t i = 0; i < w.pieces.size(); ++i)
+      if (w.pieces[i].group.group == parity)
+        for (std::size_t k = 0; k < w.errors[i].size(); ++k)
+          distinct[{w.pieces[i].drive, w.pieces[i].keyframes[k].id}] = w.errors[i][k];
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& [key, e] : distinct) mean += e / double(distinct.size());
+    for (const auto& [key, o] : w.o)
+      if (key.group == parity) CHECK((o + shifts.at(key) - mean).head<2>().norm() < kPlacementTol);
   }
 }
 
