@@ -10,6 +10,7 @@
 
 #include "box2d.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
+#include "mapfuse/core/union_find.hpp"
 #include "mapfuse/core/vector_map.hpp"
 
 namespace mapfuse::aggregate {
@@ -26,11 +27,6 @@ double coveredFraction(const Fragment& a, const Fragment& b, double tol) {
   for (const auto& p : a.centreline)
     if (distanceToPolyline2d(p, b.centreline) <= tol) ++inside;
   return double(inside) / double(a.centreline.size());
-}
-
-int findRoot(std::vector<int>& parent, int i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
 }
 
 // Pools fragments into the union-find roots of `parent`; centrelines recomputed.

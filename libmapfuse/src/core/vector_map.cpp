@@ -12,6 +12,22 @@ double polylineLength(const std::vector<Eigen::Vector3d>& points) {
   return length;
 }
 
+Eigen::Vector3d instanceCentre(const MapInstance& inst) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  if (geometryKind(inst.cls) == GeometryKind::kLine) {
+    double length = 0.0;
+    for (std::size_t i = 0; i + 1 < inst.points.size(); ++i) {
+      const double l = (inst.points[i + 1] - inst.points[i]).norm();
+      c += 0.5 * l * (inst.points[i] + inst.points[i + 1]);
+      length += l;
+    }
+    if (length > 0.0) return c / length;
+    c.setZero();
+  }
+  for (const auto& p : inst.points) c += p;
+  return c / double(inst.points.size());
+}
+
 double totalLineLength(const VectorMap& map, CrowdClass cls) {
   double length = 0.0;
   for (const auto& inst : map.instances)

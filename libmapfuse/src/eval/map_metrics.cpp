@@ -81,24 +81,6 @@ class SegmentIndex {
   bgi::rtree<SegValue, bgi::rstar<16>> tree_;
 };
 
-// Centre of an element: of a line (a stop line) along its length, so that a vertex where a
-// stitched line was joined does not pull it; of a polygon or point, the mean of its vertices.
-Vec3 centreOf(const MapInstance& m) {
-  Vec3 c = Vec3::Zero();
-  if (geometryKind(m.cls) == GeometryKind::kLine) {
-    double length = 0.0;
-    for (std::size_t i = 0; i + 1 < m.points.size(); ++i) {
-      const double l = (m.points[i + 1] - m.points[i]).norm();
-      c += 0.5 * l * (m.points[i] + m.points[i + 1]);
-      length += l;
-    }
-    if (length > 0.0) return c / length;
-    c.setZero();
-  }
-  for (const auto& p : m.points) c += p;
-  return c / double(m.points.size());
-}
-
 ClassMetrics evaluateLines(const std::vector<const MapInstance*>& map,
                            const std::vector<const MapInstance*>& truth,
                            const std::vector<const MapInstance*>& unscored,
@@ -227,8 +209,8 @@ ClassMetrics evaluateDiscrete(const std::vector<const MapInstance*>& map_all,
   ClassMetrics m;
   m.truth_count = truth.size();
   std::vector<Vec3> tc, uc, mc;
-  for (const auto* t : truth) tc.push_back(centreOf(*t));
-  for (const auto* u : unscored) uc.push_back(centreOf(*u));
+  for (const auto* t : truth) tc.push_back(instanceCentre(*t));
+  for (const auto* u : unscored) uc.push_back(instanceCentre(*u));
   // Out of scope: map elements that match no scored true element but an unscored one.
   std::vector<const MapInstance*> map;
   auto near = [&](const Vec3& c, const std::vector<const MapInstance*>& ts,
@@ -240,7 +222,7 @@ ClassMetrics evaluateDiscrete(const std::vector<const MapInstance*>& map_all,
     return false;
   };
   for (const auto* i : map_all) {
-    const Vec3 c = centreOf(*i);
+    const Vec3 c = instanceCentre(*i);
     if (!near(c, truth, tc) && near(c, unscored, uc)) continue;
     map.push_back(i);
     mc.push_back(c);
@@ -357,7 +339,7 @@ VectorMap clipToCoverage(const VectorMap& truth, const std::vector<Pose3>& poses
   for (const auto& i : truth.instances) next_id = std::max(next_id, i.id + 1);
   for (const auto& inst : truth.instances) {
     if (geometryKind(inst.cls) != GeometryKind::kLine) {
-      if (covered(centreOf(inst)))
+      if (covered(instanceCentre(inst)))
         out.instances.push_back(inst);
       else if (outside)
         outside->instances.push_back(inst);

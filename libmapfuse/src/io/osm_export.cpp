@@ -60,9 +60,7 @@ std::string vectorMapToOsm(const VectorMap& map) {
       continue;
     }
     if (inst.cls == CrowdClass::kTrafficSign) {  // a tagged node at the sign's centre
-      Eigen::Vector3d c = Eigen::Vector3d::Zero();
-      for (const auto& p : inst.points) c += p;
-      auto [id, n] = addNode(c / double(inst.points.size()));
+      auto [id, n] = addNode(instanceCentre(inst));
       (void)id;
       tag(n, "type", "traffic_sign");
       tag(n, "mapfuse_id", std::to_string(inst.id));

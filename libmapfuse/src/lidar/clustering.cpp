@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/core/union_find.hpp"
 
 namespace mapfuse::lidar {
 namespace {
@@ -15,14 +16,6 @@ uint64_t cellKey(int64_t x, int64_t y, int64_t z) {
   constexpr uint64_t kMask = (uint64_t{1} << 21) - 1;
   return ((uint64_t(x + kBias) & kMask) << 42) | ((uint64_t(y + kBias) & kMask) << 21) |
          (uint64_t(z + kBias) & kMask);
-}
-
-int findRoot(std::vector<int>& parent, int i) {
-  while (parent[i] != i) {
-    parent[i] = parent[parent[i]];
-    i = parent[i];
-  }
-  return i;
 }
 
 }  // namespace

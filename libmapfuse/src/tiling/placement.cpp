@@ -10,6 +10,7 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/params.hpp"
+#include "mapfuse/core/union_find.hpp"
 
 namespace mapfuse::tiling {
 
@@ -48,19 +49,16 @@ TilePiece measurePiece(const Lsm& georef, const Lsm& aligned) {
 std::vector<int> registrationGroups(int n, const std::vector<std::pair<int, int>>& links) {
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
-  const auto root = [&](int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
   for (const auto& [a, b] : links) {
     if (a < 0 || b < 0 || a >= n || b >= n)
       throw InputError("registration link " + std::to_string(a) + "-" + std::to_string(b) +
                        " outside 0.." + std::to_string(n - 1));
-    parent[root(a)] = root(b);
+    parent[findRoot(parent, a)] = findRoot(parent, b);
   }
   std::vector<int> group(n);
   std::unordered_map<int, int> number;
-  for (int i = 0; i < n; ++i) group[i] = number.emplace(root(i), int(number.size())).first->second;
+  for (int i = 0; i < n; ++i)
+    group[i] = number.emplace(findRoot(parent, i), int(number.size())).first->second;
   return group;
 }
 

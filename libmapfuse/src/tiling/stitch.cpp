@@ -72,12 +72,6 @@ struct Link {
   int end = 0;
 };
 
-Eigen::Vector3d centroid(const std::vector<Eigen::Vector3d>& pts) {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const auto& p : pts) c += p;
-  return c / double(pts.size());
-}
-
 // Appends piece points oriented so that `first_end` comes first, merging the junction point.
 void appendOriented(std::vector<Eigen::Vector3d>& out, const std::vector<Eigen::Vector3d>& pts,
                     int first_end) {
@@ -183,7 +177,7 @@ VectorMap stitchTiles(const std::vector<std::pair<TileKey, VectorMap>>& tiles, c
       // Discrete elements, and stop lines (segments of a few metres, always whole inside the
       // margins): the tile that owns the centre keeps the element whole, never cut and rejoined.
       if (geometryKind(inst.cls) != GeometryKind::kLine || inst.cls == CrowdClass::kStopLine) {
-        const Eigen::Vector3d c = centroid(inst.points);
+        const Eigen::Vector3d c = instanceCentre(inst);
         if (core.ownsPoint(c.x(), c.y()))
           out.instances.push_back(inst);
         else

@@ -46,6 +46,11 @@ struct VectorMap {
 /// @brief Length of a polyline (m).
 double polylineLength(const std::vector<Eigen::Vector3d>& points);
 
+/// @brief Centre of an instance (ENU, m): of a line, the centroid along its length (vertices
+/// crowded at one place do not pull it: a stitched or scope-cut stop line); of a polygon or
+/// point, the mean of its vertices.
+Eigen::Vector3d instanceCentre(const MapInstance& inst);
+
 /// @brief Total length of the line instances of a map (m), e.g. for KB/km.
 double totalLineLength(const VectorMap& map, CrowdClass cls);
 

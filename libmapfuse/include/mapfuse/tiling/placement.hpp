@@ -16,10 +16,10 @@
 /// observed for every keyframe of every tile, determines all o_g and e_k together up to one
 /// common shift per set of drives that meet (share a group somewhere), fixed by taking the
 /// georef errors of that set as zero-mean (the untiled run's assumption: drives that never meet
-/// are placed by their own GPS alone). Moving every group by -o_g then puts all groups of all tiles where one untiled
-/// graph would. Linear least squares (per axis, one sparse normal matrix), iteratively
-/// reweighted per piece (Cauchy) so that a piece whose alignment went wrong does not move its
-/// group.
+/// are placed by their own GPS alone). Moving every group by -o_g then puts all groups of all
+/// tiles where one untiled graph would. Linear least squares (per axis, one sparse normal
+/// matrix), iteratively reweighted per piece (Cauchy) so that a piece whose alignment went wrong
+/// does not move its group.
 #include <Eigen/Core>
 #include <map>
 #include <string>
