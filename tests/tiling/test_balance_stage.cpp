@@ -145,3 +145,27 @@ TEST_CASE("balance refuses a tile without align output and keeps what it wrote b
         2);
   CHECK_FALSE(fs::exists(dir / "b2" / "balance.summary.json"));
 }
+
+TEST_CASE("balance names the file and field of a broken align summary", "[tiling][balance]") {
+  const fs::path dir = tiledBatch("balance-broken");
+  const fs::path tiles_json = dir / "tiles" / "tiles.json";
+  stages::runBalance(tiles_json, dir / "balance", stages::BalanceParams{});
+  const std::string before = test::readText(dir / "balance" / "tile_0_0" / "drive0.cbor");
+  const fs::path summary = dir / "tiles" / "tile_0_0" / "align" / "align.summary.json";
+  io::Json doc = io::readDocument(summary);
+  doc["pairs"][0]["lsm_b"] = 99;  // no such input
+  io::writeDocument(summary, doc, 1);
+  CHECK_THROWS_WITH(stages::runBalance(tiles_json, dir / "balance", stages::BalanceParams{}),
+                    Catch::Contains("align.summary.json") && Catch::Contains("lsm_a / lsm_b"));
+  doc["pairs"][0].erase("pcm_consistent");
+  io::writeDocument(summary, doc, 1);
+  CHECK_THROWS_WITH(stages::runBalance(tiles_json, dir / "balance", stages::BalanceParams{}),
+                    Catch::Contains("pcm_consistent"));
+  test::writeText(summary, "{ not json");
+  CHECK_THROWS_AS(stages::runBalance(tiles_json, dir / "balance", stages::BalanceParams{}),
+                  ParseError);
+  // Bad input (exit 3) from the app too, and what balance wrote before is still there.
+  CHECK(test::runCommand(test::appPath("balance").string() + " -q --tiles " + tiles_json.string() +
+                         " -o " + (dir / "balance").string() + " 2>/dev/null") == 3);
+  CHECK(test::readText(dir / "balance" / "tile_0_0" / "drive0.cbor") == before);
+}
