@@ -1,7 +1,9 @@
 // Where a tiled run puts each tile, against the simulator's truth and the untiled run: per tile,
 // the mean error (estimate - truth) of the keyframes its core holds, for the untiled align, the
 // tile's own align and balance's output; over the tiles, the keyframe-weighted RMS of those
-// horizontal means (docs/scaling.md "Why balance").
+// horizontal means (docs/scaling.md "Why balance"). Also how far the pieces of one tile sit from
+// each other after the tile's own align: RMS over pieces of (piece mean error - mean over the
+// tile's pieces), which says whether a tile is one rigid block.
 //
 //   bench_tile_keyframes --sim SIM --tiled WORK --untiled WORK   -> one JSON line on stdout
 #include <CLI/CLI.hpp>
@@ -57,11 +59,14 @@ int main(int argc, char** argv) {
         }
     // Sums over tiles of keyframes * |mean error|^2, per variant, and of the differences.
     double n = 0, sq_untiled = 0, sq_tiled = 0, sq_balanced = 0, sq_t_u = 0, sq_b_u = 0;
+    double sq_spread = 0;
+    int spread_pieces = 0;
     for (const auto& tile : manifest["tiles"]) {
       const std::string name = tile["name"];
       const tiling::Rect core{tile["core"][0], tile["core"][1], tile["core"][2], tile["core"][3]};
       Eigen::Vector3d e_u = Eigen::Vector3d::Zero(), e_t = e_u, e_b = e_u;
       int k = 0;
+      std::vector<Eigen::Vector3d> piece_means;  // own align - truth, over a piece's keyframes
       for (const auto& rel : tile["lsms"]) {
         const fs::path file = fs::path(rel.get<std::string>()).filename();
         const Lsm aligned = io::readLsm(fs::path(tiled) / "tiles" / name / "align" / file);
@@ -75,17 +80,28 @@ int main(int argc, char** argv) {
         }
         const geo::EnuConverter from(t.trajectory.origin), to(*aligned.origin);
         const auto& u = untiled_kf.at(drive);
+        Eigen::Vector3d piece_sum = Eigen::Vector3d::Zero();
+        int piece_k = 0;
         for (const auto& kf : aligned.keyframes) {
           const Eigen::Vector3d p = kf.T_frame_body.translation();
-          if (!core.ownsPoint(p.x(), p.y())) continue;
           const auto pose = eval::truePoseAt(t.sorted, kf.stamp);
           if (!pose) continue;
           const Eigen::Vector3d truth_enu = to.toEnu(from.toWgs84(pose->translation()));
+          piece_sum += p - truth_enu;
+          ++piece_k;
+          if (!core.ownsPoint(p.x(), p.y())) continue;
           e_t += p - truth_enu;
           e_u += u.at(kf.id) - truth_enu;
           e_b += balanced.at(kf.id) - truth_enu;
           ++k;
         }
+        if (piece_k > 0) piece_means.push_back(piece_sum / piece_k);
+      }
+      if (!piece_means.empty()) {
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        for (const auto& m : piece_means) mean += m / double(piece_means.size());
+        for (const auto& m : piece_means) sq_spread += (m - mean).head<2>().squaredNorm();
+        spread_pieces += int(piece_means.size());
       }
       if (k == 0) continue;
       e_u /= k, e_t /= k, e_b /= k;
@@ -102,7 +118,8 @@ int main(int argc, char** argv) {
                                 {"tiled_m", std::sqrt(sq_tiled / n)},
                                 {"balanced_m", std::sqrt(sq_balanced / n)},
                                 {"tiled_minus_untiled_m", std::sqrt(sq_t_u / n)},
-                                {"balanced_minus_untiled_m", std::sqrt(sq_b_u / n)}}
+                                {"balanced_minus_untiled_m", std::sqrt(sq_b_u / n)},
+                                {"piece_spread_in_tile_m", std::sqrt(sq_spread / spread_pieces)}}
                      .dump()
               << '\n';
   });

@@ -138,11 +138,21 @@ kf = [json.load(open(f"{work}/keyframes_{s}.json")) for s in seeds]
 mean = lambda k: sum(x[k] for x in kf) / len(kf)
 lines += ["", "Keyframes against the simulator's truth (`bench_tile_keyframes`): per tile, the mean"
           " error of the keyframes its core holds; over the tiles, the keyframe-weighted RMS of those"
-          " horizontal means; mean over the seeds. It says where each run puts each tile.", "",
+          " horizontal means; mean over the seeds. It says where each run puts each tile. The last"
+          " column: how far the pieces of one tile sit from each other after the tile's own align"
+          " (RMS over pieces of their mean error about the tile's mean).", "",
           "| untiled m | tiled, own align m | tiled, balanced m | own align - untiled m |"
-          " balanced - untiled m |", "|---|---|---|---|---|",
+          " balanced - untiled m | pieces of a tile about its mean m |", "|---|---|---|---|---|---|",
           f"| {mean('untiled_m'):.3f} | {mean('tiled_m'):.3f} | {mean('balanced_m'):.3f} |"
-          f" {mean('tiled_minus_untiled_m'):.3f} | {mean('balanced_minus_untiled_m'):.3f} |"]
+          f" {mean('tiled_minus_untiled_m'):.3f} | {mean('balanced_minus_untiled_m'):.3f} |"
+          f" {mean('piece_spread_in_tile_m'):.3f} |"]
+bal = [json.load(open(f"{work}/w{s}_{tile}/balance/balance.summary.json")) for s in seeds]
+lines += ["", f"balance per seed: {min(b['pieces'] for b in bal)}-{max(b['pieces'] for b in bal)}"
+          f" pieces in {min(b['groups'] for b in bal)}-{max(b['groups'] for b in bal)} groups, of"
+          f" which {min(b['single_piece_groups'] for b in bal)}-"
+          f"{max(b['single_piece_groups'] for b in bal)} hold one piece;"
+          f" {min(b['keyframes'] for b in bal)}-{max(b['keyframes'] for b in bal)} drive keyframes;"
+          f" {min(b['seconds'] for b in bal):.2f}-{max(b['seconds'] for b in bal):.2f} s."]
 lines += ["", "Notes: the crosswalk absolute error counts a crosswalk that only the tiled run matches"
           " where one seed's untiled map misses it (seed 12 on 2026-11-24: 1.41 m off; without it"
           " the tiled error is 2 % below the untiled one). The same 16 seeds before the tiled chain"
