@@ -1,7 +1,7 @@
 // align: SGICP + PCM + multi-trajectory pose graph + GBA (§4.2, eq. 7-14) over georeferenced LSMs.
 #include <iostream>
 
-#include "mapfuse/core/cli.hpp"
+#include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/align.hpp"
 
 int main(int argc, char** argv) {

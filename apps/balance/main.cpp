@@ -2,7 +2,7 @@
 // (per-tile registration groups and per-drive georef errors solved together).
 #include <iostream>
 
-#include "mapfuse/core/cli.hpp"
+#include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/balance.hpp"
 
 int main(int argc, char** argv) {

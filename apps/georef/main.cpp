@@ -1,7 +1,7 @@
 // georef: GPS + odometry pose graph per LSM (§4.1, eq. 4-6) -> LSMs in ENU of one shared origin.
 #include <iostream>
 
-#include "mapfuse/core/cli.hpp"
+#include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/georef.hpp"
 
 int main(int argc, char** argv) {

@@ -1,5 +1,5 @@
 // stitch: merge per-tile vector maps into one map without duplicates or gaps at tile borders.
-#include "mapfuse/core/cli.hpp"
+#include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/stitch.hpp"
 
 int main(int argc, char** argv) {

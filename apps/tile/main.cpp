@@ -1,6 +1,6 @@
 // tile: cut georeferenced LSMs into per-tile LSM sets with overlap margins, so that align and
 // aggregate can run per tile (locally with make -j, or on a cluster through Snakemake).
-#include "mapfuse/core/cli.hpp"
+#include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/tile.hpp"
 
 int main(int argc, char** argv) {

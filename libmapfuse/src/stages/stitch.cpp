@@ -5,7 +5,7 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
-#include "mapfuse/core/params.hpp"
+#include "mapfuse/cli/params.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/geojson.hpp"
 #include "mapfuse/io/json_view.hpp"

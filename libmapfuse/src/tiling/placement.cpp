@@ -9,7 +9,7 @@
 #include <unordered_map>
 
 #include "mapfuse/core/error.hpp"
-#include "mapfuse/core/params.hpp"
+#include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/union_find.hpp"
 
 namespace mapfuse::tiling {

@@ -5,7 +5,7 @@
 #include <set>
 
 #include "mapfuse/core/error.hpp"
-#include "mapfuse/core/params.hpp"
+#include "mapfuse/cli/params.hpp"
 
 namespace mapfuse::tiling {
 

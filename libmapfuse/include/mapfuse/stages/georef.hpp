@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "mapfuse/core/params.hpp"
+#include "mapfuse/cli/params.hpp"
 #include "mapfuse/fusion/georef.hpp"
 
 namespace mapfuse::stages {
