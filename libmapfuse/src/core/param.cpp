@@ -1,16 +1,15 @@
 #include "mapfuse/core/param.hpp"
 
 #include <cmath>
-#include <sstream>
+#include <cstdio>
 
 namespace mapfuse::param {
 
 namespace {
 std::string number(double v) {
-  std::ostringstream os;
-  os.precision(15);
-  os << v;
-  return os.str();
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", v);
+  return text;
 }
 }  // namespace
 
@@ -23,6 +22,7 @@ bool Range::contains(double x) const {
 
 std::string Range::describe(const std::string& key) const {
   const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
+  if (key.empty()) return describe("x").substr(2);  // "in [0, 1]", "> 0"
   if (has_lo && has_hi)
     return key + " in " + (lo_open ? "(" : "[") + number(lo) + ", " + number(hi) +
            (hi_open ? ")" : "]");
@@ -38,7 +38,7 @@ bool OneOf::contains(const std::string& s) const {
 }
 
 std::string OneOf::describe(const std::string& key) const {
-  std::string text = key + " one of ";
+  std::string text = key.empty() ? "one of " : key + " one of ";
   for (std::size_t i = 0; i < names.size(); ++i) text += (i ? ", " : "") + names[i];
   return text;
 }

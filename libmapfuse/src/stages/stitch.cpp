@@ -3,9 +3,9 @@
 #include <chrono>
 #include <regex>
 
+#include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
-#include "mapfuse/cli/params.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/geojson.hpp"
 #include "mapfuse/io/json_view.hpp"
@@ -30,7 +30,7 @@ tiling::TileKey tileOfPath(const std::filesystem::path& path) {
 
 VectorMap runStitch(const std::filesystem::path& tiles_json, const std::vector<std::string>& maps,
                     const std::filesystem::path& out_map, const tiling::StitchParams& params) {
-  params.validate();
+  validateParams(params);
   const auto t0 = std::chrono::steady_clock::now();
   const io::Json doc = io::readDocument(tiles_json);
   const io::JsonView v(doc, tiles_json.string());

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
@@ -11,18 +12,9 @@
 
 namespace mapfuse::stages {
 
-void TileParams::validate() const {
-  requireParam(tile_size > 0.0, "TileParams", "tile_size", tile_size, "tile_size > 0");
-  requireParam(margin >= 0.0 && margin < tile_size / 2, "TileParams", "margin", margin,
-               "0 <= margin < tile_size / 2");
-  requireParam(min_keyframes >= 2, "TileParams", "min_keyframes", min_keyframes, ">= 2");
-  requireParam(format == "cbor" || format == "json", "TileParams", "format", format,
-               "cbor or json");
-}
-
 nlohmann::json runTile(const std::vector<std::string>& lsm_files, const std::filesystem::path& out,
                        const TileParams& params) {
-  params.validate();
+  validateParams(params);
   const auto t0 = std::chrono::steady_clock::now();
   if (lsm_files.empty()) throw InputError("tile: no input LSM given");
   std::vector<Lsm> lsms;

@@ -40,7 +40,7 @@ struct CliVisitor {
   template <class T>
   void operator()(const char* key, T& value, const char* unit, const char* help,
                   const param::Range& range) {
-    app.add_option(optionName(key), value, optionHelp(help, unit, range.describe(key)))
+    app.add_option(optionName(key), value, optionHelp(help, unit, range.describe("")))
         ->capture_default_str()
         ->group(group);
   }
@@ -52,7 +52,7 @@ struct CliVisitor {
   }
   void operator()(const char* key, std::string& value, const char* unit, const char* help,
                   const param::OneOf& names) {
-    app.add_option(optionName(key), value, optionHelp(help, unit, names.describe(key)))
+    app.add_option(optionName(key), value, optionHelp(help, unit, names.describe("")))
         ->capture_default_str()
         ->group(group);
   }
@@ -73,7 +73,7 @@ struct CliVisitor {
                throw CLI::ValidationError(optionName(key),
                                           "\"" + name + "\" is not " + names.oneOf().describe(key));
            },
-           optionHelp(help, unit, names.oneOf().describe(key)))
+           optionHelp(help, unit, names.oneOf().describe("")))
         ->default_str(names.nameOf(value))
         ->group(group);
   }

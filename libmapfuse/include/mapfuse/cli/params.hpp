@@ -241,11 +241,12 @@ void paramsFromJson(Params& params, const nlohmann::json& j, const std::string& 
 }
 
 /// @brief Checks every declared rule (numbers finite and in range, names known, relations).
-/// @throws ConfigError "<Params::kName>::<key> = <value>. Violated constraint: <rule>".
+/// @throws ConfigError "<owner>::<key> = <value>. Violated constraint: <rule>"; `owner` is the
+/// stage's Params name (Params::kName) unless given.
 template <class Params>
-void validateParams(const Params& params) {
+void validateParams(const Params& params, const char* owner = Params::kName) {
   Params copy = params;
-  detail::ValidateVisitor v{Params::kName};
+  detail::ValidateVisitor v{owner};
   copy.visit(v);
 }
 

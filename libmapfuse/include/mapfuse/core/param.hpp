@@ -33,7 +33,8 @@ struct Range {
 
   /// @brief True when `x` is finite and inside the range.
   bool contains(double x) const;
-  /// @brief "voxel_size > 0 and <= 100", "min_overlap in [0, 1]", ...
+  /// @brief "voxel_size in (0, 100]", "min_overlap in [0, 1]", "max_iterations >= 1"; without a
+  /// key: "in (0, 100]".
   std::string describe(const std::string& key) const;
 };
 
@@ -75,7 +76,8 @@ constexpr Range operator&(const Range& a, const Range& b) {
 struct OneOf {
   std::vector<std::string> names;
   bool contains(const std::string& s) const;
-  std::string describe(const std::string& key) const;  ///< "method one of icp, sgicp"
+  std::string describe(
+      const std::string& key) const;  ///< "method one of icp, sgicp"; no key: "one of ..."
 };
 inline OneOf oneOf(std::initializer_list<const char*> names) {
   return OneOf{std::vector<std::string>(names.begin(), names.end())};

@@ -3,6 +3,8 @@
 /// there is no default origin.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <optional>
+#include <string>
 
 namespace mapfuse::geo {
 
@@ -17,6 +19,10 @@ using GeoOrigin = LatLonAlt;
 
 /// @brief True when lat/lon are finite and within their ranges.
 bool isValid(const LatLonAlt& p);
+
+/// @brief Parses "lat,lon,alt" (degrees, degrees, metres); nullopt unless it is exactly three
+/// numbers forming a valid point.
+std::optional<LatLonAlt> parseLatLonAlt(const std::string& text);
 
 /// @brief Two origins are the same when they agree within 1e-9 deg and 1 mm.
 bool sameOrigin(const GeoOrigin& a, const GeoOrigin& b);
