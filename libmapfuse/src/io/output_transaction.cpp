@@ -119,8 +119,9 @@ void OutputTransaction::commit() {
   for (const auto& [tmp, target] : files_) {
     std::error_code ec;
     if (fs::is_directory(target, ec)) {
+      const std::string name = target.string();  // rollback() clears files_
       rollback();
-      throw IoError(target.string(),
+      throw IoError(name,
                     "is a folder; cannot replace it with a file (no output of "
                     "this run was written)");
     }
@@ -129,8 +130,9 @@ void OutputTransaction::commit() {
     std::error_code ec;
     fs::rename(tmp, target, ec);
     if (ec) {
+      const std::string name = target.string();
       rollback();
-      throw IoError(target.string(), "cannot rename temporary file: " + ec.message());
+      throw IoError(name, "cannot rename temporary file: " + ec.message());
     }
   }
   files_.clear();
