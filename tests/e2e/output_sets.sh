@@ -3,7 +3,7 @@
 # where one of its outputs goes, found only after the computation) exits 4 naming that file and
 # leaves every output of the previous run byte-identical, with no temporary file left; a second
 # run on a locked output folder is refused at once (exit 4); an output path below a regular file
-# is refused before any work (exit 4).
+# is refused before any work (exit 4). Duplicate inputs are refused (exit 2) naming both.
 set -euo pipefail
 BIN="${MAPFUSE_BIN_DIR:?}"
 TMP="$(mktemp -d)"
@@ -44,4 +44,15 @@ check align al "$(basename "${lsms[2]}")" "$BIN/align" -q -o al geo/*.cbor
 touch afile
 rc=0; "$BIN/align" -q -o afile/out geo/*.cbor >/dev/null 2>err.txt || rc=$?
 [[ $rc == 4 ]] || { cat err.txt; fail "align below a regular file gave exit $rc, not 4"; }
+
+# duplicate inputs: the same file twice, or one drive under two names (exit 2, both named)
+cp "${lsms[0]}" copy.cbor
+for tool in georef align; do
+  in=("${lsms[@]}"); [[ $tool == align ]] && in=(geo/*.cbor)
+  rc=0; "$BIN/$tool" -q -o dup "${in[0]}" "${in[@]}" >/dev/null 2>err.txt || rc=$?
+  [[ $rc == 2 ]] && grep -q "same file" err.txt || { cat err.txt; fail "$tool: same file twice gave $rc"; }
+done
+rc=0; "$BIN/georef" -q -o dup "${lsms[0]}" copy.cbor >/dev/null 2>err.txt || rc=$?
+[[ $rc == 2 ]] && grep -q "same drive" err.txt && grep -q copy.cbor err.txt \
+  || { cat err.txt; fail "georef: one drive under two names gave $rc"; }
 echo "output_sets: ok"

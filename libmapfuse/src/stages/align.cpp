@@ -55,10 +55,10 @@ fusion::AlignResult runAlign(const std::vector<std::string>& inputs,
   validateParams(params);
   io::OutputTransaction outputs(out_dir);  // locked and writable before the work
   if (inputs.empty()) throw InputError("align: no input LSM");
-  std::vector<Lsm> lsms;
-  for (const auto& in : inputs) {
-    lsms.push_back(io::readLsm(in));
-    const Lsm& l = lsms.back();
+  std::vector<Lsm> lsms = io::readLsmInputs(inputs);
+  for (std::size_t i = 0; i < lsms.size(); ++i) {
+    const Lsm& l = lsms[i];
+    const std::string& in = inputs[i];
     if (l.frame != LsmFrame::kEnu || !l.origin)
       throw InputError(in + ": frame must be enu (run georef first)");
     const auto& o0 = *lsms.front().origin;

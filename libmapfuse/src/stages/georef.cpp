@@ -60,8 +60,7 @@ GeorefRun runGeoref(const std::vector<std::string>& inputs, const std::filesyste
   validateParams(params);
   io::OutputTransaction outputs(out_dir);  // locked and writable before the work
   if (inputs.empty()) throw InputError("georef: no input LSM");
-  std::vector<Lsm> lsms;
-  for (const auto& in : inputs) lsms.push_back(io::readLsm(in));
+  const std::vector<Lsm> lsms = io::readLsmInputs(inputs);
   for (std::size_t i = 0; i < inputs.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)
       if (std::filesystem::path(inputs[i]).filename() ==

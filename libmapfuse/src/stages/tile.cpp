@@ -47,8 +47,7 @@ nlohmann::json runTile(const std::vector<std::string>& lsm_files, const std::fil
   const auto t0 = std::chrono::steady_clock::now();
   io::OutputTransaction outputs(out);  // locked and writable before the work
   if (lsm_files.empty()) throw InputError("tile: no input LSM given");
-  std::vector<Lsm> lsms;
-  for (const auto& f : lsm_files) lsms.push_back(io::readLsm(f));
+  const std::vector<Lsm> lsms = io::readLsmInputs(lsm_files);
   const tiling::TileGrid grid(params.tile_size, params.margin);
   const auto tiles = tiling::splitIntoTiles(lsms, grid, params.min_keyframes);
 
