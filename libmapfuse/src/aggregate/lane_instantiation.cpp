@@ -1,4 +1,4 @@
-#include "mapfuse/aggregate/lane_instantiation.hpp"
+#include "lane_instantiation.hpp"
 
 // Boost.Geometry buffer/rtree instantiations trigger GCC false positives.
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
@@ -11,11 +11,11 @@
 #include <optional>
 
 #include "box2d.hpp"
+#include "dbscan.hpp"
 #include "lane_fragments.hpp"
 #include "lane_links.hpp"
-#include "mapfuse/aggregate/dbscan.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
-#include "mapfuse/aggregate/polygon_overlap.hpp"
+#include "polygon_overlap.hpp"
 
 namespace mapfuse::aggregate {
 namespace {

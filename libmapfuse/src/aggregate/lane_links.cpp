@@ -10,8 +10,8 @@
 #include <cmath>
 #include <set>
 
+#include "arc_link.hpp"
 #include "box2d.hpp"
-#include "mapfuse/aggregate/arc_link.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
 #include "mapfuse/core/vector_map.hpp"
 

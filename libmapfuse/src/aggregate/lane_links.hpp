@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "lane_fragments.hpp"
-#include "mapfuse/aggregate/lane_instantiation.hpp"
+#include "lane_instantiation.hpp"
 
 namespace mapfuse::aggregate {
 
