@@ -22,6 +22,7 @@ constexpr double kDistanceTolerance = 0.02;     // relative, the issue's 2 %
 constexpr double kDirectionToleranceDeg = 3.0;  // heading of travel vs poses/00.txt
 constexpr double kMinConvergedFraction = 0.8;   // registrations that must report convergence
 constexpr double kReferenceVoxel = 0.10;        // m, resolution of the reference registration
+constexpr double kScanPeriod = 0.1;             // s, KITTI Velodyne at 10 Hz
 
 std::vector<io::VelodyneScan> loadScans() {
   const auto dir = test::requireShared("data/kitti_odometry/sequences/00/velodyne");
@@ -63,7 +64,7 @@ TEST_CASE("odometry on KITTI 00 scans 0-5 agrees with an independent registratio
           "[lidar][odometry]") {
   const auto scans = loadScans();
   lidar::ScanOdometry odo(lidar::OdometrySettings{});
-  for (const auto& sc : scans) odo.add(sc.points);
+  for (const auto& sc : scans) odo.add(sc.points, kScanPeriod);
   const auto& P = odo.poses();
   double odo_total = 0, icp_total = 0;
   int converged = 0;
