@@ -65,7 +65,8 @@ TEST_CASE("local voxel map: bounded by points per voxel and by distance from the
   lidar::MapNeighbor nb;
   CHECK_FALSE(map.nearest(Eigen::Vector3d(0.5, 0.5, 0.5), 1.0, &nb));
   CHECK(map.nearest(Eigen::Vector3d(30.4, 0.5, 0.5), 1.0, &nb));
-  CHECK_THROWS_AS(map.update(pts, {}, Eigen::Vector3d::Zero()), InputError);
+  CHECK_THROWS_AS(map.update(pts, std::vector<Eigen::Vector3d>{}, Eigen::Vector3d::Zero()),
+                  InputError);
   CHECK_THROWS_AS(lidar::LocalVoxelMap({0.0, 5, 20.0}), ConfigError);
 }
 

@@ -3,20 +3,11 @@
 #include <cmath>
 
 #include "mapfuse/core/error.hpp"
-#include "mapfuse/fusion/voxel_hash.hpp"
+#include "voxel_key.hpp"
 
 namespace mapfuse::lidar {
 namespace {
 constexpr uint32_t kEmpty = ~0u;
-
-inline uint64_t mix(uint64_t k) {  // splitmix64 finaliser
-  k ^= k >> 31;
-  k *= 0x7fb5d329728ea185ull;
-  k ^= k >> 27;
-  k *= 0x81dadef4bc2dd44dull;
-  k ^= k >> 33;
-  return k;
-}
 
 // The 27 cells around the query cell, its own first, then faces, edges, corners: cells farther
 // than the best point found so far are skipped.
@@ -61,7 +52,7 @@ std::vector<Eigen::Vector3d> LocalVoxelMap::points() const {
 }
 
 int LocalVoxelMap::findVoxel(uint64_t key) const {
-  uint64_t h = mix(key) & mask_;
+  uint64_t h = detail::mixKey(key) & mask_;
   while (true) {
     const uint32_t v = table_[h];
     if (v == kEmpty) return -1;
@@ -71,7 +62,7 @@ int LocalVoxelMap::findVoxel(uint64_t key) const {
 }
 
 void LocalVoxelMap::insertSlot(uint64_t key, uint32_t voxel) {
-  uint64_t h = mix(key) & mask_;
+  uint64_t h = detail::mixKey(key) & mask_;
   while (table_[h] != kEmpty) h = (h + 1) & mask_;
   table_[h] = voxel;
 }
@@ -89,10 +80,17 @@ void LocalVoxelMap::update(const std::vector<Eigen::Vector3d>& points,
                            const Eigen::Vector3d& origin) {
   if (normals.size() != points.size())
     throw InputError("LocalVoxelMap::update: points and normals differ in size");
+  update(
+      points, [&](std::size_t i) { return normals[i]; }, origin);
+}
+
+void LocalVoxelMap::update(const std::vector<Eigen::Vector3d>& points,
+                           const std::function<Eigen::Vector3d(std::size_t)>& normal_of,
+                           const Eigen::Vector3d& origin) {
   const std::size_t m = static_cast<std::size_t>(s_.max_points_per_voxel);
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Eigen::Vector3d& p = points[i];
-    const uint64_t key = fusion::voxelKey(p, inv_voxel_);
+    const uint64_t key = detail::pointKey(p, inv_voxel_);
     const int found = findVoxel(key);
     if (found < 0) {
       const uint32_t v = static_cast<uint32_t>(keys_.size());
@@ -101,7 +99,7 @@ void LocalVoxelMap::update(const std::vector<Eigen::Vector3d>& points,
       points_.resize(points_.size() + m, Eigen::Vector3d::Zero());
       normals_.resize(normals_.size() + m, Eigen::Vector3d::Zero());
       points_[v * m] = p;
-      normals_[v * m] = normals[i];
+      normals_[v * m] = normal_of(i);
       if (2 * keys_.size() > table_.size())
         rebuildTable(2 * table_.size());
       else
@@ -116,7 +114,7 @@ void LocalVoxelMap::update(const std::vector<Eigen::Vector3d>& points,
       crowded = (points_[v * m + i] - p).squaredNorm() < min_spacing_sq_;
     if (crowded) continue;
     points_[v * m + n] = p;
-    normals_[v * m + n] = normals[i];
+    normals_[v * m + n] = normal_of(i);
     ++counts_[v];
   }
   // Drop voxels far from the sensor (their first point decides, as in kiss-icp), keeping order.
@@ -156,7 +154,7 @@ bool LocalVoxelMap::nearest(const Eigen::Vector3d& q, double max_dist_sq, MapNei
   for (const Offset& o : kOffsets) {
     const double gx = gap(o.dx, lx, size), gy = gap(o.dy, ly, size), gz = gap(o.dz, lz, size);
     if (gx * gx + gy * gy + gz * gz >= best) continue;
-    const int v = findVoxel(fusion::packVoxelKey(cx + o.dx, cy + o.dy, cz + o.dz));
+    const int v = findVoxel(detail::packKey(cx + o.dx, cy + o.dy, cz + o.dz));
     if (v < 0) continue;
     const std::size_t base = static_cast<std::size_t>(v) * m;
     for (std::size_t i = base; i < base + counts_[static_cast<std::size_t>(v)]; ++i) {

@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "mapfuse/core/error.hpp"
-#include "mapfuse/fusion/voxel_hash.hpp"
 #include "mapfuse/lidar/scan_normals.hpp"
+#include "voxel_key.hpp"
 
 namespace mapfuse::lidar {
 namespace {
@@ -19,8 +19,8 @@ std::vector<Eigen::Vector3d> downsample(const std::vector<Eigen::Vector3d>& pts,
   std::vector<Eigen::Vector3d> out;
   out.reserve(pts.size() / 2);
   for (std::size_t i = 0; i < pts.size(); ++i) {
-    const uint64_t key = fusion::voxelKey(pts[i], inv);
-    uint64_t h = (key * 0x9E3779B97F4A7C15ull) >> 17 & mask;
+    const uint64_t key = detail::pointKey(pts[i], inv);
+    uint64_t h = detail::mixKey(key) & mask;
     bool seen = false;
     while (table[h] != ~0ull) {
       if (table[h] == key) {
@@ -84,7 +84,8 @@ void OdometrySettings::validate() const {
   need(voxel_size > 0, "voxel_size", voxel_size, "> 0");
   need(scan_spacing > 0, "scan_spacing", scan_spacing, "> 0");
   need(source_spacing >= scan_spacing, "source_spacing", source_spacing, ">= scan_spacing");
-  need(normal_neighbors >= 3, "normal_neighbors", normal_neighbors, ">= 3");
+  need(normal_neighbors >= 3 && normal_neighbors <= 32, "normal_neighbors", normal_neighbors,
+       "in 3..32");
   need(normal_radius > 0, "normal_radius", normal_radius, "> 0");
   need(keyframe_distance >= 0, "keyframe_distance", keyframe_distance, ">= 0");
   need(keyframe_angle >= 0, "keyframe_angle", keyframe_angle, ">= 0");
@@ -116,14 +117,13 @@ double ScanOdometry::sigma() const {
 }
 
 void ScanOdometry::insertKeyframe(const std::vector<Eigen::Vector3d>& frame, const Pose3& T) {
-  const std::vector<Eigen::Vector3d> normals =
-      estimateNormals(frame, s_.normal_neighbors, s_.normal_radius);
-  std::vector<Eigen::Vector3d> pts(frame.size()), nrm(frame.size());
-  for (std::size_t k = 0; k < frame.size(); ++k) {
-    pts[k] = T * frame[k];
-    nrm[k] = T.linear() * normals[k];
-  }
-  map_.update(pts, nrm, T.translation());
+  // Normals only of the points the map keeps (once its voxels fill up, few of a keyframe's).
+  const ScanNormals normals(frame, s_.normal_neighbors, s_.normal_radius);
+  std::vector<Eigen::Vector3d> pts(frame.size());
+  for (std::size_t k = 0; k < frame.size(); ++k) pts[k] = T * frame[k];
+  const Eigen::Matrix3d R = T.linear();
+  map_.update(
+      pts, [&](std::size_t i) { return Eigen::Vector3d(R * normals.at(i)); }, T.translation());
   keyframe_ = T;
 }
 
@@ -190,8 +190,10 @@ const OdometryStep& ScanOdometry::add(const std::vector<Eigen::Vector3f>& scan, 
   const Pose3 T_pred = orthonormalized(T_prev * delta);
   const double sig = sigma();
   step.threshold = 3.0 * sig;
-  MapRegistrationResult reg = registerToMap(
-      map_, source, T_pred, std::max(step.threshold, s_.fine_threshold), sig, s_.registration);
+  MapRegistrationSettings coarse = s_.registration;  // it only has to land near the fine pass
+  coarse.convergence = 10.0 * s_.registration.convergence;
+  MapRegistrationResult reg =
+      registerToMap(map_, source, T_pred, std::max(step.threshold, s_.fine_threshold), sig, coarse);
   const int coarse_iterations = reg.iterations;  // the fine pass decides convergence
   reg = registerToMap(map_, source, orthonormalized(reg.T_map_scan), s_.fine_threshold,
                       s_.fine_threshold / 3.0, s_.registration);

@@ -8,6 +8,7 @@
 /// point carries the normal of its surface, estimated in the scan it came from (zero: none).
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace mapfuse::lidar {
@@ -37,6 +38,11 @@ class LocalVoxelMap {
   /// @throws InputError when the sizes differ.
   void update(const std::vector<Eigen::Vector3d>& points,
               const std::vector<Eigen::Vector3d>& normals, const Eigen::Vector3d& origin);
+
+  /// @brief The same with the normal of point i asked for only when the point is kept.
+  void update(const std::vector<Eigen::Vector3d>& points,
+              const std::function<Eigen::Vector3d(std::size_t)>& normal_of,
+              const Eigen::Vector3d& origin);
 
   /// @brief Nearest map point to q within sqrt(max_dist_sq) (exact up to one voxel edge).
   /// @return false when there is none.
