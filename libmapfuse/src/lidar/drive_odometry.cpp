@@ -45,6 +45,14 @@ DriveOdometryResult runDriveOdometry(const io::KittiRawDrive& drive,
     }
   }
   progress.finish();
+  if (untrusted > 0) {
+    std::string frames;
+    for (std::size_t i = 0; i < odo.steps().size(); ++i)
+      if (!odo.steps()[i].trusted())
+        frames += (frames.empty() ? "" : ", ") + std::to_string(drive.frames[i].index);
+    MAPFUSE_WARN("odometry: " << untrusted << " untrusted step(s) tolerated (odom_max_untrusted = "
+                              << s.max_untrusted << "): frames " << frames);
+  }
   res.T_odom_velo = odo.poses();
   res.steps = odo.steps();
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

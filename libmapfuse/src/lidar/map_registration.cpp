@@ -61,6 +61,8 @@ MapRegistrationResult registerToMap(const LocalVoxelMap& map,
   Pose3 T = T_init;
   const double max_d2 = max_distance * max_distance;
   double last_step = std::numeric_limits<double>::infinity();
+  std::vector<Pose3> recent;  // poses of the last kRecent iterations
+  constexpr std::size_t kRecent = 10;
   for (int it = 0; it < s.max_iterations; ++it) {
     const Normal sys = linearize(map, source, T, max_d2, kernel_scale, s.point_to_plane);
     res.iterations = it + 1;
@@ -76,10 +78,22 @@ MapRegistrationResult registerToMap(const LocalVoxelMap& map,
     T = expSE3(dx) * T;
     last_step = dx.norm();
     if (last_step < s.convergence) break;
+    if (recent.size() == kRecent) recent.erase(recent.begin());
+    recent.push_back(T);
   }
-  // Converged: the last update was below the tolerance, or (correspondences switching back and
-  // forth at the threshold) below ten times it when the iterations ran out.
-  res.converged = last_step < 10.0 * s.convergence;
+  // Converged: the last update was below the tolerance; or, when the iterations ran out with
+  // correspondences switching back and forth at the threshold, the last kRecent poses all lie
+  // within oscillation_tolerance (m, and the same in rad / 10) of the final one.
+  res.converged = last_step < s.convergence;
+  if (!res.converged && std::isfinite(last_step) && recent.size() == kRecent) {
+    bool settled = true;
+    for (const Pose3& P : recent) {
+      const Pose3 d = P.inverse() * T;
+      settled = settled && d.translation().norm() <= s.oscillation_tolerance &&
+                Eigen::AngleAxisd(d.linear()).angle() <= 0.1 * s.oscillation_tolerance;
+    }
+    res.converged = settled;
+  }
   // Keep the rotation exactly orthonormal (the products above accumulate rounding).
   const Eigen::Quaterniond q(T.linear());
   T.linear() = q.normalized().toRotationMatrix();

@@ -13,10 +13,11 @@
 namespace mapfuse::lidar {
 
 struct MapRegistrationSettings {
-  int max_iterations = 100;  ///< Gauss-Newton iterations
-  /// |dx| (m and rad together) below which it stops; converged also when the last update is
-  /// below 10x this after max_iterations (correspondences flipping at the threshold)
-  double convergence = 1e-4;
+  int max_iterations = 100;   ///< Gauss-Newton iterations
+  double convergence = 1e-4;  ///< |dx| (m and rad together) below which it has converged
+  /// m: when max_iterations run out with the correspondences switching back and forth, it has
+  /// converged if the last 10 poses all lie this close to the final one (and a tenth of it, rad)
+  double oscillation_tolerance = 0.01;
   int min_correspondences = 30;  ///< fewer: stop, not converged
   bool point_to_plane = true;    ///< false: point-to-point everywhere (kiss-icp as published)
 };
