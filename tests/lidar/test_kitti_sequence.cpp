@@ -9,7 +9,11 @@
 #include "mapfuse/io/kitti_poses.hpp"
 #include "mapfuse/io/kitti_sequence.hpp"
 #include "mapfuse/io/png_frames.hpp"
+#include "mapfuse/io/semantic_image.hpp"
+#include "mapfuse/io/semantic_kitti.hpp"
+#include "mapfuse/io/velodyne.hpp"
 #include "mapfuse/lidar/drive_poses.hpp"
+#include "mapfuse/stages/lidar_semantic_map.hpp"
 #include "support/test_support.hpp"
 
 using namespace mapfuse;
@@ -119,4 +123,41 @@ TEST_CASE("poses files: singular and mirrored rotations are refused naming the l
                     Catch::Contains("line 1") && Catch::Contains("det"));
   test::writeText(dir / "empty.txt", "\n\n");
   CHECK_THROWS_AS(io::readKittiOdometryPoses(dir / "empty.txt"), ParseError);
+}
+
+TEST_CASE("lidar-semantic-map on a sequence folder: odometry, then the sequence's own poses",
+          "[lidar][stage]") {
+  const fs::path root = test::tempDir("sequence_stage");
+  const fs::path seq = makeSequence(root, false);
+  // Synthetic label images (rows below the horizon road, above building) stand in for ENet.
+  std::vector<uint8_t> labels(1241 * 376);
+  for (int v = 0; v < 376; ++v)
+    for (int u = 0; u < 1241; ++u) labels[std::size_t(v) * 1241 + std::size_t(u)] = v > 190 ? 1 : 3;
+  for (int i = 0; i < 6; ++i) {
+    char name[16];
+    std::snprintf(name, sizeof name, "%06d", i);
+    io::writeSemanticImage(seq / "semantics_02" / (std::string(name) + ".png"),
+                           io::SemanticImage::fromLabels(1241, 376, labels));
+  }
+  stages::LidarSemanticMapParams p;
+  const auto a = stages::runLidarSemanticMap(seq, root / "a", p);
+  CHECK(a["poses"]["source"] == "odometry");
+  CHECK(a["poses"]["untrusted_steps"].empty());
+  CHECK(a["frames"] == 6);
+  for (int i = 0; i < 6; ++i) {
+    char name[16];
+    std::snprintf(name, sizeof name, "%06d", i);
+    const auto scan = io::readVelodyneBin(seq / "velodyne" / (std::string(name) + ".bin"));
+    CHECK(io::readSemanticKittiLabels(root / "a/labels" / (std::string(name) + ".label")).size() ==
+          scan.size());
+  }
+  // 5 steps of 0.68-0.75 m (docs/lidar.md): the camera moves ~3.6 m along its z axis.
+  const auto cam = io::readKittiOdometryPoses(root / "a/poses.txt");
+  REQUIRE(cam.size() == 6);
+  CHECK(cam[5].translation().z() == Approx(3.6).margin(0.2));
+  // With the odometry's poses.txt beside the scans, auto uses it (SemanticKITTI layout).
+  fs::copy_file(root / "a/poses.txt", seq / "poses.txt");
+  const auto b = stages::runLidarSemanticMap(seq, root / "b", p);
+  CHECK(b["poses"]["source"] == "poses_file");
+  CHECK(b["voxels"].get<double>() == Approx(a["voxels"].get<double>()).epsilon(0.001));
 }
