@@ -19,7 +19,9 @@ struct TrustSettings {
   double max_rotation_rate = 90.0;          ///< deg/s
   double max_acceleration = 15.0;           ///< m/s^2, change of velocity against the prediction
   double max_angular_acceleration = 600.0;  ///< deg/s^2, the same for the rotation
-  double max_deviation_floor = 0.25;  ///< m and deg: deviations below this are never implausible
+  /// m and deg: deviations below this are never implausible (2.5x the largest seen on the
+  /// simulated drives, 0.2 m: registration noise, not motion)
+  double max_deviation_floor = 0.5;
 
   /// @throws ConfigError naming the field when a value is out of range.
   void validate() const;
