@@ -8,6 +8,7 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/bounds.hpp"
 
 namespace mapfuse::io {
 
@@ -113,6 +114,10 @@ Lanelet2Map parseLanelet2Osm(const std::string& xml, const std::string& file) {
       p.alt = std::strtod(ele->second.c_str(), &end);
       if (end == ele->second.c_str() || *end != '\0' || !std::isfinite(p.alt))
         throw ParseError(file, where + " ele", "'" + ele->second + "' is not a number");
+      if (!bounds::within(p.alt, bounds::kMinAltitude, bounds::kMaxAltitude))
+        throw ParseError(file, where + " ele",
+                         "'" + ele->second + "' m is outside " +
+                             bounds::rangeText(bounds::kMinAltitude, bounds::kMaxAltitude));
     }
     if (!nodes.emplace(id, p).second) throw ParseError(file, where, "duplicate node id");
     if (!map.first_node) map.first_node = p;

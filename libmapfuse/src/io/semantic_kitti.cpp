@@ -8,9 +8,12 @@
 namespace mapfuse::io {
 
 std::vector<uint32_t> readSemanticKittiLabels(const std::filesystem::path& path) {
-  const std::string bytes = readBytes(path);
+  return parseSemanticKittiLabels(readBytes(path), path.string());
+}
+
+std::vector<uint32_t> parseSemanticKittiLabels(const std::string& bytes, const std::string& file) {
   if (bytes.size() % 4 != 0)
-    throw ParseError(path.string(), "size",
+    throw ParseError(file, "size",
                      std::to_string(bytes.size()) + " bytes is not a multiple of 4 (uint32)");
   std::vector<uint32_t> out(bytes.size() / 4);
   std::memcpy(out.data(), bytes.data(), bytes.size());
