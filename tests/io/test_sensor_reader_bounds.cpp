@@ -12,6 +12,7 @@
 #include "mapfuse/io/pcd.hpp"
 #include "mapfuse/io/ply.hpp"
 #include "mapfuse/io/semantic_image.hpp"
+#include "mapfuse/io/semantic_kitti.hpp"
 #include "mapfuse/io/velodyne.hpp"
 
 using namespace mapfuse;
@@ -97,6 +98,17 @@ TEST_CASE("KITTI timestamps: strict digits, the same seconds as before", "[io][b
                     Contains("line 3"));
 }
 
+TEST_CASE("KITTI timestamps: a fraction of 30 digits does not overflow", "[io][bounds][kitti]") {
+  // Fuzz finding (fuzz_kitti_timestamps, minimised): the fraction's digits were accumulated into a
+  // long, which overflowed (undefined) past 18 digits; up to 30 digits are allowed.
+  const double t =
+      io::parseKittiTimestamp("2011-09-26 13:04:33.161788781556152220112345678901", "t", "l");
+  CHECK(t == Approx(13 * 3600.0 + 4 * 60.0 + 33.161788781556152).margin(1e-9));
+  CHECK_THROWS_AS(
+      io::parseKittiTimestamp("2011-09-26 13:04:33.1617887815561522201123456789012", "t", "l"),
+      ParseError);  // 31 digits
+}
+
 TEST_CASE("Velodyne: a return beyond the LiDAR range is refused", "[io][bounds][kitti]") {
   const float ok[4] = {10.f, -3.f, 1.f, 0.5f};
   CHECK(io::parseVelodyneBin(bytesOf(ok), "s.bin").size() == 1);
@@ -161,4 +173,12 @@ TEST_CASE("PNG semantics: the declared size is checked before decoding", "[io][b
                     Contains("not a PNG"));
   CHECK_THROWS_WITH(io::parseSemanticImage("mapfuse-prob 1 65535 65535 8\n", "f.prob"),
                     Contains("pixels"));
+}
+
+TEST_CASE("an empty SemanticKITTI label file is an empty scan", "[io][bounds][kitti]") {
+  // Fuzz finding (fuzz_semantic_labels, empty input): memcpy from a null vector.data() is
+  // undefined even for 0 bytes.
+  CHECK(io::parseSemanticKittiLabels("", "empty.label").empty());
+  const std::string two("\x01\x00\x02\x00\x28\x00\x00\x00", 8);
+  CHECK(io::parseSemanticKittiLabels(two, "two.label") == std::vector<uint32_t>{0x20001, 40});
 }

@@ -56,7 +56,8 @@ double parseKittiTimestamp(const std::string& text, const std::string& file,
     std::size_t count = 0;
     while (i < text.size() && count < max_count &&
            std::isdigit(static_cast<unsigned char>(text[i]))) {
-      v = v * 10 + (text[i++] - '0');
+      if (count < 9) v = v * 10 + (text[i] - '0');  // the fraction's value is not needed
+      ++i;
       ++count;
     }
     if (count < min_count) bad();
