@@ -55,6 +55,8 @@ for s in "$crowd"/tiles/tile_*/align/align.summary.json; do
   seed fuzz_align_summary "$(basename "$(dirname "$(dirname "$s")")").json" < "$s"
 done
 seed fuzz_align_summary untiled.json < "$work/crowd-untiled/align/align.summary.json"
+seed fuzz_aggregate_summary untiled.json < "$work/crowd-untiled/aggregate/aggregate.summary.json"
+seed fuzz_aggregate_summary stitched.json < "$(ls "$crowd"/tiles/tile_*/aggregate/aggregate.summary.json | head -1)"
 drive=$(ls -d "$work"/sim/frames/*/ | head -1)
 seed fuzz_camera_calib calibration.json < "$drive/calibration.json"
 shrink drive-frames "$drive" 6 | seed fuzz_drive_frames drive.txt

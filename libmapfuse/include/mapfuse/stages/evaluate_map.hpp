@@ -2,6 +2,7 @@
 /// @file `evaluate map` (§5, Song et al. 2023): vector map(s) against the ground-truth map,
 /// optionally trajectories of aligned LSMs against the true trajectories. Writes
 /// evaluate.summary.json, evaluate.config.json, evaluate.md and PNG plots (docs/evaluate.md).
+#include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -58,8 +59,13 @@ struct EvaluateMapInputs {
   std::vector<int> traversals;     ///< per map (optional; else read beside the map)
 };
 
+/// Largest number of traversals read from an aggregate summary.
+constexpr int64_t kMaxTraversals = 1000000;
+
 /// @brief Number of traversals behind a map: "inputs.drives" of aggregate.summary.json in the
 /// map's folder when present, else the largest instance support (0 for an empty map).
+/// @throws ParseError naming the summary and the field when inputs.drives is there but is not an
+/// integer in [0, kMaxTraversals]; IoError / ParseError when the summary cannot be read.
 int traversalsOf(const std::filesystem::path& map_file, const VectorMap& map);
 
 /// @brief Runs the evaluation and writes the outputs into `out_dir`. @return the summary.
