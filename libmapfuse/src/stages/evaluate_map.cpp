@@ -8,6 +8,7 @@
 #include "mapfuse/geo/origin.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/document.hpp"
+#include "mapfuse/io/json_view.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/map_png.hpp"
 #include "mapfuse/io/stage_report.hpp"
@@ -99,10 +100,13 @@ nlohmann::json toJson(const EvaluateMapRun& run) {
 int traversalsOf(const std::filesystem::path& map_file, const VectorMap& map) {
   const auto summary = map_file.parent_path() / "aggregate.summary.json";
   if (std::filesystem::exists(summary)) {
-    const auto j = io::readDocument(summary);
-    if (j.contains("inputs") && j["inputs"].contains("drives") &&
-        j["inputs"]["drives"].is_number_integer())
-      return j["inputs"]["drives"].get<int>();
+    // Checked like every reader: a summary that has inputs.drives must hold a count there (it
+    // was narrowed to int unchecked: 4294967301 drives read as 5).
+    const io::Json j = io::readDocument(summary);
+    const io::JsonView doc(j, summary.string());
+    if (const auto inputs = doc.find("inputs"))
+      if (const auto drives = inputs->find("drives"))
+        return static_cast<int>(drives->integer(0, kMaxTraversals));
   }
   int best = 0;
   for (const auto& i : map.instances) best = std::max(best, i.support.drives);
