@@ -7,6 +7,7 @@
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/geo/origin.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_view.hpp"
 #include "mapfuse/io/lsm_io.hpp"
@@ -117,6 +118,7 @@ EvaluateMapRun runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
                               const EvaluateMapParams& params) {
   validateParams(params);
   checkInputs(in);
+  io::OutputTransaction outputs(out_dir);  // locked and writable before the work
   EvaluateMapRun run;
   run.truth = in.truth;
   VectorMap truth = io::readVectorMap(in.truth);
@@ -145,6 +147,7 @@ EvaluateMapRun runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
   writeReport(out_dir, run, last_map, truth);
   io::writeResolvedConfig(out_dir, "evaluate", paramsToJson(params));
   io::writeSummary(out_dir, "evaluate", toJson(run));
+  outputs.commit();
   MAPFUSE_INFO("evaluate map: " << run.maps.size() << " map(s), " << run.trajectories.size()
                                 << " trajectories -> " << out_dir.string());
   return run;
