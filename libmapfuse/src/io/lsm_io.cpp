@@ -1,5 +1,8 @@
 #include "mapfuse/io/lsm_io.hpp"
 
+#include "lsm_cbor.hpp"
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
 
@@ -161,11 +164,22 @@ Lsm lsmFromJson(const Json& doc, const std::string& file) {
 }
 
 Lsm readLsm(const std::filesystem::path& path) {
+  // CBOR: the fast codec (lsm_cbor.hpp); whatever it declines, the general path judges.
+  if (encodingOf(path) == Encoding::kCbor) {
+    const std::string bytes = readBytes(path);
+    if (std::optional<Lsm> lsm = detail::decodeLsmCbor(bytes)) {
+      validateLsm(*lsm, path.string());
+      return std::move(*lsm);
+    }
+  }
   return lsmFromJson(readDocument(path), path.string());
 }
 
 void writeLsm(const std::filesystem::path& path, const Lsm& lsm) {
-  writeDocument(path, lsmToJson(lsm));
+  if (encodingOf(path) == Encoding::kCbor)
+    writeBytesAtomic(path, detail::encodeLsmCbor(lsm));  // the bytes of to_cbor(lsmToJson(lsm))
+  else
+    writeDocument(path, lsmToJson(lsm));
 }
 
 }  // namespace mapfuse::io
