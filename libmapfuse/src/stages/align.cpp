@@ -47,7 +47,7 @@ void AlignParams::validate() const {
   requireParam(gba_max_partners >= 0, st, "gba_max_partners", gba_max_partners, ">= 0");
   requireParam(gba_dof == 4 || gba_dof == 6, st, "gba_dof", gba_dof, "4 or 6");
   requireParam(gba_line_stride >= 1, st, "gba_line_stride", gba_line_stride, ">= 1");
-  requireParam(gba_cg_iterations >= 0, st, "gba_cg_iterations", gba_cg_iterations, ">= 0");
+  requireParam(pcg_iterations >= 1, st, "pcg_iterations", pcg_iterations, ">= 1");
   requireParam(gba_early_round_tolerance > 0 && gba_early_round_tolerance < 1, st,
                "gba_early_round_tolerance", gba_early_round_tolerance, "in (0, 1)");
   requireParam(function_tolerance > 0 && function_tolerance < 1, st, "function_tolerance",
@@ -89,7 +89,7 @@ fusion::AlignSettings AlignParams::settings() const {
   s.gba_max_partners = gba_max_partners;
   s.gba_dof = gba_dof;
   s.gba_line_stride = gba_line_stride;
-  s.gba_cg_iterations = gba_cg_iterations;
+  s.pcg_iterations = pcg_iterations;
   s.gba_early_round_tolerance = gba_early_round_tolerance;
   s.function_tolerance = function_tolerance;
   s.solver_iterations = solver_iterations;
@@ -102,7 +102,9 @@ nlohmann::json alignInPlace(std::vector<Lsm>& lsms, const fusion::AlignSettings&
   auto since = [](Clock::time_point t) {
     return std::chrono::duration<double>(Clock::now() - t).count();
   };
-  const std::vector<Lsm> priors = lsms;
+  // The georeferenced keyframes (GPS priors and odometry of eq. (9)-(10)); elements not copied.
+  std::vector<Lsm> priors(lsms.size());
+  for (std::size_t i = 0; i < lsms.size(); ++i) priors[i].keyframes = lsms[i].keyframes;
   nlohmann::json sum;
   auto t = Clock::now();
   std::vector<fusion::InterConstraint> cs = fusion::registerSubmaps(lsms, s);
@@ -111,16 +113,23 @@ nlohmann::json alignInPlace(std::vector<Lsm>& lsms, const fusion::AlignSettings&
   const int kept = fusion::pcmSelect(lsms, cs, s);
   sum["seconds_pcm"] = since(t);
   t = Clock::now();
-  bool conv = false;
-  sum["cost_pose_graph"] = fusion::solveMultiPoseGraph(lsms, priors, cs, s, &conv);
-  sum["converged_pose_graph"] = conv;
+  const fusion::GraphSolve pg = fusion::solveMultiPoseGraph(lsms, priors, cs, s);
+  bool conv = pg.converged;
+  sum["cost_pose_graph"] = pg.cost;
+  sum["converged_pose_graph"] = pg.converged;
+  sum["pose_graph_solves"] = pg.rounds;
+  sum["pose_graph_iterations"] = pg.iterations;
+  sum["pose_graph_pcg_iterations"] = pg.pcg_iterations;
   sum["seconds_pose_graph"] = since(t);
   if (s.method == fusion::AlignMethod::kGbaSgicp) {
     t = Clock::now();
-    int residuals = 0;
-    sum["cost_gba"] = fusion::solveGba(lsms, priors, s, &residuals, &conv);
-    sum["gba_residuals"] = residuals;
-    sum["converged_gba"] = conv;
+    const fusion::GraphSolve g = fusion::solveGba(lsms, priors, s);
+    conv = g.converged;
+    sum["cost_gba"] = g.cost;
+    sum["gba_residuals"] = g.residuals;
+    sum["converged_gba"] = g.converged;
+    sum["gba_iterations"] = g.iterations;
+    sum["gba_pcg_iterations"] = g.pcg_iterations;
     sum["seconds_gba"] = since(t);
   }
   int accepted = 0, graph_outliers = 0;

@@ -16,7 +16,7 @@ struct AlignParams {
   double submap_length = 60.0;
   double min_overlap = 0.3;
   double overlap_radius = 4.0;
-  int max_partners = 4;
+  int max_partners = 2;
   std::string partner_choice = "spread";
   double coarse_radius = 8.0;
   double coarse_bin = 0.5;
@@ -25,7 +25,7 @@ struct AlignParams {
   double min_fitness = 0.3;
   double max_rmse = 0.5;
   double min_information = 10.0;
-  int max_iterations = 30;
+  int max_iterations = 12;
   double pcm_gate = 16.81;
   int pcm_exact_max = 40;
   double odom_sigma_per_m = 0.01;
@@ -43,10 +43,10 @@ struct AlignParams {
   int gba_max_partners = 2;
   int gba_dof = 4;
   int gba_line_stride = 2;
-  int gba_cg_iterations = 50;
-  double gba_early_round_tolerance = 1e-3;
+  int pcg_iterations = 50;
+  double gba_early_round_tolerance = 1e-2;
   int solver_iterations = 100;
-  double function_tolerance = 1e-3;
+  double function_tolerance = 1e-2;
   int threads = 2;
 
   template <class V>
@@ -88,8 +88,8 @@ struct AlignParams {
       "GBA pose freedom: 4 (x, y, z, yaw; roll and pitch held from georef) or 6");
     v("gba_line_stride", gba_line_stride, "",
       "GBA uses every n-th point of a line element, weighted by sqrt(n)");
-    v("gba_cg_iterations", gba_cg_iterations, "",
-      "GBA linear solves: conjugate gradients (at most n iterations), 0 = sparse Cholesky");
+    v("pcg_iterations", pcg_iterations, "",
+      "conjugate-gradient iterations per Levenberg-Marquardt step (pose graph and GBA)");
     v("gba_early_round_tolerance", gba_early_round_tolerance, "",
       "LM stop (relative cost change) of the GBA rounds before the last");
     v("solver_iterations", solver_iterations, "", "Levenberg-Marquardt iterations per solve");
