@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <map>
 
 #include "mapfuse/aggregate/aggregator.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
@@ -196,4 +197,29 @@ TEST_CASE("collecting observations rejects odom LSMs and mixed origins", "[aggre
   w.lsms[0].frame = LsmFrame::kOdom;
   CHECK_THROWS_AS(collectObservations(w.lsms, {"a.cbor", "b.cbor"}), InputError);
   CHECK_THROWS_AS(collectObservations({}, {}), InputError);
+}
+
+TEST_CASE("stage-1 comparisons per lane piece do not grow with the drives", "[aggregate][lanes]") {
+  // With every piece compared with every other of its tile, the comparisons per piece grow as the
+  // drives (O(n^2) per place). Compared with pieces of at most partner_drives other drives they
+  // stay bounded, and the map keeps its three lines on the truth.
+  std::map<int, double> per_piece;
+  for (int drives : {6, 30}) {
+    test::SynthOptions o = lanesOnly();
+    o.drives = drives;
+    const auto [w, map, stats] = aggregateLanes(o);
+    per_piece[drives] = double(stats.lanes.comparisons) / double(stats.lanes.pieces);
+    WARN(drives << " drives: " << stats.lanes.comparisons << " comparisons for "
+                << stats.lanes.pieces << " pieces");
+    const auto lanes = ofClass(map, CrowdClass::kLaneLine);
+    CHECK(lanes.size() == 3);
+    for (const auto* l : lanes)
+      for (const auto& p : l->points)
+        CHECK(distanceToTruth(p, w.truth, CrowdClass::kLaneLine) < kLanePointTolerance);
+  }
+  // a piece tests the pieces of its own and partner_drives other drives whose boxes meet its own
+  // (the same line and, in tiles where lines run diagonally, its neighbours: 3 at most)
+  const int k = AggregatorParams{}.lanes.partner_drives;
+  CHECK(per_piece[30] <= 3.0 * (k + 1));
+  CHECK(per_piece[30] <= 1.3 * per_piece[6]);
 }

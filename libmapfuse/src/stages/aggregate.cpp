@@ -42,6 +42,7 @@ void AggregateParams::validate() const {
                "stop_line_radius > 0");
   requireParam(discrete_min_pts >= 1, s, "discrete_min_pts", discrete_min_pts,
                "discrete_min_pts >= 1");
+  requireParam(partner_drives >= 0, s, "partner_drives", partner_drives, "partner_drives >= 0");
   requireParam(coordinate_quantum >= 0, s, "coordinate_quantum", coordinate_quantum,
                "coordinate_quantum >= 0");
   requireParam(png_resolution > 0, s, "png_resolution", png_resolution, "png_resolution > 0");
@@ -68,6 +69,8 @@ aggregate::AggregatorParams AggregateParams::toAggregator() const {
   p.discrete.point_radius = point_radius;
   p.discrete.stop_line_radius = stop_line_radius;
   p.discrete.min_pts = discrete_min_pts;
+  p.discrete.partner_drives = partner_drives;
+  p.lanes.partner_drives = partner_drives;
   return p;
 }
 
@@ -91,12 +94,15 @@ double coveredRoadKm(const std::vector<Lsm>& lsms, double tolerance) {
         bool known = false;
         const int64_t ix = int64_t(std::floor(s.x() / tolerance));
         const int64_t iy = int64_t(std::floor(s.y() / tolerance));
-        for (int64_t dx = -1; dx <= 1 && !known; ++dx)
-          for (int64_t dy = -1; dy <= 1 && !known; ++dy) {
-            auto range = accepted.equal_range(((ix + dx) << 32) ^ ((iy + dy) & 0xffffffffLL));
-            for (auto it = range.first; it != range.second && !known; ++it)
-              known = (it->second - s).head<2>().norm() <= tolerance;
-          }
+        // The sample's own cell first: with many drives on a road its first sample there already
+        // answers (the other cells may hold hundreds of samples farther than the tolerance).
+        for (int c = 0; c < 9 && !known; ++c) {
+          const int64_t dx = c == 0 ? 0 : (c - 1) % 3 - 1, dy = c == 0 ? 0 : (c - 1) / 3 - 1;
+          if (c > 0 && dx == 0 && dy == 0) continue;
+          auto range = accepted.equal_range(((ix + dx) << 32) ^ ((iy + dy) & 0xffffffffLL));
+          for (auto it = range.first; it != range.second && !known; ++it)
+            known = (it->second - s).head<2>().norm() <= tolerance;
+        }
         if (!known) metres += step;
       }
     }
@@ -155,6 +161,7 @@ nlohmann::json runAggregate(const std::vector<std::string>& inputs,
       {"classes", per_class},
       {"lane_instantiation",
        {{"pieces", stats.lanes.pieces},
+        {"comparisons", stats.lanes.comparisons},
         {"noise_pieces", stats.lanes.noise_pieces},
         {"fragments", stats.lanes.fragments},
         {"links", stats.lanes.links},

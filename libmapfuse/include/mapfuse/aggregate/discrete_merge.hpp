@@ -18,6 +18,7 @@ struct DiscreteMergeParams {
   double stop_line_radius = 1.5;    ///< m, stop lines: eps on midpoint distance
   double stop_line_angle_deg = 20;  ///< deg, stop lines: largest direction difference
   int min_pts = 3;                  ///< DBSCAN MinPts (capped by the number of drives)
+  int partner_drives = 4;  ///< an element is compared with those of <= this many other drives
 };
 
 /// @brief Four corners of an oriented rectangle fitted to a planar element (its own 4 points

@@ -36,6 +36,7 @@ struct LaneInstantiationParams {
   int link_min_pts = 1;              ///< stage-2 MinPts
   int link_max_pts = 2;              ///< stage-2 MaxPts (|N_eps| counts the end itself)
   double min_instance_length = 3.0;  ///< m, shorter instances are dropped
+  int partner_drives = 4;  ///< stage 1: a piece is compared with those of <= this many drives
 };
 
 /// One lane-line instance before vectorization.
@@ -47,6 +48,7 @@ struct LaneInstance {
 
 struct LaneInstantiationStats {
   std::size_t pieces = 0;         ///< observation pieces after tiling
+  std::size_t comparisons = 0;    ///< stage-1 overlap tests (pairs of pieces with touching boxes)
   std::size_t noise_pieces = 0;   ///< dropped by stage 1
   std::size_t fragments = 0;      ///< stage-1 clusters (after merging split ones)
   std::size_t links = 0;          ///< stage-2 links

@@ -36,6 +36,7 @@ struct AggregateParams {
   double point_radius = 1.0;      ///< m
   double stop_line_radius = 1.5;  ///< m
   int discrete_min_pts = 3;
+  int partner_drives = 4;
   // outputs
   /// m; a power of two (1/256 m) makes every rounded coordinate exact in float32, which the
   /// CBOR writer then stores in 5 bytes instead of 9 (up to ±65 km from the origin)
@@ -65,6 +66,8 @@ struct AggregateParams {
     v("point_radius", point_radius, "m", "poles/lights: DBSCAN eps on 3D distance");
     v("stop_line_radius", stop_line_radius, "m", "stop lines: DBSCAN eps on midpoint distance");
     v("discrete_min_pts", discrete_min_pts, "", "discrete MinPts (capped by the number of drives)");
+    v("partner_drives", partner_drives, "",
+      "DBSCAN compares an observation with those of at most this many other drives (0 = all)");
     v("coordinate_quantum", coordinate_quantum, "m",
       "rounding of the CBOR map coordinates (power of two: float32 in CBOR)");
     v("png_resolution", png_resolution, "m/px", "top-down picture resolution");
