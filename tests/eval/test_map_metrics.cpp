@@ -4,6 +4,7 @@
 
 #include "mapfuse/eval/error_stats.hpp"
 #include "mapfuse/eval/map_metrics.hpp"
+#include "mapfuse/stages/evaluate_map.hpp"
 
 using namespace mapfuse;
 using namespace mapfuse::eval;
@@ -217,6 +218,26 @@ TEST_CASE("the coverage wedge follows the camera's field of view and reach", "[e
   CHECK_FALSE(seen(22.5, 0));  // beyond the reach
   CHECK(seen(20.5, 11.9));
   CHECK_FALSE(seen(21, 12.5));  // wider than the lateral limit
+}
+
+TEST_CASE("the coverage wedge opens at the camera, not at the body origin", "[eval][map]") {
+  // The simulated camera sits 1.8 m ahead of the body origin (sim::CameraParams::x): its field of
+  // view at 10 m ahead of the body reaches (10 - 1.8) tan 31 deg = 4.9 m to the side, not 6.0 m.
+  // With the apex at the body origin the truth counted the ends of crossing roads' stop lines
+  // the camera never had in its image (0.3-0.5 m visible, 1.3-1.6 m scored) as missed.
+  const Pose3 pose = Pose3::Identity();
+  const CoverageWedge wedge{12.0, 22.0, 31.0 * M_PI / 180.0,
+                            stages::EvaluateMapParams{}.coverage_apex_x};
+  REQUIRE(wedge.apex_x == Approx(1.8));
+  auto seen = [&](double ahead, double left) {
+    VectorMap t;
+    t.instances = {inst(1, CrowdClass::kPole, {{ahead, left, 0}}, 6)};
+    return clipToCoverage(t, {pose}, wedge).instances.size() == 1;
+  };
+  CHECK(seen(10, 4.8));
+  CHECK_FALSE(seen(10, 5.0));
+  CHECK_FALSE(seen(1.5, 0));  // behind the camera
+  CHECK(seen(2.0, 0));
 }
 
 TEST_CASE("map elements of true elements outside the scored scope count neither way",

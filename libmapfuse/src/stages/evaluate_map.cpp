@@ -30,6 +30,8 @@ void EvaluateMapParams::validate() const {
   requireParam(coverage_range > 0, s, "coverage_range", coverage_range, "coverage_range > 0");
   requireParam(coverage_half_fov_deg > 0 && coverage_half_fov_deg <= 90, s, "coverage_half_fov_deg",
                coverage_half_fov_deg, "0 < coverage_half_fov_deg <= 90");
+  requireParam(coverage_apex_x >= 0 && coverage_apex_x < coverage_range, s, "coverage_apex_x",
+               coverage_apex_x, "0 <= coverage_apex_x < coverage_range");
   requireParam(rpe_distance > 0, s, "rpe_distance", rpe_distance, "rpe_distance > 0");
 }
 
@@ -45,7 +47,8 @@ eval::MapEvalParams EvaluateMapParams::toEval() const {
 }
 
 eval::CoverageWedge EvaluateMapParams::coverageWedge() const {
-  return eval::CoverageWedge{coverage_radius, coverage_range, coverage_half_fov_deg * M_PI / 180.0};
+  return eval::CoverageWedge{coverage_radius, coverage_range, coverage_half_fov_deg * M_PI / 180.0,
+                             coverage_apex_x};
 }
 
 int traversalsOf(const std::filesystem::path& map_file, const VectorMap& map) {

@@ -50,12 +50,13 @@ VectorMap inOrigin(const VectorMap& map, const geo::GeoOrigin& origin);
 MapMetrics evaluateMap(const VectorMap& map, const VectorMap& truth, const MapEvalParams& params,
                        const VectorMap* unscored = nullptr);
 
-/// What a forward camera at a pose sees of the ground: body x in [0, range], |y| <= lateral and
-/// |y| <= x tan(half_fov).
+/// What a forward camera at a pose sees of the ground: body x in [apex_x, range], |y| <= lateral
+/// and |y| <= (x - apex_x) tan(half_fov), the apex at the camera.
 struct CoverageWedge {
   double lateral = 12.0;    ///< m
   double range = 22.0;      ///< m
   double half_fov = 0.541;  ///< rad (31 deg); >= pi/2: everything ahead
+  double apex_x = 0.0;      ///< m, the camera ahead of the body origin
 };
 
 /// @brief The part of a truth map that forward-looking drives could observe: lane lines cut to

@@ -23,6 +23,7 @@ struct EvaluateMapParams {
   double coverage_radius = 12.0;          ///< m, 0 = evaluate against the whole truth
   double coverage_range = 22.0;           ///< m, forward reach of the coverage wedge
   double coverage_half_fov_deg = 31.0;    ///< deg, half opening of the coverage wedge
+  double coverage_apex_x = 1.8;           ///< m, the wedge's apex (camera) ahead of the body
 
   template <class V>
   void visit(V& v) {
@@ -43,6 +44,9 @@ struct EvaluateMapParams {
     v("coverage_half_fov_deg", coverage_half_fov_deg, "deg",
       "with --truth-trajectories: half opening of the seen wedge ahead of a true pose (the "
       "camera's field of view; 90 = everything ahead)");
+    v("coverage_apex_x", coverage_apex_x, "m",
+      "with --truth-trajectories: the wedge's apex, the camera, this far ahead of the body "
+      "origin (the simulator's mount)");
   }
   /// @throws ConfigError naming the field, the value and the rule.
   void validate() const;
