@@ -14,9 +14,11 @@
 
 #include "mapfuse/aggregate/dbscan.hpp"
 #include "partner_drives.hpp"
+#include "stop_line_merge.hpp"
 
 namespace mapfuse::aggregate {
 using detail::partnerDrives;
+using detail::stopLineDistance;
 namespace {
 
 namespace bg = boost::geometry;
@@ -128,7 +130,10 @@ std::vector<MapInstance> mergeDiscrete(const std::vector<Observation>& items,
                                                           : p.point_radius;
   std::vector<BoxValue> boxes(n);
   for (std::size_t i = 0; i < n; ++i)
-    boxes[i] = {by_iou ? boxAround(geom[i], 0.0) : boxAround({centre[i]}, radius), i};
+    boxes[i] = {by_iou      ? boxAround(geom[i], 0.0)
+                : stop_line ? boxAround(geom[i], radius)  // a piece's midpoint on the segment
+                            : boxAround({centre[i]}, radius),
+                i};
   const bgi::rtree<BoxValue, bgi::rstar<16>> tree(boxes.begin(), boxes.end());
   const double cos_max = std::cos(p.stop_line_angle_deg * M_PI / 180.0);
   // Neighbours among the candidates of at most `partner_drives` other drives
@@ -157,7 +162,9 @@ std::vector<MapInstance> mergeDiscrete(const std::vector<Observation>& items,
         if (by_iou) {
           near = polygonIou2d(geom[i], geom[j]) >= p.min_iou;
         } else {
-          near = (centre[i] - centre[j]).norm() <= radius;
+          near = stop_line ? stopLineDistance({geom[i][0], geom[i][1]}, {geom[j][0], geom[j][1]}) <=
+                                 radius
+                           : (centre[i] - centre[j]).norm() <= radius;
           if (near && stop_line) {
             const Vec3 di = (geom[i][1] - geom[i][0]).normalized();
             const Vec3 dj = (geom[j][1] - geom[j][0]).normalized();
@@ -214,6 +221,18 @@ std::vector<MapInstance> mergeDiscrete(const std::vector<Observation>& items,
     }
     for (auto& c : acc) c /= wsum;
     inst.points = acc;
+    if (stop_line) {  // whole and partial observations (stop_line_merge.hpp)
+      std::vector<detail::Segment> segs;
+      std::vector<double> ws;
+      std::size_t r = 0;
+      for (std::size_t i : mem) {
+        if (i == ref) r = segs.size();
+        segs.push_back({geom[i][0], geom[i][1]});
+        ws.push_back(std::max(items[indices[i]].confidence, 1e-3));
+      }
+      const detail::Segment m = detail::mergeStopLines(segs, ws, r);
+      inst.points = {m[0], m[1]};
+    }
     if (kind == GeometryKind::kPoint) inst.height = height / wsum;
     inst.support.drives = int(drives.size());
     inst.attributes.style = majority(styles, LineStyle::kNone);

@@ -64,7 +64,8 @@ struct AggregateParams {
     v("min_iou", min_iou, "", "arrows/crosswalks: DBSCAN eps as 1 - IoU <= 1 - min_iou");
     v("sign_radius", sign_radius, "m", "traffic signs: DBSCAN eps on 3D distance");
     v("point_radius", point_radius, "m", "poles/lights: DBSCAN eps on 3D distance");
-    v("stop_line_radius", stop_line_radius, "m", "stop lines: DBSCAN eps on midpoint distance");
+    v("stop_line_radius", stop_line_radius, "m",
+      "stop lines: DBSCAN eps on the distance of a midpoint to the other line");
     v("discrete_min_pts", discrete_min_pts, "", "discrete MinPts (capped by the number of drives)");
     v("partner_drives", partner_drives, "",
       "DBSCAN compares an observation with those of at most this many other drives (0 = all)");
