@@ -2,7 +2,7 @@
 /// docs/aggregate.md). Prints the map size figures as JSON on stdout.
 #include <iostream>
 
-#include "mapfuse/core/cli.hpp"
+#include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/aggregate.hpp"
 
 int main(int argc, char** argv) {

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "mapfuse/core/cli.hpp"
+#include "mapfuse/cli/app.hpp"
 
 int main(int argc, char** argv) {
   using namespace mapfuse;

@@ -3,7 +3,7 @@
 #include <iomanip>
 #include <iostream>
 
-#include "mapfuse/core/cli.hpp"
+#include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/info.hpp"
 
 int main(int argc, char** argv) {

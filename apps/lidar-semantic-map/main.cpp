@@ -3,7 +3,7 @@
 // fits the per-label cluster classifiers from drives with labels/<frame>.label files.
 #include <iostream>
 
-#include "mapfuse/core/cli.hpp"
+#include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/lidar_semantic_map.hpp"
 
 int main(int argc, char** argv) {

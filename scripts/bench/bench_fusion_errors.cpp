@@ -7,7 +7,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "mapfuse/core/cli.hpp"
+#include "mapfuse/cli/app.hpp"
 #include "mapfuse/fusion/truth_errors.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/lsm_io.hpp"

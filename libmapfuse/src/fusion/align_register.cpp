@@ -13,24 +13,6 @@
 
 namespace mapfuse::fusion {
 
-std::optional<AlignMethod> alignMethodFromName(const std::string& n) {
-  if (n == "icp") return AlignMethod::kIcp;
-  if (n == "sicp") return AlignMethod::kSicp;
-  if (n == "sgicp") return AlignMethod::kSgicp;
-  if (n == "gba_sgicp") return AlignMethod::kGbaSgicp;
-  return std::nullopt;
-}
-
-const char* alignMethodName(AlignMethod m) {
-  switch (m) {
-    case AlignMethod::kIcp: return "icp";
-    case AlignMethod::kSicp: return "sicp";
-    case AlignMethod::kSgicp: return "sgicp";
-    case AlignMethod::kGbaSgicp: return "gba_sgicp";
-  }
-  return "?";
-}
-
 namespace {
 constexpr int kSourceSolidStride = 2;
 }  // namespace

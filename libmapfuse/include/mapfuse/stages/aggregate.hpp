@@ -9,7 +9,7 @@
 
 #include "mapfuse/aggregate/aggregator.hpp"
 #include "mapfuse/core/lsm.hpp"
-#include "mapfuse/core/params.hpp"
+#include "mapfuse/cli/params.hpp"
 
 namespace mapfuse::stages {
 

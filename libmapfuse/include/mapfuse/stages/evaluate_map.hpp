@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "mapfuse/core/params.hpp"
+#include "mapfuse/cli/params.hpp"
 #include "mapfuse/eval/map_metrics.hpp"
 
 namespace mapfuse::stages {

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mapfuse/core/params.hpp"
+#include "mapfuse/cli/params.hpp"
 
 namespace mapfuse::stages {
 

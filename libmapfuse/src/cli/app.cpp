@@ -1,4 +1,4 @@
-#include "mapfuse/core/cli.hpp"
+#include "mapfuse/cli/app.hpp"
 
 #include <fstream>
 #include <iostream>
@@ -21,6 +21,13 @@ void applyCommonOptions(const CommonOptions& common) {
     setLogLevel(LogLevel::kDebug);
   else
     setLogLevel(LogLevel::kInfo);
+}
+
+std::string optionHelp(const char* help, const char* unit, const std::string& rule) {
+  std::string text = help;
+  if (unit && *unit) text += " [" + std::string(unit) + "]";
+  if (!rule.empty()) text += " (" + rule + ")";
+  return text;
 }
 
 std::string optionName(const char* key) {
