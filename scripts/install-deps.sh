@@ -13,6 +13,7 @@ PACKAGES=(
   libopenmpi-dev
   gdal-bin snakemake
   slurmctld slurmd slurm-client munge
+  gnuplot-nox
 )
 
 missing=()
