@@ -26,6 +26,11 @@ def fmt(v, spec):
 def main(rows_file, md, png):
     rows = [json.loads(l) for l in open(rows_file) if l.strip()]
     untiled = [r for r in rows if not r["tile"]]
+    by = {r["name"]: r for r in rows}
+    for r in rows:  # stitch reports no size: a tiled run covers the road of its untiled twin
+        twin = by.get(r["name"].replace("-tiled", ""))
+        if r["road_km"] is None and twin:
+            r["road_km"] = twin["road_km"]
     lines = [BEGIN, "## Issue 18: 50 and 100 traversals, 2 to 20 km of road", "",
              "Produced by `scripts/bench/bench_chain_scale.sh` (one command; `NICE=10` to run the"
              " chain niced, rows as arguments `KM:TRAVERSALS` to rerun some of them). Per row:"
