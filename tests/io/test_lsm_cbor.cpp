@@ -2,6 +2,7 @@
 // the same bytes out, the same LSM in, and every file it declines still judged by the general
 // reader.
 #include <catch2/catch.hpp>
+#include <limits>
 #include <random>
 
 #include "fixtures.hpp"
@@ -88,8 +89,8 @@ Lsm bigLsm() {
   Element e = lsm.elements[0];
   e.points_body.clear();
   e.covariances.clear();
-  for (int i = 0; i < 300; ++i) {  // 2-byte array length
-    e.points_body.push_back({n01(rng), -1.5, 1e9 * n01(rng)});
+  for (int i = 0; i < 300; ++i) {                               // 2-byte array length
+    e.points_body.push_back({n01(rng), -1.5, 1e3 * n01(rng)});  // within 1e4 m of the anchor
     e.covariances.push_back(Eigen::Vector3d(0.01, 0.02, 0.0).asDiagonal());  // PSD, singular
   }
   e.id = -123456789;
@@ -160,6 +161,29 @@ TEST_CASE("CBOR the fast reader declines is still read or refused as before", "[
     d["elements"][1]["height"] = nullptr;
     io::writeDocument(dir / "n.cbor", d);
     CHECK(io::readLsm(dir / "n.cbor").elements[1].height == 0.0);
+  }
+  SECTION("values out of range are left to the general reader") {
+    // an observation count that wraps when narrowed to int (2^32 + 1 would read as 1)
+    io::Json d = io::lsmToJson(lsm);
+    d["elements"][0]["observations"] = (int64_t(1) << 32) + 1;
+    std::vector<uint8_t> b = nlohmann::json::to_cbor(d);
+    CHECK_FALSE(io::detail::decodeLsmCbor(std::string(b.begin(), b.end())).has_value());
+    // a keyframe 1e8 m from the origin, an element point 1e5 m from its anchor
+    d = io::lsmToJson(lsm);
+    d["keyframes"][0]["pose"]["t"] = {1e8, 0.0, 0.0};
+    b = nlohmann::json::to_cbor(d);
+    CHECK_FALSE(io::detail::decodeLsmCbor(std::string(b.begin(), b.end())).has_value());
+    d = io::lsmToJson(lsm);
+    d["elements"][0]["points"][0] = {0.0, 1e5, 0.0};
+    b = nlohmann::json::to_cbor(d);
+    CHECK_FALSE(io::detail::decodeLsmCbor(std::string(b.begin(), b.end())).has_value());
+    // just inside the bounds the fast path still reads
+    d = io::lsmToJson(lsm);
+    d["elements"][0]["observations"] = std::numeric_limits<int>::max();
+    b = nlohmann::json::to_cbor(d);
+    const auto fast = io::detail::decodeLsmCbor(std::string(b.begin(), b.end()));
+    REQUIRE(fast.has_value());
+    CHECK(fast->elements[0].observations == std::numeric_limits<int>::max());
   }
   SECTION("trailing bytes after the LSM") {
     std::string bytes = nlohmannBytes(lsm);

@@ -260,6 +260,15 @@ void require(bool ok) {
   if (!ok) throw Fallback{};
 }
 
+// Values beyond these go to the general reader, which refuses or accepts them with its own
+// message (main's io/bounds.hpp: kMaxCoordinate for any metric coordinate, kMaxElementRange for
+// body-frame element points).
+constexpr double kMaxCoordinate = 1e7;    // m
+constexpr double kMaxElementRange = 1e4;  // m
+bool within(const Eigen::Vector3d& v, double limit) {
+  return v.cwiseAbs().maxCoeff() <= limit;
+}
+
 Pose3 readPose(Reader& r) {
   Seen seen;
   Eigen::Vector4d q;
@@ -276,7 +285,8 @@ Pose3 readPose(Reader& r) {
       throw Fallback{};
     }
   }
-  require(seen.has(0) && seen.has(1) && std::abs(q.norm() - 1.0) <= 1e-3);
+  require(seen.has(0) && seen.has(1) && std::abs(q.norm() - 1.0) <= 1e-3 &&
+          within(t, kMaxCoordinate));
   Pose3 T = Pose3::Identity();
   T.linear() = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
   T.translation() = t;
@@ -402,7 +412,10 @@ Element readElement(Reader& r) {
     } else if (k == "points") {
       seen.mark(5);
       e.points_body.resize(r.array());
-      for (auto& p : e.points_body) p = r.fixed<3>();
+      for (auto& p : e.points_body) {
+        p = r.fixed<3>();
+        require(within(p, kMaxElementRange));
+      }
     } else if (k == "cov") {
       seen.mark(6);
       e.covariances.resize(r.array());
@@ -410,7 +423,10 @@ Element readElement(Reader& r) {
     } else if (k == "confidence") {
       seen.mark(7), e.confidence = r.number();
     } else if (k == "observations") {
-      seen.mark(8), e.observations = int(r.integer());
+      seen.mark(8);
+      const int64_t o = r.integer();  // checked before narrowing to int
+      require(o >= 1 && o <= std::numeric_limits<int>::max());
+      e.observations = int(o);
     } else if (k == "height") {
       seen.mark(9), e.height = r.number();
     } else if (k == "truth_id") {
