@@ -17,6 +17,7 @@ PACKAGES=(
   # sanitizer runtimes (libclang-rt-14-dev, only recommended by clang-14), OpenMP for clang,
   # llvm-symbolizer for readable sanitizer reports
   clang libclang-rt-14-dev libomp-dev llvm
+  gnuplot-nox
 )
 
 missing=()

@@ -274,3 +274,46 @@ TEST_CASE("simulate: app exit codes", "[sim][app]") {
                          " --traversals 2 --route-length 200 >/dev/null 2>&1") == 0);
   CHECK(fs::exists(dir / "o5" / "simulate.summary.json"));
 }
+
+TEST_CASE("simulate: a stop line whose centre a drive never sees is observed in part", "[sim]") {
+  // A crossing road's stop line while the vehicle turns: its centre stays outside the image, one
+  // end is in view. The visible run is observed once per drive, on the true line; with
+  // partial_stop_line_min_length 0 the drives are as before, every other observation unchanged.
+  constexpr double kOnLine = 0.3;  // m, observed points to their true stop line (noise ~5 cm)
+  auto p = smallParams();
+  p.level = "lsm";
+  p.traversals = 12;
+  p.routes = 1;
+  p.route_length = 2000.0;
+  const auto on = test::tempDir("sim_partial_on"), off = test::tempDir("sim_partial_off");
+  const auto s_on = stages::runSimulate(p, on).summary;
+  p.obs.partial_stop_line_min_length = 0.0;
+  const auto s_off = stages::runSimulate(p, off).summary;
+  CHECK(int(s_off.at("partial_stop_lines")) == 0);
+  REQUIRE(int(s_on.at("partial_stop_lines")) > 0);
+  const VectorMap truth = io::readVectorMap(on / "truth" / "vector_map.json");
+  std::map<int64_t, const MapInstance*> by_id;
+  for (const auto& m : truth.instances) by_id[m.id] = &m;
+  int partial = 0;
+  for (const auto& e : fs::directory_iterator(on / "lsm")) {
+    const Lsm a = io::readLsm(e.path()), b = io::readLsm(off / "lsm" / e.path().filename());
+    REQUIRE(a.elements.size() >= b.elements.size());
+    for (std::size_t i = 0; i < b.elements.size(); ++i)  // the others as they were
+      CHECK(a.elements[i].points_body == b.elements[i].points_body);
+    const auto traj = io::readDocument(on / "truth" / (a.drive_id + ".trajectory.json"));
+    for (std::size_t i = b.elements.size(); i < a.elements.size(); ++i) {
+      const Element& el = a.elements[i];
+      REQUIRE(el.cls == CrowdClass::kStopLine);
+      const Pose3 T = io::readPose(io::JsonView(traj.at("poses").at(el.anchor).at("pose"), "t"));
+      const MapInstance& t = *by_id.at(el.truth_id);
+      std::vector<Eigen::Vector3d> pts;
+      for (const auto& q : el.points_body) pts.push_back(T * q);
+      for (const auto& q : pts) CHECK(sim::distanceToPolyline(t.points, q) < kOnLine);
+      const double length = (pts.back() - pts.front()).head<2>().norm();
+      CHECK(length >= p.obs.partial_stop_line_min_length - kOnLine);
+      CHECK(length < polylineLength(t.points));
+      ++partial;
+    }
+  }
+  CHECK(partial == int(s_on.at("partial_stop_lines")));
+}

@@ -20,10 +20,11 @@ std::vector<Eigen::Vector3d> toRectangle(const std::vector<Eigen::Vector3d>& poi
 double polygonIou2d(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b);
 
 /// @brief Clusters and merges the observations `indices` (all of class `cls`, not lane lines)
-/// into map instances (ids left 0, support filled, geometry per geometryKind(cls)).
+/// into map instances (ids left 0, support filled, geometry per geometryKind(cls)). Each is
+/// compared with those of at most `partner_drives` other drives (0 = all; partner_drives.hpp).
 std::vector<MapInstance> mergeDiscrete(const std::vector<Observation>& items,
                                        const std::vector<std::size_t>& indices, CrowdClass cls,
                                        const DiscreteMergeParams& params, int num_drives,
-                                       std::size_t* noise = nullptr);
+                                       int partner_drives, std::size_t* noise = nullptr);
 
 }  // namespace mapfuse::aggregate

@@ -15,11 +15,14 @@
 #include "lane_fragments.hpp"
 #include "lane_links.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
+#include "line_buffer.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/bounds.hpp"
+#include "partner_drives.hpp"
 #include "polygon_overlap.hpp"
 
 namespace mapfuse::aggregate {
+using detail::partnerDrives;
 namespace {
 
 constexpr double kSimplifyTolerance = 0.02;  // m
@@ -171,9 +174,12 @@ std::vector<Piece> cutObservations(const std::vector<Observation>& items,
 }
 
 // Stage-1 neighbours of every piece (sorted): the pieces of the same tile whose buffered
-// polygons overlap by at least min_overlap_ratio of the smaller one.
-std::vector<std::vector<std::size_t>> overlapNeighbours(const std::vector<Piece>& pieces,
-                                                        const LaneInstantiationParams& p) {
+// polygons overlap by at least min_overlap_ratio of the smaller one. `comparisons_made`
+// receives the number of overlap tests.
+std::vector<std::vector<std::size_t>> overlapNeighbours(const std::vector<Observation>& items,
+                                                        const std::vector<Piece>& pieces,
+                                                        const LaneInstantiationParams& p,
+                                                        std::size_t* comparisons_made) {
   const std::size_t n = pieces.size();
   // the polygons in tile-local coordinates, prepared for the exact overlap area
   std::vector<OverlapPolygon> polys(n);
@@ -182,50 +188,104 @@ std::vector<std::vector<std::size_t>> overlapNeighbours(const std::vector<Piece>
 #pragma omp parallel for schedule(dynamic, 64)
   for (std::ptrdiff_t si = 0; si < std::ptrdiff_t(n); ++si) {
     const std::size_t i = std::size_t(si);
-    const MPoly2 buffered = bufferPiece(pieces[i], p.buffer_width);
-    areas[i] = bg::area(buffered);
-    polys[i] = toOverlapPolygon(buffered, pieces[i].corner);
+    // The buffer ring built directly (line_buffer.hpp); Boost's where that may differ.
+    Line2 simple;
+    bg::simplify(toLine(pieces[i].points), simple, kSimplifyTolerance);
+    std::vector<Eigen::Vector2d> line;
+    for (const auto& q : simple) line.emplace_back(bg::get<0>(q), bg::get<1>(q));
+    if (const auto ring = mitreBuffer(line, p.buffer_width)) {
+      areas[i] = ringArea(*ring);
+      polys[i] = OverlapPolygon({*ring}, pieces[i].corner);
+    } else {
+      const MPoly2 buffered = bufferPiece(pieces[i], p.buffer_width);
+      areas[i] = bg::area(buffered);
+      polys[i] = toOverlapPolygon(buffered, pieces[i].corner);
+    }
     boxes[i] = boxOf(pieces[i].points, p.buffer_width);
   }
-  // candidates: pieces of the same tile whose boxes intersect (touching counts); by_tile lists
-  // the pieces tile by tile, piece i at position rank[i], its tile ending at tile_end[i]
+  // Candidates: pieces of the same tile whose boxes intersect (touching counts), of at most
+  // `partner_drives` other drives per piece (partner_drives.hpp). Tile by tile: a piece's
+  // neighbours all lie in its own tile, so tiles run in parallel without sharing lists.
   std::vector<std::size_t> by_tile(n);
   std::iota(by_tile.begin(), by_tile.end(), std::size_t(0));
-  std::stable_sort(by_tile.begin(), by_tile.end(),
-                   [&](std::size_t a, std::size_t b) { return pieces[a].tile < pieces[b].tile; });
-  std::vector<std::size_t> rank(n), tile_end(n);
+  auto driveOf = [&](std::size_t i) { return items[pieces[i].obs].drive; };
+  std::stable_sort(by_tile.begin(), by_tile.end(), [&](std::size_t a, std::size_t b) {
+    return pieces[a].tile != pieces[b].tile ? pieces[a].tile < pieces[b].tile
+                                            : driveOf(a) < driveOf(b);
+  });
+  std::vector<std::pair<std::size_t, std::size_t>> tiles;  // [begin, end) in by_tile
   for (std::size_t k = 0; k < n;) {
     std::size_t e = k;
     while (e < n && pieces[by_tile[e]].tile == pieces[by_tile[k]].tile) ++e;
-    for (std::size_t r = k; r < e; ++r) rank[by_tile[r]] = r, tile_end[by_tile[r]] = e;
+    tiles.emplace_back(k, e);
     k = e;
   }
-  std::vector<std::vector<std::size_t>> upper(n);  // neighbours j > i
-#pragma omp parallel for schedule(dynamic, 64)
-  for (std::ptrdiff_t si = 0; si < std::ptrdiff_t(n); ++si) {
-    const std::size_t i = std::size_t(si);
-    for (std::size_t r = rank[i] + 1; r < tile_end[i]; ++r) {
-      const std::size_t j = by_tile[r];  // > i: stable order within the tile
-      if (!bg::intersects(boxes[i], boxes[j])) continue;
-      const double smaller = std::min(areas[i], areas[j]);
-      if (smaller <= 0) continue;
-      std::optional<double> inter = intersectionArea(polys[i], polys[j]);
-      if (!inter) {  // degenerate (touching vertices, shared edges): Boost's robust overlay
-        MPoly2 both;
-        bg::intersection(bufferPiece(pieces[i], p.buffer_width),
-                         bufferPiece(pieces[j], p.buffer_width), both);
-        inter = bg::area(both);
+  std::vector<std::vector<std::size_t>> neighbours(n);
+  std::size_t comparisons = 0;
+  auto similar = [&](std::size_t i, std::size_t j, std::size_t& count) {
+    if (!bg::intersects(boxes[i], boxes[j])) return false;
+    ++count;
+    const double smaller = std::min(areas[i], areas[j]);
+    if (smaller <= 0) return false;
+    std::optional<double> inter = intersectionArea(polys[i], polys[j]);
+    if (!inter) {  // degenerate (touching vertices, shared edges): Boost's robust overlay
+      MPoly2 both;
+      bg::intersection(bufferPiece(pieces[i], p.buffer_width),
+                       bufferPiece(pieces[j], p.buffer_width), both);
+      inter = bg::area(both);
+    }
+    return *inter >= p.min_overlap_ratio * smaller;
+  };
+#pragma omp parallel reduction(+ : comparisons)
+  {
+    std::vector<int> present, partners;
+    std::vector<std::pair<std::size_t, std::size_t>> edges;
+#pragma omp for schedule(dynamic, 16)
+    for (std::ptrdiff_t t = 0; t < std::ptrdiff_t(tiles.size()); ++t) {
+      const auto [b, e] = tiles[std::size_t(t)];
+      // the tile's drives and the range of each (by_tile is sorted by drive within a tile)
+      present.clear();
+      std::vector<std::pair<std::size_t, std::size_t>> range;
+      for (std::size_t r = b; r < e; ++r)
+        if (r == b || driveOf(by_tile[r]) != driveOf(by_tile[r - 1])) {
+          present.push_back(driveOf(by_tile[r]));
+          range.emplace_back(r, r + 1);
+        } else {
+          range.back().second = r + 1;
+        }
+      edges.clear();
+      const bool all = p.partner_drives <= 0 || int(present.size()) <= p.partner_drives + 1;
+      for (std::size_t r = b; r < e; ++r) {
+        const std::size_t i = by_tile[r];
+        if (all) {  // every pair once
+          for (std::size_t q = r + 1; q < e; ++q)
+            if (similar(i, by_tile[q], comparisons)) edges.emplace_back(i, by_tile[q]);
+          continue;
+        }
+        const uint64_t offset = uint64_t(driveOf(i)) + uint64_t(pieces[i].tile) * 40503ull;
+        partnerDrives(present, driveOf(i), p.partner_drives, offset, partners);
+        for (int d : partners) {
+          const auto it = std::lower_bound(present.begin(), present.end(), d);
+          const auto [qb, qe] = range[std::size_t(it - present.begin())];
+          for (std::size_t q = qb; q < qe; ++q) {
+            const std::size_t j = by_tile[q];
+            if (j != i && similar(i, j, comparisons))
+              edges.emplace_back(std::min(i, j), std::max(i, j));
+          }
+        }
       }
-      if (*inter >= p.min_overlap_ratio * smaller) upper[i].push_back(j);
+      for (const auto& [i, j] : edges) {
+        neighbours[i].push_back(j);
+        neighbours[j].push_back(i);
+      }
+      for (std::size_t r = b; r < e; ++r) {
+        auto& l = neighbours[by_tile[r]];
+        std::sort(l.begin(), l.end());
+        l.erase(std::unique(l.begin(), l.end()), l.end());
+      }
     }
   }
-  std::vector<std::vector<std::size_t>> neighbours(n);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j : upper[i]) {
-      neighbours[i].push_back(j);
-      neighbours[j].push_back(i);
-    }
-  for (auto& l : neighbours) std::sort(l.begin(), l.end());
+  *comparisons_made = comparisons;
   return neighbours;
 }
 
@@ -257,7 +317,8 @@ LaneInstantiation instantiateLanes(const std::vector<Observation>& items,
 
   // stage 1: buffered polygons, overlap-area similarity, DBSCAN; clusters -> fragments
   const int min_pts = std::max(1, std::min(p.min_pts, num_drives));
-  const DbscanResult clusters = dbscan(overlapNeighbours(pieces, p), min_pts);
+  const DbscanResult clusters =
+      dbscan(overlapNeighbours(items, pieces, p, &result.stats.comparisons), min_pts);
   result.stats.noise_pieces = std::size_t(clusters.num_noise);
   std::vector<Fragment> frags = clusterFragments(pieces, clusters, p);
   mergeSideBySide(frags, p);

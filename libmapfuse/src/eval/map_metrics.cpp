@@ -319,11 +319,12 @@ VectorMap clipToCoverage(const VectorMap& truth, const std::vector<Pose3>& poses
       for (int dy = -1; dy <= 1; ++dy) {
         auto r = grid.equal_range(key(q.x() + dx * cell, q.y() + dy * cell));
         for (auto it = r.first; it != r.second; ++it) {
-          const Eigen::Matrix3d R = it->second->rotation();
+          const Eigen::Matrix3d R = it->second->linear();
           const Vec3 d = q - it->second->translation();
           const double bx = R.col(0).head<2>().dot(d.head<2>()),
                        by = std::abs(R.col(1).head<2>().dot(d.head<2>()));
-          if (bx >= 0 && bx <= wedge.range && by <= wedge.lateral && by <= bx * tan_fov)
+          if (bx >= wedge.apex_x && bx <= wedge.range && by <= wedge.lateral &&
+              by <= (bx - wedge.apex_x) * tan_fov)
             return true;
         }
       }

@@ -1,9 +1,11 @@
 #include "mapfuse/io/lsm_io.hpp"
 
+#include "lsm_cbor.hpp"
 #include "mapfuse/core/error.hpp"
 #include <algorithm>
 #include <cmath>
 
+#include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
 
@@ -187,7 +189,59 @@ Lsm lsmFromJson(const Json& doc, const std::string& file) {
   return lsm;
 }
 
+namespace {
+
+bool within(double x, double lo, double hi) { return x >= lo && x <= hi; }
+
+// The value bounds the general reader checks (docs/formats.md "Value bounds"), on an LSM the
+// fast CBOR codec decoded: when one fails, the general reader reads the file again and refuses
+// it naming the field, so both paths accept exactly the same files.
+bool withinReaderBounds(const Lsm& lsm) {
+  using namespace bounds;
+  for (std::size_t i = 0; i < lsm.keyframes.size(); ++i) {
+    const Keyframe& k = lsm.keyframes[i];
+    if (!within(k.stamp, -kMaxStamp, kMaxStamp)) return false;
+    if (!(k.covariance.cwiseAbs().maxCoeff() <= kMaxVariance)) return false;
+    if (i > 0) {
+      const Keyframe& prev = lsm.keyframes[i - 1];
+      const double step = (k.T_frame_body.translation() - prev.T_frame_body.translation()).norm();
+      if (!(step <= kMaxKeyframeGap + kMaxSpeed * std::max(0.0, k.stamp - prev.stamp)))
+        return false;
+    }
+  }
+  for (const GpsFix& g : lsm.gps)
+    if (!within(g.stamp, -kMaxStamp, kMaxStamp) ||
+        !within(g.position.alt, kMinAltitude, kMaxAltitude) || !within(g.sigma_h, 0, kMaxSigma) ||
+        !within(g.sigma_v, 0, kMaxSigma) || g.sigma_h <= 0 || g.sigma_v <= 0)
+      return false;
+  for (const Element& e : lsm.elements) {
+    double length = 0.0;
+    for (std::size_t i = 0; i < e.points_body.size(); ++i) {
+      if (!(e.points_body[i].cwiseAbs().maxCoeff() <= kMaxElementRange)) return false;
+      if (i > 0) length += (e.points_body[i] - e.points_body[i - 1]).norm();
+    }
+    if (!(length <= kMaxElementLength) || !within(e.confidence, 0, 1) ||
+        !within(e.height, 0, kMaxElementHeight))
+      return false;
+    for (const auto& c : e.covariances)
+      if (!(c.cwiseAbs().maxCoeff() <= kMaxVariance)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 Lsm readLsm(const std::filesystem::path& path) {
+  // CBOR: the fast codec (lsm_cbor.hpp); whatever it declines, or whatever lies outside the
+  // readers' bounds, the general path judges.
+  if (encodingOf(path) == Encoding::kCbor) {
+    const std::string bytes = readBytes(path);
+    std::optional<Lsm> lsm = detail::decodeLsmCbor(bytes);
+    if (lsm && withinReaderBounds(*lsm)) {
+      validateLsm(*lsm, path.string());
+      return std::move(*lsm);
+    }
+  }
   return lsmFromJson(readDocument(path), path.string());
 }
 
@@ -213,7 +267,10 @@ std::vector<Lsm> readLsmInputs(const std::vector<std::string>& files) {
 }
 
 void writeLsm(const std::filesystem::path& path, const Lsm& lsm) {
-  writeDocument(path, lsmToJson(lsm));
+  if (encodingOf(path) == Encoding::kCbor)
+    writeBytesAtomic(path, detail::encodeLsmCbor(lsm));  // the bytes of to_cbor(lsmToJson(lsm))
+  else
+    writeDocument(path, lsmToJson(lsm));
 }
 
 }  // namespace mapfuse::io

@@ -52,6 +52,7 @@ nlohmann::json toJson(const AggregateRun& run) {
           {"classes", per_class},
           {"lane_instantiation",
            {{"pieces", stats.lanes.pieces},
+            {"comparisons", stats.lanes.comparisons},
             {"noise_pieces", stats.lanes.noise_pieces},
             {"fragments", stats.lanes.fragments},
             {"links", stats.lanes.links},

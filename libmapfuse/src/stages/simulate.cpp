@@ -107,6 +107,8 @@ void SimulateParams::validate() const {
                "miss_probability", obs.miss_probability, "within [0, 1)");
   requireParam(obs.false_positives_per_km >= 0.0, kStage, "false_positives_per_km",
                obs.false_positives_per_km, ">= 0");
+  requireParam(obs.partial_stop_line_min_length >= 0.0, kStage, "partial_stop_line_min_length",
+               obs.partial_stop_line_min_length, ">= 0");
   requireParam(frames.pixel_sigma >= 0.0, kStage, "frames_pixel_sigma", frames.pixel_sigma, ">= 0");
 }
 
@@ -194,6 +196,7 @@ SimulateResult runSimulate(const SimulateParams& P, const std::filesystem::path&
     obs_total.elements += obs_stats[i].elements;
     obs_total.false_positives += obs_stats[i].false_positives;
     obs_total.missed += obs_stats[i].missed;
+    obs_total.partial_stop_lines += obs_stats[i].partial_stop_lines;
     frames_total.frames += frame_stats[i].frames;
     frames_total.ground_observations += frame_stats[i].ground_observations;
     frames_total.aerial_observations += frame_stats[i].aerial_observations;
@@ -215,6 +218,7 @@ SimulateResult runSimulate(const SimulateParams& P, const std::filesystem::path&
   summary["observations"] = obs_total.elements;
   summary["false_positives_injected"] = obs_total.false_positives;
   summary["missed_detections"] = obs_total.missed;
+  summary["partial_stop_lines"] = obs_total.partial_stop_lines;
   if (P.level == "frames") {
     summary["frames"] = frames_total.frames;
     summary["frame_ground_observations"] = frames_total.ground_observations;

@@ -16,6 +16,7 @@ namespace mapfuse::aggregate {
 /// What lane instantiation did (stage 1 and stage 2).
 struct LaneInstantiationStats {
   std::size_t pieces = 0;         ///< observation pieces after tiling
+  std::size_t comparisons = 0;    ///< stage-1 overlap tests (pairs of pieces with touching boxes)
   std::size_t noise_pieces = 0;   ///< dropped by stage 1
   std::size_t fragments = 0;      ///< stage-1 clusters (after merging split ones)
   std::size_t links = 0;          ///< stage-2 links

@@ -22,6 +22,9 @@ struct LaneInstantiationParams {
   int link_min_pts = 1;              ///< stage-2 MinPts
   int link_max_pts = 2;              ///< stage-2 MaxPts (|N_eps| counts the end itself)
   double min_instance_length = 3.0;  ///< m, shorter instances are dropped
+  /// an observation is compared with those of at most this many other drives (stage 1, and
+  /// the discrete classes' DBSCAN too): bounded work whatever the number of traversals
+  int partner_drives = 4;
 
   template <class V>
   void visit(V& v) {
@@ -50,6 +53,9 @@ struct LaneInstantiationParams {
       in(1, 1000));
     v.relation("link_max_pts", link_max_pts, link_max_pts >= link_min_pts, ">= link_min_pts");
     v("min_instance_length", min_instance_length, "m", "shorter lane instances are dropped", ge(0));
+    v("partner_drives", partner_drives, "",
+      "DBSCAN compares an observation with those of at most this many other drives (0 = all)",
+      in(0, 1000000));
   }
 };
 
@@ -71,7 +77,7 @@ struct DiscreteMergeParams {
   double min_iou = 0.2;             ///< arrows, crosswalks: eps = 1 - min_iou on 1 - IoU
   double sign_radius = 1.0;         ///< m, traffic signs: eps on 3D centroid distance
   double point_radius = 1.0;        ///< m, poles and lights: eps on 3D base distance
-  double stop_line_radius = 1.5;    ///< m, stop lines: eps on midpoint distance
+  double stop_line_radius = 1.5;    ///< m, stop lines: eps on midpoint-to-segment distance
   double stop_line_angle_deg = 20;  ///< deg, stop lines: largest direction difference
   int min_pts = 3;                  ///< DBSCAN MinPts (capped by the number of drives)
 
@@ -83,7 +89,7 @@ struct DiscreteMergeParams {
     // every element within the radius is a neighbour: the lists grow with its square
     v("sign_radius", sign_radius, "m", "traffic signs: DBSCAN eps on 3D distance", gt(0) & le(20));
     v("point_radius", point_radius, "m", "poles/lights: DBSCAN eps on 3D distance", gt(0) & le(20));
-    v("stop_line_radius", stop_line_radius, "m", "stop lines: DBSCAN eps on midpoint distance",
+    v("stop_line_radius", stop_line_radius, "m", "stop lines: DBSCAN eps on the distance of a midpoint to the other line",
       gt(0) & le(20));
     v("discrete_min_pts", min_pts, "", "discrete MinPts (capped by the number of drives)",
       in(1, 1000000));

@@ -72,12 +72,13 @@ VectorMap inOrigin(const VectorMap& map, const geo::GeoOrigin& origin);
 MapMetrics evaluateMap(const VectorMap& map, const VectorMap& truth, const MapEvalParams& params,
                        const VectorMap* unscored = nullptr);
 
-/// What a forward camera at a pose sees of the ground: body x in [0, range], |y| <= lateral and
-/// |y| <= x tan(half_fov_deg).
+/// What a forward camera at a pose sees of the ground: body x in [apex_x, range], |y| <= lateral
+/// and |y| <= (x - apex_x) tan(half_fov_deg), the apex at the camera.
 struct CoverageWedge {
   double lateral = 12.0;       ///< m; 0: `evaluate map` scores the whole truth
   double range = 22.0;         ///< m
   double half_fov_deg = 31.0;  ///< deg; 90: everything ahead
+  double apex_x = 1.8;         ///< m, the camera ahead of the body origin (the simulator's mount)
 
   template <class V>
   void visit(V& v) {
@@ -95,6 +96,11 @@ struct CoverageWedge {
       "with --truth-trajectories: half opening of the seen wedge ahead of a true pose (the "
       "camera's field of view; 90 = everything ahead)",
       gt(0) & le(90));
+    v("coverage_apex_x", apex_x, "m",
+      "with --truth-trajectories: the wedge's apex, the camera, this far ahead of the body "
+      "origin (the simulator's mount)",
+      ge(0) & le(1000));
+    v.relation("coverage_apex_x", apex_x, apex_x < range, "< coverage_range");
   }
 };
 

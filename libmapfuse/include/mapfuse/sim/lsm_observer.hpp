@@ -32,6 +32,9 @@ struct ObservationParams {
   double correlated_fraction = 0.5;       ///< share of the noise variance common to an element
   double miss_probability = 0.05;         ///< per element and keyframe
   double false_positives_per_km = 5.0;    ///< spurious elements per km driven
+  /// m; a stop line whose centre a drive never sees is observed once, its longest visible run,
+  /// when that is at least this long (0: off, only whole stop lines are observed)
+  double partial_stop_line_min_length = 1.0;
 };
 
 /// The true elements cut into observable pieces, with a grid index.
@@ -59,6 +62,7 @@ struct ObservationStats {
   int elements = 0;  ///< true observations written
   int false_positives = 0;
   int missed = 0;
+  int partial_stop_lines = 0;  ///< stop lines observed only in part (their centre never seen)
 };
 
 struct ObservedDrive {

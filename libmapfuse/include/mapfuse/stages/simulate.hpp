@@ -124,6 +124,9 @@ struct SimulateParams {
       "share of noise variance common to an element");
     v("miss_probability", obs.miss_probability, "", "missed detection probability per element");
     v("false_positives_per_km", obs.false_positives_per_km, "1/km", "spurious elements per km");
+    v("partial_stop_line_min_length", obs.partial_stop_line_min_length, "m",
+      "a stop line whose centre a drive never sees: its visible part at least this long is "
+      "observed (0 = off)");
     v("frames_pixel_sigma", frames.pixel_sigma, "px", "pixel noise of frame observations");
     v("frames_masks", frames.masks, "", "write per-frame PNG masks");
   }
