@@ -6,7 +6,7 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/kitti_calib.hpp"
-#include "mapfuse/stages/lsm_build_inputs.hpp"
+#include "mapfuse/stages/lsm_build.hpp"
 #include "sim_fixture.hpp"
 #include "support/test_support.hpp"
 
@@ -44,7 +44,7 @@ TEST_CASE("lsm-build: a T_world_velo poses file (poses_frame velo) equals its T_
   writePoses(dir / "velo.txt", velo);
 
   stages::LsmBuildParams p;
-  p.model = model.string();
+  p.perception.model = model.string();
   p.kitti_last_frame = 1;
   p.egomotion = "poses";
   stages::LsmBuildInputs in;

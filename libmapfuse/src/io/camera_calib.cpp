@@ -8,13 +8,13 @@
 
 namespace mapfuse::io {
 
-vehicle::CameraCalib readCameraCalib(const std::filesystem::path& path) {
+CameraCalib readCameraCalib(const std::filesystem::path& path) {
   const Json doc = readDocument(path);
   const JsonView v(doc, path.string());
   v.checkFormat(kCameraCalibFormat, 1);
   v.onlyKeys({"format", "version", "K", "width", "height", "distortion", "T_body_cam",
               "camera_height", "ground_normal_cam"});
-  vehicle::CameraCalib c;
+  CameraCalib c;
   const Eigen::VectorXd k = v.at("K").vector(9);
   c.K = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(k.data());
   if (!(c.K(0, 0) > 0.0 && c.K(1, 1) > 0.0)) v.at("K").fail("focal lengths must be positive");
@@ -40,13 +40,12 @@ vehicle::CameraCalib readCameraCalib(const std::filesystem::path& path) {
   return c;
 }
 
-vehicle::CameraCalib readKittiCameraCalib(const std::filesystem::path& date_dir,
-                                          double camera_height) {
+CameraCalib readKittiCameraCalib(const std::filesystem::path& date_dir, double camera_height) {
   if (!(camera_height > 0.0))
     throw InputError("KITTI camera height must be positive (got " + std::to_string(camera_height) +
                      ")");
   const KittiCalibration kc = readKittiCalibration(date_dir);
-  vehicle::CameraCalib c;
+  CameraCalib c;
   c.K = kc.P_rect_02.leftCols<3>();
   c.width = kc.image_width;
   c.height = kc.image_height;
@@ -60,7 +59,7 @@ vehicle::CameraCalib readKittiCameraCalib(const std::filesystem::path& date_dir,
     const Pose3 T_cam_imu = T_rect2_rect0 * c.T_posecam_velo * kc.T_velo_imu;
     c.T_body_cam = T_cam_imu.inverse();
   } else {
-    c.T_body_cam.linear() = vehicle::levelCameraToBodyRotation();
+    c.T_body_cam.linear() = levelCameraToBodyRotation();
   }
   c.ground.height = camera_height;
   c.ground.normal_cam = (c.T_body_cam.linear().transpose() * Eigen::Vector3d::UnitZ()).normalized();
