@@ -4,6 +4,7 @@
 
 #include "mapfuse/eval/error_stats.hpp"
 #include "mapfuse/eval/map_metrics.hpp"
+#include "mapfuse/geo/origin.hpp"
 
 using namespace mapfuse;
 using namespace mapfuse::eval;

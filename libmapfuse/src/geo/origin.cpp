@@ -10,11 +10,6 @@
 
 namespace mapfuse::geo {
 
-bool isValid(const LatLonAlt& p) {
-  return std::isfinite(p.lat) && std::isfinite(p.lon) && std::isfinite(p.alt) &&
-         std::abs(p.lat) <= 90.0 && std::abs(p.lon) <= 180.0;
-}
-
 std::optional<LatLonAlt> parseLatLonAlt(const std::string& text) {
   std::istringstream is(text);
   LatLonAlt o;

@@ -10,7 +10,7 @@
 
 namespace mapfuse::io {
 
-void writePcd(const std::filesystem::path& path, const lidar::LabeledCloud& cloud) {
+void writePcd(const std::filesystem::path& path, const LabeledCloud& cloud) {
   if (cloud.labels.size() != cloud.size() || cloud.confidence.size() != cloud.size())
     throw InputError(path.string() + ": points, labels and confidence differ in size");
   std::ostringstream h;
@@ -37,7 +37,7 @@ void writePcd(const std::filesystem::path& path, const lidar::LabeledCloud& clou
   });
 }
 
-lidar::LabeledCloud readPcd(const std::filesystem::path& path) {
+LabeledCloud readPcd(const std::filesystem::path& path) {
   const std::string bytes = readBytes(path);
   const std::string file = path.string();
   std::vector<std::string> fields, types;
@@ -97,7 +97,7 @@ lidar::LabeledCloud readPcd(const std::filesystem::path& path) {
   if (ox < 0 || oy < 0 || oz < 0) throw ParseError(file, "FIELDS", "x, y, z missing");
   if (bytes.size() - pos < static_cast<std::size_t>(points) * stride)
     throw ParseError(file, "DATA", "body truncated");
-  lidar::LabeledCloud c;
+  LabeledCloud c;
   c.points.resize(static_cast<std::size_t>(points));
   c.labels.assign(c.points.size(), 0);
   c.confidence.assign(c.points.size(), 1.0f);

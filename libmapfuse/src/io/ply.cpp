@@ -10,7 +10,7 @@
 namespace mapfuse::io {
 namespace {
 
-void checkCloud(const lidar::LabeledCloud& c, const std::string& what) {
+void checkCloud(const LabeledCloud& c, const std::string& what) {
   if (c.labels.size() != c.size() || c.confidence.size() != c.size())
     throw InputError(what + ": points, labels and confidence differ in size");
 }
@@ -59,7 +59,7 @@ double readValue(const char* p, const std::string& t) {
 
 }  // namespace
 
-void writePly(const std::filesystem::path& path, const lidar::LabeledCloud& cloud) {
+void writePly(const std::filesystem::path& path, const LabeledCloud& cloud) {
   checkCloud(cloud, path.string());
   std::ostringstream h;
   h << "ply\nformat binary_little_endian 1.0\ncomment mapfuse semantic voxel map\n"
@@ -86,7 +86,7 @@ void writePly(const std::filesystem::path& path, const lidar::LabeledCloud& clou
   });
 }
 
-lidar::LabeledCloud readPly(const std::filesystem::path& path) {
+LabeledCloud readPly(const std::filesystem::path& path) {
   const std::string bytes = readBytes(path);
   const std::string file = path.string();
   const auto end = bytes.find("end_header\n");
@@ -145,7 +145,7 @@ lidar::LabeledCloud readPly(const std::filesystem::path& path) {
     throw ParseError(file, "vertex",
                      "body truncated: " + std::to_string(bytes.size() - body) + " bytes for " +
                          std::to_string(n) + " vertices of " + std::to_string(stride));
-  lidar::LabeledCloud c;
+  LabeledCloud c;
   c.points.resize(static_cast<std::size_t>(n));
   c.labels.assign(static_cast<std::size_t>(n), 0);
   c.confidence.assign(static_cast<std::size_t>(n), 1.0f);

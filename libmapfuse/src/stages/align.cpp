@@ -6,6 +6,7 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/io/lsm_io.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
 
 namespace mapfuse::stages {
@@ -52,11 +53,12 @@ fusion::AlignResult runAlign(const std::vector<std::string>& inputs,
                              const std::filesystem::path& out_dir, const AlignParams& params) {
   const auto t0 = std::chrono::steady_clock::now();
   validateParams(params);
+  io::OutputTransaction outputs(out_dir);  // locked and writable before the work
   if (inputs.empty()) throw InputError("align: no input LSM");
-  std::vector<Lsm> lsms;
-  for (const auto& in : inputs) {
-    lsms.push_back(io::readLsm(in));
-    const Lsm& l = lsms.back();
+  std::vector<Lsm> lsms = io::readLsmInputs(inputs);
+  for (std::size_t i = 0; i < lsms.size(); ++i) {
+    const Lsm& l = lsms[i];
+    const std::string& in = inputs[i];
     if (l.frame != LsmFrame::kEnu || !l.origin)
       throw InputError(in + ": frame must be enu (run georef first)");
     const auto& o0 = *lsms.front().origin;
@@ -65,7 +67,6 @@ fusion::AlignResult runAlign(const std::vector<std::string>& inputs,
     if (l.keyframes.empty()) throw InputError(in + ": LSM has no keyframes");
   }
   const fusion::AlignResult result = fusion::alignLsms(lsms, params.align);
-  std::filesystem::create_directories(out_dir);
   for (std::size_t i = 0; i < lsms.size(); ++i)
     io::writeLsm(out_dir / std::filesystem::path(inputs[i]).filename(), lsms[i]);
   nlohmann::json summary = toJson(result);
@@ -75,6 +76,7 @@ fusion::AlignResult runAlign(const std::vector<std::string>& inputs,
                          << result.constraints_pcm_kept << " kept by PCM");
   io::writeResolvedConfig(out_dir, "align", paramsToJson(params));
   io::writeSummary(out_dir, "align", summary);
+  outputs.commit();
   return result;
 }
 

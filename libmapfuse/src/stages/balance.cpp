@@ -11,6 +11,7 @@
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_view.hpp"
 #include "mapfuse/io/lsm_io.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/tiling/piece_links.hpp"
 
@@ -108,6 +109,7 @@ nlohmann::json runBalance(const fs::path& tiles_json, const fs::path& out,
                           const BalanceParams& params) {
   validateParams(params);
   const auto t0 = std::chrono::steady_clock::now();
+  io::OutputTransaction outputs(out);  // locked and writable before the work
   const io::Json doc = io::readDocument(tiles_json);
   const io::JsonView manifest(doc, tiles_json.string());
   manifest.checkFormat("mapfuse.tiles", 1);
@@ -188,6 +190,7 @@ nlohmann::json runBalance(const fs::path& tiles_json, const fs::path& out,
                             {"per_tile", per_tile},
                             {"seconds", seconds}};
   io::writeSummary(out, "balance", summary);
+  outputs.commit();
   MAPFUSE_INFO("balance: " << report.pieces << " pieces of " << report.drives << " drives in "
                            << report.groups << " groups on " << report.tiles
                            << " tiles, largest shift " << report.max_shift << " m, residual rms "

@@ -72,7 +72,7 @@ nlohmann::json runEvaluateVoxels(const EvaluateVoxelsInputs& in, const std::file
                             P.camera_fov ? &P2 : nullptr, drive.calib.image_width,
                             drive.calib.image_height);
     }
-    const lidar::LabeledCloud map = io::readPly(in.map);
+    const LabeledCloud map = io::readPly(in.map);
     const eval::MapComparison cmp = eval::compareVoxelMap(map, truth);
     confusion = cmp.confusion;
     const auto share = [](uint64_t a, uint64_t b) {

@@ -7,6 +7,7 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/io/lsm_io.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
 
 namespace mapfuse::stages {
@@ -57,9 +58,9 @@ GeorefRun runGeoref(const std::vector<std::string>& inputs, const std::filesyste
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   validateParams(params);
+  io::OutputTransaction outputs(out_dir);  // locked and writable before the work
   if (inputs.empty()) throw InputError("georef: no input LSM");
-  std::vector<Lsm> lsms;
-  for (const auto& in : inputs) lsms.push_back(io::readLsm(in));
+  const std::vector<Lsm> lsms = io::readLsmInputs(inputs);
   for (std::size_t i = 0; i < inputs.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)
       if (std::filesystem::path(inputs[i]).filename() ==
@@ -78,7 +79,6 @@ GeorefRun runGeoref(const std::vector<std::string>& inputs, const std::filesyste
   }
   run.lsms = fusion::georeferenceLsms(lsms, run.origin, params.georef, inputs, params.threads);
 
-  std::filesystem::create_directories(out_dir);
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const auto& r = run.lsms[i];
     io::writeLsm(out_dir / std::filesystem::path(inputs[i]).filename(), r.lsm);
@@ -90,6 +90,7 @@ GeorefRun runGeoref(const std::vector<std::string>& inputs, const std::filesyste
   summary["seconds"] = std::chrono::duration<double>(Clock::now() - t0).count();
   io::writeResolvedConfig(out_dir, "georef", paramsToJson(params));
   io::writeSummary(out_dir, "georef", summary);
+  outputs.commit();
   return run;
 }
 

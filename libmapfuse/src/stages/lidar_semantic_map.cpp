@@ -250,7 +250,7 @@ json runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,
 
   // Outputs.
   t = Clock::now();
-  const lidar::LabeledCloud cloud = lidar::toLabeledCloud(map);
+  const LabeledCloud cloud = lidar::toLabeledCloud(map);
   io::writePly(output / "map.ply", cloud);
   io::writePcd(output / "map.pcd", cloud);
   Eigen::Vector2d topdown_origin;

@@ -8,7 +8,6 @@
 #include <set>
 #include <unordered_map>
 
-#include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/union_find.hpp"
 

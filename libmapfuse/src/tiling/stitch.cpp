@@ -4,8 +4,8 @@
 #include <cmath>
 #include <set>
 
-#include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/geo/origin.hpp"
 
 namespace mapfuse::tiling {
 

@@ -4,17 +4,17 @@
 /// uint32 (PCL's layout); label uint32 (LidarClass id).
 #include <filesystem>
 
-#include "mapfuse/lidar/labeled_cloud.hpp"
+#include "mapfuse/core/labeled_cloud.hpp"
 
 namespace mapfuse::io {
 
 /// @brief Writes the cloud atomically. @throws InputError for inconsistent array sizes.
-void writePcd(const std::filesystem::path& path, const lidar::LabeledCloud& cloud);
+void writePcd(const std::filesystem::path& path, const LabeledCloud& cloud);
 
 /// @brief Reads a `DATA binary` PCD with fields x, y, z and optional label / confidence
 /// (SIZE 4, any order; other fields skipped).
 /// @throws IoError when unreadable; ParseError(file, field) for a malformed header, `ascii` or
 /// `binary_compressed` data, missing x/y/z or a truncated body.
-lidar::LabeledCloud readPcd(const std::filesystem::path& path);
+LabeledCloud readPcd(const std::filesystem::path& path);
 
 }  // namespace mapfuse::io

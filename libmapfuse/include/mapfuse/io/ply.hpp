@@ -4,17 +4,17 @@
 /// float confidence` (colours from the LiDAR class palette).
 #include <filesystem>
 
-#include "mapfuse/lidar/labeled_cloud.hpp"
+#include "mapfuse/core/labeled_cloud.hpp"
 
 namespace mapfuse::io {
 
 /// @brief Writes the cloud atomically. @throws InputError for inconsistent array sizes.
-void writePly(const std::filesystem::path& path, const lidar::LabeledCloud& cloud);
+void writePly(const std::filesystem::path& path, const LabeledCloud& cloud);
 
 /// @brief Reads a binary little-endian PLY with vertex properties x, y, z (float or double)
 /// and optional label (any integer type) and confidence (float); other properties are skipped.
 /// @throws IoError when unreadable; ParseError(file, field) for a malformed header, an
 /// unsupported format or type, a missing x/y/z or a truncated body.
-lidar::LabeledCloud readPly(const std::filesystem::path& path);
+LabeledCloud readPly(const std::filesystem::path& path);
 
 }  // namespace mapfuse::io
