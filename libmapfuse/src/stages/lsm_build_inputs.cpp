@@ -56,6 +56,7 @@ void loadFramesDrive(const LsmBuildInputs& in, const LsmBuildParams& p, LoadedDr
   d.gps = df.gps;
   for (const auto& f : df.frames) d.stamps.push_back(f.stamp);
   d.egomotion = p.egomotion == "auto" ? (in.poses.empty() ? "imu_wheel" : "poses") : p.egomotion;
+  refuseUnusedPoses(in, d.egomotion);
   if (d.egomotion == "imu_wheel")
     d.T_odom_body = vehicle::deadReckon(df.imu, df.wheel, d.stamps, p.dead_reckoning);
   else if (d.egomotion != "poses")

@@ -17,6 +17,13 @@ void refuseLsmBuildParam(const char* key, const std::string& value, const char* 
                     "\". Violated constraint: " + rule);
 }
 
+void refuseUnusedPoses(const LsmBuildInputs& in, const std::string& egomotion) {
+  if (!in.poses.empty() && egomotion != "poses")
+    throw ConfigError(in.poses.string() + ": a poses file is given (--poses) but " +
+                      LsmBuildParams::kName + "::egomotion is \"" + egomotion +
+                      "\" for this drive; use --egomotion poses to build from it");
+}
+
 void loadKittiRawDrive(const LsmBuildInputs& in, const LsmBuildParams& p, LoadedDrive& d) {
   const io::KittiRawDrive kd =
       io::openKittiRawDrive(in.drive, io::FrameRange{0, p.kitti_last_frame, 1});
@@ -32,6 +39,7 @@ void loadKittiRawDrive(const LsmBuildInputs& in, const LsmBuildParams& p, Loaded
     d.stamps.push_back(std::isfinite(f.timestamp) ? f.timestamp : 0.1 * f.index);
   }
   d.egomotion = p.egomotion == "auto" ? (kd.has_oxts ? "oxts" : "poses") : p.egomotion;
+  refuseUnusedPoses(in, d.egomotion);
   if (d.egomotion == "oxts") {
     if (!kd.has_oxts)
       throw InputError(in.drive.string() + ": egomotion = oxts but no OXTS records");

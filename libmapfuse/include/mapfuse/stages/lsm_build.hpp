@@ -91,6 +91,10 @@ void loadKittiRawDrive(const LsmBuildInputs& inputs, const LsmBuildParams& param
 /// source the drive does not have.
 [[noreturn]] void refuseLsmBuildParam(const char* key, const std::string& value, const char* rule);
 
+/// @brief A poses file given (--poses) while the drive's ego-motion resolved to another source
+/// is refused rather than ignored. @throws ConfigError naming the file.
+void refuseUnusedPoses(const LsmBuildInputs& inputs, const std::string& egomotion);
+
 /// What one lsm-build run read, built and wrote.
 struct LsmBuildRun {
   std::filesystem::path lsm_file;
