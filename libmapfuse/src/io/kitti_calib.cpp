@@ -102,19 +102,26 @@ Pose3 KittiCalibration::T_rect0_velo() const {
 }
 
 KittiCalibration readKittiCalibration(const fs::path& date_dir) {
-  KittiCalibration c;
   const KittiCalibFile cam = KittiCalibFile::read(date_dir / "calib_cam_to_cam.txt");
+  const KittiCalibFile velo = KittiCalibFile::read(date_dir / "calib_velo_to_cam.txt");
+  const fs::path imu_path = date_dir / "calib_imu_to_velo.txt";
+  if (!fs::exists(imu_path)) return kittiCalibrationFrom(cam, velo, nullptr);
+  const KittiCalibFile imu = KittiCalibFile::read(imu_path);
+  return kittiCalibrationFrom(cam, velo, &imu);
+}
+
+KittiCalibration kittiCalibrationFrom(const KittiCalibFile& cam, const KittiCalibFile& velo,
+                                      const KittiCalibFile* imu) {
+  KittiCalibration c;
   c.P_rect_02 = cam.matrix("P_rect_02", 3, 4);
   c.R_rect_00 = cam.matrix("R_rect_00", 3, 3);
   const auto size = cam.numbers("S_rect_02", 2);
   if (size[0] < 1 || size[1] < 1) throw ParseError(cam.file(), "S_rect_02", "must be positive");
   c.image_width = static_cast<int>(std::lround(size[0]));
   c.image_height = static_cast<int>(std::lround(size[1]));
-  const KittiCalibFile velo = KittiCalibFile::read(date_dir / "calib_velo_to_cam.txt");
   c.T_cam0_velo = velo.rigid("R", "T");
-  const fs::path imu_path = date_dir / "calib_imu_to_velo.txt";
-  if (fs::exists(imu_path)) {
-    c.T_velo_imu = KittiCalibFile::read(imu_path).rigid("R", "T");
+  if (imu != nullptr) {
+    c.T_velo_imu = imu->rigid("R", "T");
     c.has_imu = true;
   } else {
     c.T_velo_imu = Pose3::Identity();

@@ -6,6 +6,7 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/io/lsm_io.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/png_frames.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/vehicle/render_topdown.hpp"
@@ -67,6 +68,7 @@ nlohmann::json toJson(const LsmBuildRun& run) {
 LsmBuildRun runLsmBuild(const LsmBuildInputs& in, const LsmBuildParams& p) {
   validateParams(p);
   if (in.out.empty()) throw ConfigError("lsm-build: no output folder given");
+  io::OutputTransaction outputs(in.out);  // locked and writable before the work
   const auto t0 = std::chrono::steady_clock::now();
   const LoadedDrive drive = loadDrive(in, p);
   MAPFUSE_INFO("lsm-build: " << drive.drive_id << ": " << drive.frames.size() << " frames ("
@@ -90,6 +92,7 @@ LsmBuildRun runLsmBuild(const LsmBuildInputs& in, const LsmBuildParams& p) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   io::writeResolvedConfig(in.out, "lsm-build", paramsToJson(p));
   io::writeSummary(in.out, "lsm-build", summary);
+  outputs.commit();
   return run;
 }
 

@@ -12,6 +12,7 @@
 #include "mapfuse/io/json_geometry.hpp"
 #include "mapfuse/io/lanelet2_osm.hpp"
 #include "mapfuse/io/lsm_io.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
 #include "mapfuse/sim/lanelet2_world.hpp"
@@ -124,6 +125,7 @@ nlohmann::json toJson(const SimulateRun& run) {
 
 SimulateRun runSimulate(const SimulateParams& P, const std::filesystem::path& out) {
   validateParams(P);
+  io::OutputTransaction outputs(out);  // locked and writable before the work
   const auto t0 = std::chrono::steady_clock::now();
   SimulateRun run;
   run.origin = {P.origin_lat, P.origin_lon, P.origin_alt};
@@ -143,6 +145,7 @@ SimulateRun runSimulate(const SimulateParams& P, const std::filesystem::path& ou
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   io::writeResolvedConfig(out, "simulate", paramsToJson(P));
   io::writeSummary(out, "simulate", toJson(run));
+  outputs.commit();
   return run;
 }
 

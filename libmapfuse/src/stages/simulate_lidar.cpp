@@ -9,6 +9,7 @@
 #include "mapfuse/core/progress.hpp"
 #include "mapfuse/io/kitti_calib.hpp"
 #include "mapfuse/io/kitti_raw_writer.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/semantic_image.hpp"
 #include "mapfuse/io/semantic_kitti.hpp"
 #include "mapfuse/io/stage_report.hpp"
@@ -87,14 +88,14 @@ nlohmann::json toJson(const SimulateLidarRun& run) {
 
 SimulateLidarRun runSimulateLidar(const fs::path& out, const SimulateLidarParams& P) {
   validateParams(P);
+  io::OutputTransaction outputs(out);  // locked and writable before the work
   const auto t_start = std::chrono::steady_clock::now();
   SimulateLidarRun run;
   run.drive_dir = io::kittiDriveDir(out, P.date, P.drive);
   run.frames = P.lidar.frames;
 
-  // Calibration first: the simulator uses exactly what a reader will parse.
-  io::writeKittiCalibration(out / P.date);
-  const io::KittiCalibration calib = io::readKittiCalibration(out / P.date);
+  io::writeKittiCalibration(out / P.date);  // the simulator uses what a reader will parse:
+  const io::KittiCalibration calib = io::writtenKittiCalibration();
   const sim::LidarDrive drive(P.lidar, calib, static_cast<uint64_t>(P.seed));
   const sim::LidarScene& scene = drive.scene();
   if (drive.endArcLength() > scene.road().length() - 10.0)
@@ -142,6 +143,7 @@ SimulateLidarRun runSimulateLidar(const fs::path& out, const SimulateLidarParams
   run.seconds_total = seconds(t_start);
   io::writeResolvedConfig(dir, kStage, paramsToJson(P));
   io::writeSummary(dir, kStage, toJson(run));
+  outputs.commit();
   return run;
 }
 

@@ -61,4 +61,10 @@ struct KittiCalibration {
 /// @throws IoError for a missing required file; ParseError naming file and key.
 KittiCalibration readKittiCalibration(const std::filesystem::path& date_dir);
 
+/// @brief The calibration of parsed files: cam_to_cam, velo_to_cam and (may be null)
+/// imu_to_velo. @throws ParseError naming file and key.
+KittiCalibration kittiCalibrationFrom(const KittiCalibFile& cam_to_cam,
+                                      const KittiCalibFile& velo_to_cam,
+                                      const KittiCalibFile* imu_to_velo);
+
 }  // namespace mapfuse::io
