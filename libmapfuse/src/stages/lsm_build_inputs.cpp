@@ -48,6 +48,18 @@ void readMasks(const LsmBuildInputs& in, const LsmBuildParams& p, const io::Driv
 
 }  // namespace
 
+void loadPosesFile(const LsmBuildInputs& in, const LsmBuildParams& p, LoadedDrive& d) {
+  if (in.poses.empty()) throw InputError("egomotion = poses needs a poses file (--poses)");
+  const bool velo = p.poses_frame == "velo";
+  if (velo && !d.calib.has_velo)
+    refuseLsmBuildParam("poses_frame", "velo", "needs a KITTI raw drive (Velodyne calibration)");
+  const auto poses = io::readKittiPoses(in.poses);  // rows and rotations checked
+  if (poses.size() != d.stamps.size())
+    throw InputError(in.poses.string() + " has " + std::to_string(poses.size()) +
+                     " poses but the drive has " + std::to_string(d.stamps.size()) + " frames");
+  d.T_odom_body = vehicle::bodyPosesFromPosesFile(poses, d.calib, velo);
+}
+
 void loadFramesDrive(const LsmBuildInputs& in, const LsmBuildParams& p, LoadedDrive& d) {
   io::DriveFrames df = io::readDriveFrames(in.drive);
   d.drive_id = in.drive_id.empty() ? df.drive_id : in.drive_id;
@@ -59,7 +71,9 @@ void loadFramesDrive(const LsmBuildInputs& in, const LsmBuildParams& p, LoadedDr
   refuseUnusedPoses(in, d.egomotion);
   if (d.egomotion == "imu_wheel")
     d.T_odom_body = vehicle::deadReckon(df.imu, df.wheel, d.stamps, p.dead_reckoning);
-  else if (d.egomotion != "poses")
+  else if (d.egomotion == "poses")
+    loadPosesFile(in, p, d);
+  else
     refuseLsmBuildParam("egomotion", d.egomotion, "a frames folder supports imu_wheel or poses");
   d.semantics = p.semantics;
   if (d.semantics == "auto") d.semantics = df.observations.empty() ? "masks" : "observations";
@@ -77,6 +91,9 @@ void loadFramesDrive(const LsmBuildInputs& in, const LsmBuildParams& p, LoadedDr
 LoadedDrive loadDrive(const LsmBuildInputs& in, const LsmBuildParams& p) {
   if (!fs::is_directory(in.drive)) throw IoError(in.drive.string(), "no such drive folder");
   LoadedDrive d;
+  // The poses file is read and checked (rows, rotations) before any image or network work.
+  const std::vector<Pose3> file_poses =
+      in.poses.empty() ? std::vector<Pose3>{} : io::readKittiPoses(in.poses);
   d.input_kind = p.input_kind;
   if (d.input_kind == "auto")
     d.input_kind = fs::exists(in.drive / "frames.json") ? "frames"
@@ -90,17 +107,6 @@ LoadedDrive loadDrive(const LsmBuildInputs& in, const LsmBuildParams& p) {
     throw InputError(in.drive.string() +
                      ": neither a frames folder (frames.json) nor a KITTI raw drive (image_02)");
 
-  if (d.egomotion == "poses") {
-    if (in.poses.empty()) throw InputError("egomotion = poses needs a poses file (--poses)");
-    const auto poses = io::readKittiPoses(in.poses);
-    const bool velo = p.poses_frame == "velo";
-    if (velo && !d.calib.has_velo)
-      refuseLsmBuildParam("poses_frame", "velo", "needs a KITTI raw drive (Velodyne calibration)");
-    if (poses.size() != d.stamps.size())
-      throw InputError(in.poses.string() + " has " + std::to_string(poses.size()) +
-                       " poses but the drive has " + std::to_string(d.stamps.size()) + " frames");
-    d.T_odom_body = vehicle::bodyPosesFromPosesFile(poses, d.calib, velo);
-  }
   // Aerial boxes without track ids: associate them frame to frame by optical flow.
   bool need_flow = false;
   for (const auto& f : d.frames)

@@ -48,7 +48,9 @@ void loadKittiRawDrive(const LsmBuildInputs& in, const LsmBuildParams& p, Loaded
     auto ego = vehicle::egoMotionFromOxts(records, d.stamps);
     d.T_odom_body = std::move(ego.T_odom_body);
     d.gps = std::move(ego.gps);
-  } else if (d.egomotion != "poses") {
+  } else if (d.egomotion == "poses") {
+    loadPosesFile(in, p, d);  // before the network: a bad file fails at once
+  } else {
     refuseLsmBuildParam("egomotion", d.egomotion, "a KITTI raw drive supports poses or oxts");
   }
   d.semantics = p.semantics == "auto" ? "segmenter" : p.semantics;

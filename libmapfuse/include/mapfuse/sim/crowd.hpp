@@ -36,7 +36,7 @@ struct CrowdSettings {
   template <class V>
   void visit(V& v) {
     using namespace param;
-    v("seed", seed, "", "random seed (same seed, same bytes)", ge(0));
+    v("seed", seed, "", "random seed (same seed, same bytes)", in(0, 4294967295.0));
     v("traversals", traversals, "", "number of traversals (drives)", in(1, 100000));
     v("vehicles", vehicles, "", "number of vehicles; traversal i uses vehicle i % vehicles",
       in(1, 100000));

@@ -82,6 +82,11 @@ LoadedDrive loadDrive(const LsmBuildInputs& inputs, const LsmBuildParams& params
 void loadFramesDrive(const LsmBuildInputs& inputs, const LsmBuildParams& params,
                      LoadedDrive& drive);
 
+/// @brief The --poses file (egomotion = poses) as body poses: read and checked (rows,
+/// rotations, one per frame) before any image or network work. @throws IoError, ParseError,
+/// InputError naming the file; ConfigError for poses_frame velo without a Velodyne.
+void loadPosesFile(const LsmBuildInputs& inputs, const LsmBuildParams& params, LoadedDrive& drive);
+
 /// @brief loadDrive's KITTI raw layout: image_02 and its calibration, OXTS ego-motion, the
 /// fallback perception.
 void loadKittiRawDrive(const LsmBuildInputs& inputs, const LsmBuildParams& params,

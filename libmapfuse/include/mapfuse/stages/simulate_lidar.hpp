@@ -34,7 +34,7 @@ struct SimulateLidarParams {
   template <class V>
   void visit(V& v) {
     using namespace param;
-    v("seed", seed, "", "seed of the scene and of every noise draw", Range{});
+    v("seed", seed, "", "seed of the scene and of every noise draw", in(0, 4294967295.0));
     v("date", date, "", "KITTI date folder name", TextRule{isKittiDate, "YYYY_MM_DD"});
     v("drive", drive, "", "drive name: <date>_drive_<drive>_sync",
       TextRule{[](const std::string& d) { return !d.empty() && d.find('/') == std::string::npos; },
