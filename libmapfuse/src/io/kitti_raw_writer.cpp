@@ -108,8 +108,9 @@ void writeKittiCalibration(const std::filesystem::path& date_dir) {
 
 KittiCalibration writtenKittiCalibration() {
   const KittiCalibFile imu = KittiCalibFile::parse(kImuToVelo, "calib_imu_to_velo.txt");
-  return kittiCalibrationFrom(KittiCalibFile::parse(kCamToCam, "calib_cam_to_cam.txt"),
-                              KittiCalibFile::parse(kVeloToCam, "calib_velo_to_cam.txt"), &imu);
+  return kittiCalibrationFromFiles(KittiCalibFile::parse(kCamToCam, "calib_cam_to_cam.txt"),
+                                   KittiCalibFile::parse(kVeloToCam, "calib_velo_to_cam.txt"),
+                                   &imu);
 }
 
 std::string formatOxtsLine(const geo::OxtsRecord& r) {
