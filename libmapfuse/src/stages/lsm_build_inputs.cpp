@@ -90,10 +90,7 @@ void loadFramesDrive(const LsmBuildInputs& in, const LsmBuildParams& p, LoadedDr
 
 LoadedDrive loadDrive(const LsmBuildInputs& in, const LsmBuildParams& p) {
   if (!fs::is_directory(in.drive)) throw IoError(in.drive.string(), "no such drive folder");
-  LoadedDrive d;
-  // The poses file is read and checked (rows, rotations) before any image or network work.
-  const std::vector<Pose3> file_poses =
-      in.poses.empty() ? std::vector<Pose3>{} : io::readKittiPoses(in.poses);
+  LoadedDrive d;  // the poses file is read by the layouts (loadPosesFile), before the network
   d.input_kind = p.input_kind;
   if (d.input_kind == "auto")
     d.input_kind = fs::exists(in.drive / "frames.json") ? "frames"
