@@ -1,5 +1,4 @@
-// simulate: crowdsourced drives over the procedural world or a Lanelet2 map, with ground truth
-// (docs/simulate.md). Prints the summary JSON on stdout.
+// simulate: crowdsourced drives with ground truth (docs/simulate.md); prints the summary JSON.
 #include <iostream>
 
 #include "mapfuse/cli/app.hpp"

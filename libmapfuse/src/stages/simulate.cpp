@@ -1,4 +1,3 @@
-// Stage `simulate`: world -> sim::Crowd traversals -> LSMs / frames -> ground truth + summary.
 #include "mapfuse/stages/simulate.hpp"
 
 #include <chrono>
@@ -67,8 +66,7 @@ sim::CrowdStats simulateTraversals(const SimulateParams& P, const sim::Crowd& cr
     try {
       const sim::Traversal t = crowd.traversal(i, &stats[i]);
       const std::string& id = t.drive.drive_id;
-      // The true trajectory at the LSM keyframes, or at every camera frame for raw frames
-      // (lsm-build then chooses its own keyframes; evaluate matches them by stamp).
+      // True poses at the LSM keyframes, or at every camera frame (frames: evaluate matches).
       const auto samples = P.level == "frames" ? sim::cameraSamples(t.drive, P.crowd.drive)
                                                : t.observed.keyframe_samples;
       io::writeDocument(out / "truth" / (id + ".trajectory.json"),
