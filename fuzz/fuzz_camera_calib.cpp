@@ -8,7 +8,7 @@ using namespace mapfuse;
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
   const std::string bytes = fuzz::bytesOf(data, size);
-  vehicle::CameraCalib c;
+  CameraCalib c;
   if (!fuzz::accepts([&] {
         c = io::cameraCalibFromJson(
             io::parseDocument(bytes, io::Encoding::kJson, "calibration.json"), "calibration.json");

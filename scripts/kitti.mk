@@ -52,7 +52,7 @@ $(WORK)/lidar/$(notdir $(1))/lidar-semantic-map.summary.json: $(wildcard $(1)/ve
 	$(BIN)/lidar-semantic-map $(Q) $(call cfg,lidar-semantic-map) $(model) --last-frame $(LAST_FRAME) -o $$(@D) $(1) >/dev/null
 
 $(WORK)/lsm/$(notdir $(1))/lsm-build.summary.json: $(WORK)/lidar/$(notdir $(1))/lidar-semantic-map.summary.json
-	$(BIN)/lsm-build $(Q) $(call cfg,lsm-build) $(model) --kitti-last-frame $(LAST_FRAME) --poses $(WORK)/lidar/$(notdir $(1))/poses.txt -o $$(@D) $(1) >/dev/null
+	$(BIN)/lsm-build $(Q) $(call cfg,lsm-build) $(model) --kitti-last-frame $(LAST_FRAME) --egomotion poses --poses $(WORK)/lidar/$(notdir $(1))/poses.txt -o $$(@D) $(1) >/dev/null
 endef
 $(foreach d,$(DRIVE_DIRS),$(eval $(call DRIVE_RULES,$(d))))
 

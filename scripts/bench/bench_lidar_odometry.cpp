@@ -356,28 +356,33 @@ int main(int argc, char** argv) {
   for (int64_t seed : seeds) {
     stages::SimulateLidarParams P;
     P.seed = seed;
-    P.frames = sim_frames;
-    P.straight_min = 110;
-    P.straight_max = 160;
-    P.ego_speed = ego_speed;
+    P.lidar.frames = sim_frames;
+    P.lidar.street.straight_min = 110;
+    P.lidar.street.straight_max = 160;
+    P.lidar.street.ego_speed = ego_speed;
     const io::KittiCalibration calib = [&] {
       const auto dir = std::filesystem::temp_directory_path() / "bench_lidar_odometry_calib";
       io::writeKittiCalibration(dir);
       return io::readKittiCalibration(dir);
     }();
     const Pose3 T_imu_velo = calib.T_velo_imu.inverse();
-    const sim::LidarScene scene = sim::generateStreet(P.street());
-    const sim::EgoDrive ego{P.ego_start, P.ego_speed, -0.5 * P.lane_width, P.velo_height};
+    const sim::LidarScene scene = sim::generateStreet([&] {
+      sim::StreetParams s = P.lidar.street;
+      s.seed = static_cast<uint64_t>(P.seed);
+      return s;
+    }());
+    const sim::EgoDrive ego{P.lidar.street.ego_start, P.lidar.street.ego_speed,
+                            -0.5 * P.lidar.street.profile.lane_width, P.lidar.velo_height};
     std::vector<std::vector<Eigen::Vector3f>> scans;
     std::vector<std::vector<uint8_t>> vehicle_masks;  // truth: cars, parked or moving
     std::vector<Pose3> gt;
     std::vector<double> times;
     omp_set_num_threads(omp_get_num_procs());  // casting only; the odometry runs on one core
-    for (int k = 0; k < P.frames; ++k) {
-      const double t = k / P.frame_rate;
+    for (int k = 0; k < P.lidar.frames; ++k) {
+      const double t = k / P.lidar.frame_rate;
       const Pose3 T = sim::egoImuPose(scene.road(), ego, T_imu_velo, t) * T_imu_velo;
       const auto scan =
-          sim::scanLidar(scene, T, t, P.sensor(), sim::hashKey(uint64_t(seed), uint64_t(k), 1));
+          sim::scanLidar(scene, T, t, P.lidar.sensor, sim::hashKey(uint64_t(seed), uint64_t(k), 1));
       std::vector<Eigen::Vector3f> pts;
       for (const auto& p : scan.points) pts.emplace_back(p.head<3>());
       scans.push_back(std::move(pts));
@@ -411,7 +416,7 @@ int main(int argc, char** argv) {
       for (std::size_t i = 1; i < r.poses.size(); ++i)
         est += (r.poses[i].translation() - r.poses[i - 1].translation()).norm();
       std::printf("| %s | %lld | %d | %.1f (odometry %.1f) | %s | %.2f | %.4f | %d | %.1f |\n",
-                  v.name.c_str(), (long long)seed, P.frames, length, est, d.lengths.c_str(),
+                  v.name.c_str(), (long long)seed, P.lidar.frames, length, est, d.lengths.c_str(),
                   d.t_pct, d.r_deg_per_m, untrusted, double(scans.size()) / r.seconds);
     }
   }

@@ -13,6 +13,9 @@
 #include "mapfuse/stages/align.hpp"
 #include "mapfuse/stages/balance.hpp"
 #include "mapfuse/stages/georef.hpp"
+#include "mapfuse/stages/lsm_build.hpp"
+#include "mapfuse/stages/simulate.hpp"
+#include "mapfuse/stages/simulate_lidar.hpp"
 #include "mapfuse/stages/stitch.hpp"
 #include "mapfuse/stages/tile.hpp"
 
@@ -111,4 +114,7 @@ TEST_CASE("every tool's parameters are declared once, bounded and refused outsid
   checkTool<stages::TileParams>("tile");
   checkTool<stages::BalanceParams>("balance");
   checkTool<tiling::StitchParams>("stitch");
+  checkTool<stages::LsmBuildParams>("lsm-build");
+  checkTool<stages::SimulateParams>("simulate");
+  checkTool<stages::SimulateLidarParams>("simulate-lidar");
 }

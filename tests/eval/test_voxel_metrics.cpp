@@ -135,8 +135,8 @@ TEST_CASE("voxel metrics: a voxel map against truth voxels with moving and parke
 TEST_CASE("evaluate voxels: stage on a synthetic drive, scans and voxel map") {
   const auto dir = test::tempDir("eval_voxels_stage");
   stages::SimulateLidarParams sp;
-  sp.frames = 3;
-  sp.azimuth_steps = 400;
+  sp.lidar.frames = 3;
+  sp.lidar.sensor.azimuth_steps = 400;
   sp.seed = 4;
   stages::runSimulateLidar(dir / "sim", sp);
   const fs::path drive = io::kittiDriveDir(dir / "sim", sp.date, sp.drive);

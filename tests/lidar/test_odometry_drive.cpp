@@ -63,9 +63,14 @@ TEST_CASE("odometry follows a simulated drive with moving cars (truth: the simul
   const fs::path dir = test::tempDir("odo_sim");
   io::writeKittiCalibration(dir);
   const Pose3 T_imu_velo = io::readKittiCalibration(dir).T_velo_imu.inverse();
-  const sim::LidarScene scene = sim::generateStreet(P.street());
-  const sim::EgoDrive ego{P.ego_start, P.ego_speed, -0.5 * P.lane_width, P.velo_height};
-  sim::LidarSensorParams sensor = P.sensor();
+  const sim::LidarScene scene = sim::generateStreet([&] {
+    sim::StreetParams s = P.lidar.street;
+    s.seed = static_cast<uint64_t>(P.seed);
+    return s;
+  }());
+  const sim::EgoDrive ego{P.lidar.street.ego_start, P.lidar.street.ego_speed,
+                          -0.5 * P.lidar.street.profile.lane_width, P.lidar.velo_height};
+  sim::LidarSensorParams sensor = P.lidar.sensor;
   sensor.azimuth_steps = 1200;  // coarser than the default 2150: a quicker test
   lidar::ScanOdometry odo(lidar::OdometrySettings{});
   std::vector<Pose3> truth;

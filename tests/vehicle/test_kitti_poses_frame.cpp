@@ -6,7 +6,7 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/kitti_calib.hpp"
-#include "mapfuse/stages/lsm_build_inputs.hpp"
+#include "mapfuse/stages/lsm_build.hpp"
 #include "sim_fixture.hpp"
 #include "support/test_support.hpp"
 
@@ -44,7 +44,7 @@ TEST_CASE("lsm-build: a T_world_velo poses file (poses_frame velo) equals its T_
   writePoses(dir / "velo.txt", velo);
 
   stages::LsmBuildParams p;
-  p.model = model.string();
+  p.perception.model = model.string();
   p.kitti_last_frame = 1;
   p.egomotion = "poses";
   stages::LsmBuildInputs in;
@@ -82,7 +82,7 @@ TEST_CASE("lsm-build: a singular poses row is refused before any image or networ
   const fs::path dir = test::tempDir("kitti_poses_singular");
   test::writeText(dir / "poses.txt", "1 0 0 0 0 1 0 0 0 0 1 0\n0 0 0 0 0 0 0 0 0 0 0 0\n");
   stages::LsmBuildParams p;
-  p.model = (dir / "no-such-model.net").string();  // loading it would fail with an IoError
+  p.perception.model = (dir / "no-such-model.net").string();  // loading it would fail with an IoError
   p.kitti_last_frame = 1;
   p.egomotion = "poses";
   stages::LsmBuildInputs in;

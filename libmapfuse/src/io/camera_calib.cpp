@@ -13,16 +13,16 @@ namespace {
 constexpr double kMaxIntrinsic = 1e7;
 }  // namespace
 
-vehicle::CameraCalib readCameraCalib(const std::filesystem::path& path) {
+CameraCalib readCameraCalib(const std::filesystem::path& path) {
   return cameraCalibFromJson(readDocument(path), path.string());
 }
 
-vehicle::CameraCalib cameraCalibFromJson(const Json& doc, const std::string& file) {
+CameraCalib cameraCalibFromJson(const Json& doc, const std::string& file) {
   const JsonView v(doc, file);
   v.checkFormat(kCameraCalibFormat, 1);
   v.onlyKeys({"format", "version", "K", "width", "height", "distortion", "T_body_cam",
               "camera_height", "ground_normal_cam"});
-  vehicle::CameraCalib c;
+  CameraCalib c;
   const Eigen::VectorXd k = v.at("K").vector(9);
   if (k.cwiseAbs().maxCoeff() > kMaxIntrinsic)
     v.at("K").fail("entries must be within " + bounds::rangeText(-kMaxIntrinsic, kMaxIntrinsic));
@@ -55,13 +55,12 @@ vehicle::CameraCalib cameraCalibFromJson(const Json& doc, const std::string& fil
   return c;
 }
 
-vehicle::CameraCalib readKittiCameraCalib(const std::filesystem::path& date_dir,
-                                          double camera_height) {
+CameraCalib readKittiCameraCalib(const std::filesystem::path& date_dir, double camera_height) {
   if (!(camera_height > 0.0))
     throw InputError("KITTI camera height must be positive (got " + std::to_string(camera_height) +
                      ")");
   const KittiCalibration kc = readKittiCalibration(date_dir);
-  vehicle::CameraCalib c;
+  CameraCalib c;
   c.K = kc.P_rect_02.leftCols<3>();
   c.width = kc.image_width;
   c.height = kc.image_height;
@@ -75,7 +74,7 @@ vehicle::CameraCalib readKittiCameraCalib(const std::filesystem::path& date_dir,
     const Pose3 T_cam_imu = T_rect2_rect0 * c.T_posecam_velo * kc.T_velo_imu;
     c.T_body_cam = T_cam_imu.inverse();
   } else {
-    c.T_body_cam.linear() = vehicle::levelCameraToBodyRotation();
+    c.T_body_cam.linear() = levelCameraToBodyRotation();
   }
   c.ground.height = camera_height;
   c.ground.normal_cam = (c.T_body_cam.linear().transpose() * Eigen::Vector3d::UnitZ()).normalized();

@@ -14,7 +14,6 @@
 #include "mapfuse/io/json_geometry.hpp"
 #include "mapfuse/io/kitti_poses.hpp"
 #include "mapfuse/io/png_decode.hpp"
-#include "mapfuse/vehicle/centerline.hpp"
 
 namespace mapfuse::io {
 namespace fs = std::filesystem;
@@ -123,16 +122,16 @@ std::vector<Eigen::Vector2d> readPixels(const JsonView& v) {
   return out;
 }
 
-vehicle::FrameObservations parseObservation(const JsonView& v) {
+FrameObservations parseObservation(const JsonView& v) {
   v.onlyKeys({"frame", "stamp", "ground", "aerial"});
-  vehicle::FrameObservations f;
+  FrameObservations f;
   f.index = v.at("frame").integerInt(0);
   f.stamp = v.at("stamp").number(-bounds::kMaxStamp, bounds::kMaxStamp);
   if (auto g = v.find("ground"))
     for (std::size_t i = 0; i < g->size(); ++i) {
       const JsonView e = g->at(i);
       e.onlyKeys({"instance", "track_id", "truth_id", "class", "style", "color", "pixels"});
-      vehicle::GroundObservation o;
+      GroundObservation o;
       readClassAndAttributes(e, o.cls, o.attributes);
       if (geometryKind(o.cls) == GeometryKind::kPoint || o.cls == CrowdClass::kTrafficSign)
         e.at("class").fail("is not a ground marking class");
@@ -145,7 +144,7 @@ vehicle::FrameObservations parseObservation(const JsonView& v) {
     for (std::size_t i = 0; i < a->size(); ++i) {
       const JsonView e = a->at(i);
       e.onlyKeys({"track_id", "truth_id", "class", "box", "points"});
-      vehicle::AerialObservation o;
+      AerialObservation o;
       Attributes unused;
       readClassAndAttributes(e, o.cls, unused);
       if (o.cls != CrowdClass::kTrafficSign && o.cls != CrowdClass::kTrafficLight &&
@@ -164,8 +163,8 @@ vehicle::FrameObservations parseObservation(const JsonView& v) {
   return f;
 }
 
-std::vector<vehicle::FrameObservations> readObservations(const fs::path& path) {
-  std::vector<vehicle::FrameObservations> out;
+std::vector<FrameObservations> readObservations(const fs::path& path) {
+  std::vector<FrameObservations> out;
   forEachLine(path, [&](const std::string& line, int n) {
     Json j;
     try {
@@ -206,7 +205,7 @@ DriveFrames readDriveFrames(const fs::path& dir) {
                           {"stamp", "gyro_x", "gyro_y", "gyro_z", "accel_x", "accel_y", "accel_z"});
     std::vector<double> stamps;
     for (std::size_t r = 0; r < c.rows.size(); ++r) {
-      vehicle::ImuSample s;
+      ImuSample s;
       s.stamp = c.stamp(r, 0);
       for (int k = 0; k < 3; ++k) {
         s.gyro[k] = c.number(r, 1 + k, -bounds::kMaxAngularRate, bounds::kMaxAngularRate);
@@ -301,23 +300,6 @@ cv::Mat readMask(const fs::path& path, int width, int height) {
                          ", calibration says " + std::to_string(width) + "x" +
                          std::to_string(height));
   return img;
-}
-
-std::vector<vehicle::GroundObservation> observationsFromMask(const cv::Mat& mask, int min_area) {
-  std::vector<vehicle::GroundObservation> out;
-  for (int id = 1; id <= 4; ++id) {
-    const CrowdClass cls = CrowdClass(id - 1);
-    const vehicle::ThinMode mode = cls == CrowdClass::kLaneLine   ? vehicle::ThinMode::kRows
-                                   : cls == CrowdClass::kStopLine ? vehicle::ThinMode::kColumns
-                                                                  : vehicle::ThinMode::kHull;
-    for (auto& comp : vehicle::extractComponents(mask, id, mode, min_area)) {
-      vehicle::GroundObservation o;
-      o.cls = cls;
-      o.pixels = std::move(comp.pixels);
-      out.push_back(std::move(o));
-    }
-  }
-  return out;
 }
 
 std::vector<Pose3> readKittiPoses(const fs::path& path) {

@@ -101,15 +101,16 @@ OutputTransaction* OutputTransaction::active() {
 
 void OutputTransaction::stage(const fs::path& tmp, const fs::path& target) {
   std::lock_guard<std::mutex> guard(mutex_);
-  for (auto& f : files_)
-    if (f.second == target) {  // written again: the newer content counts
-      if (f.first != tmp) {
-        std::error_code ec;
-        fs::remove(f.first, ec);
-        f.first = tmp;
-      }
-      return;
+  const auto [at, fresh] = index_.emplace(target.lexically_normal().string(), files_.size());
+  if (!fresh) {  // written again: the newer content counts
+    auto& f = files_[at->second];
+    if (f.first != tmp) {
+      std::error_code ec;
+      fs::remove(f.first, ec);
+      f.first = tmp;
     }
+    return;
+  }
   files_.emplace_back(tmp, target);
 }
 
@@ -151,6 +152,7 @@ void OutputTransaction::commit() {
     }
   }
   files_.clear();
+  index_.clear();
   done_ = true;
   g_active.store(nullptr);
 }
@@ -161,6 +163,7 @@ void OutputTransaction::rollback() noexcept {
     fs::remove(f.first, ec);
   }
   files_.clear();
+  index_.clear();
   done_ = true;
 }
 

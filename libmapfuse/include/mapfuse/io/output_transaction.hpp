@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <mutex>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -53,6 +54,7 @@ class OutputTransaction {
   bool done_ = false;
   std::mutex mutex_;
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;  // tmp, target
+  std::unordered_map<std::string, std::size_t> index_;  // target -> its entry in files_
   OutputTransaction* outer_ = nullptr;
 };
 

@@ -1,13 +1,11 @@
-// Error statistics of simulated drives (docs/simulate.md "Summary"): measured GPS error and
-// odometry drift next to the values the configured sigmas predict.
-#include "mapfuse/stages/simulate_stats.hpp"
+#include "mapfuse/sim/drive_statistics.hpp"
 
 #include <cmath>
 
-namespace mapfuse::stages {
+namespace mapfuse::sim {
 
-void DriveStatistics::add(const sim::Drive& d, const std::vector<std::size_t>& kf,
-                          const sim::DriveParams& P) {
+void DriveStatistics::add(const Drive& d, const std::vector<std::size_t>& kf,
+                          const DriveParams& P) {
   // GPS: horizontal error of the fixes that are not multipath outliers.
   for (const auto& g : d.gps) {
     ++gps_fixes;
@@ -41,25 +39,36 @@ void DriveStatistics::add(const sim::Drive& d, const std::vector<std::size_t>& k
   km += d.length() / 1000.0;
 }
 
-nlohmann::json DriveStatistics::toJson(const sim::DriveParams& P) const {
-  nlohmann::json j;
-  j["km_driven"] = km;
-  j["gps_fixes"] = gps_fixes;
-  j["gps_outliers_injected"] = gps_outliers;
+void DriveStatistics::add(const DriveStatistics& s) {
+  km += s.km;
+  gps_fixes += s.gps_fixes;
+  gps_outliers += s.gps_outliers;
+  gps_inliers += s.gps_inliers;
+  gps_sq_sum += s.gps_sq_sum;
+  gps_stamp_sum += s.gps_stamp_sum;
+  drift_windows += s.drift_windows;
+  drift_sq_sum += s.drift_sq_sum;
+  drift_expected_sq_sum += s.drift_expected_sq_sum;
+}
+
+double DriveStatistics::gpsErrorRms() const {
+  return gps_inliers ? std::sqrt(gps_sq_sum / gps_inliers) : 0.0;
+}
+
+double DriveStatistics::gpsErrorRmsExpected(const DriveParams& P) const {
   const double a = P.gps_bias_min, b = P.gps_bias_max;
   const double mean_t = gps_inliers ? gps_stamp_sum / gps_inliers : 0.0;
   // E|b|^2 of a magnitude uniform in [a, b], plus 2 axes of white noise and of the random walk.
-  const double expected =
-      std::sqrt((a * a + a * b + b * b) / 3.0 + 2 * P.gps_white_sigma * P.gps_white_sigma +
-                2 * P.gps_bias_walk * P.gps_bias_walk * mean_t);
-  j["gps_error_rms_m"] = gps_inliers ? std::sqrt(gps_sq_sum / gps_inliers) : 0.0;
-  j["gps_error_rms_expected_m"] = expected;
-  j["odometry_drift_windows"] = drift_windows;
-  j["odometry_drift_per_100m_rms_m"] =
-      drift_windows ? std::sqrt(drift_sq_sum / drift_windows) : 0.0;
-  j["odometry_drift_per_100m_expected_m"] =
-      drift_windows ? std::sqrt(drift_expected_sq_sum / drift_windows) : 0.0;
-  return j;
+  return std::sqrt((a * a + a * b + b * b) / 3.0 + 2 * P.gps_white_sigma * P.gps_white_sigma +
+                   2 * P.gps_bias_walk * P.gps_bias_walk * mean_t);
 }
 
-}  // namespace mapfuse::stages
+double DriveStatistics::driftRms() const {
+  return drift_windows ? std::sqrt(drift_sq_sum / drift_windows) : 0.0;
+}
+
+double DriveStatistics::driftRmsExpected() const {
+  return drift_windows ? std::sqrt(drift_expected_sq_sum / drift_windows) : 0.0;
+}
+
+}  // namespace mapfuse::sim
