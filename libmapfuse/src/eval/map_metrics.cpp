@@ -14,6 +14,7 @@
 #include <unordered_map>
 
 #include "mapfuse/aggregate/geometry2d.hpp"
+#include "mapfuse/geo/origin.hpp"
 
 namespace mapfuse::eval {
 namespace {
