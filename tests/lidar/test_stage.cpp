@@ -125,7 +125,7 @@ constexpr double kMinSameVoxels = 0.999;             // share of voxels at exact
 /// Largest distance from a point of `b` to the nearest point of `a` (voxel centres: a brute
 /// force over the few points within a 3 x 3 x 3 voxel neighbourhood of a hash of `a`), and the
 /// share of `b`'s points that have a point of `a` at the same place.
-double maxNearestDistance(const lidar::LabeledCloud& a, const lidar::LabeledCloud& b, double voxel,
+double maxNearestDistance(const LabeledCloud& a, const LabeledCloud& b, double voxel,
                           double* same_share = nullptr) {
   std::map<std::array<int64_t, 3>, std::vector<Eigen::Vector3f>> grid;
   auto key = [&](const Eigen::Vector3f& p) {
