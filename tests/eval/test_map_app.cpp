@@ -134,3 +134,30 @@ TEST_CASE("evaluate map app: values that would exhaust memory or time are refuse
                          " >/dev/null 2>" + quoted(err)) == 2);
   CHECK_THAT(test::readText(err), Catch::Contains("cfg.json") && Catch::Contains("sample_step"));
 }
+
+TEST_CASE("evaluate map reads the traversals of aggregate.summary.json checked", "[eval][bounds]") {
+  // The count was narrowed to int unchecked (4294967301 drives read as 5) and a summary of
+  // another shape was ignored; now a ParseError names the summary and the field.
+  const fs::path dir = test::tempDir("eval_summary");
+  const fs::path map = dir / "map.cbor";
+  const VectorMap m = simpleMap(0.0);
+  CHECK(stages::traversalsOf(map, m) == 4);  // no summary: the largest instance support
+  auto summary = [&](const std::string& text) {
+    test::writeText(dir / "aggregate.summary.json", text);
+  };
+  summary(R"({"inputs": {"drives": 12, "lsms": 12}})");
+  CHECK(stages::traversalsOf(map, m) == 12);
+  summary(R"({"inputs": {"lsms": 12}})");
+  CHECK(stages::traversalsOf(map, m) == 4);
+  for (const char* bad : {R"({"inputs": {"drives": 4294967301}})", R"({"inputs": {"drives": -1}})",
+                          R"({"inputs": {"drives": 2.5}})", R"({"inputs": [1]})"}) {
+    summary(bad);
+    try {
+      stages::traversalsOf(map, m);
+      FAIL("accepted " << bad);
+    } catch (const ParseError& e) {
+      CHECK_THAT(std::string(e.what()),
+                 Catch::Contains("aggregate.summary.json") && Catch::Contains("inputs"));
+    }
+  }
+}

@@ -15,12 +15,18 @@
 #include "lane_fragments.hpp"
 #include "lane_links.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/io/bounds.hpp"
 #include "polygon_overlap.hpp"
 
 namespace mapfuse::aggregate {
 namespace {
 
 constexpr double kSimplifyTolerance = 0.02;  // m
+// Piece budget of the tiling step: 64 pieces per observation on average (real drives: 2-4),
+// and never less than 1e5 in all.
+constexpr int64_t kPiecesPerObservation = 64;
+constexpr int64_t kMinPieceBudget = 100000;
 
 namespace bg = boost::geometry;
 using Vec3 = Eigen::Vector3d;
@@ -38,7 +44,25 @@ struct Piece {
 int64_t tileKey(const Vec3& p, double size) {
   const int64_t ix = int64_t(std::floor(p.x() / size));
   const int64_t iy = int64_t(std::floor(p.y() / size));
-  return (ix << 32) ^ (iy & 0xffffffffLL);
+  return int64_t((uint64_t(ix) << 32) ^ (uint64_t(iy) & 0xffffffffULL));  // no signed shift
+}
+
+// Pieces an observation gives at most (one per tile crossing of a segment, plus one per
+// segment), counted without making them. Coordinates are within the readers' bounds
+// (io/bounds.hpp), so the tile indices are exact integers.
+int64_t piecesOf(const std::vector<Vec3>& pts, double size) {
+  auto index = [&](double x) {
+    const double i = std::floor(x / size);
+    if (!(std::abs(i) < 1e15))
+      throw InputError("lane observation coordinate " + io::bounds::numberText(x) +
+                       " m has no tile of " + io::bounds::numberText(size) + " m");
+    return int64_t(i);
+  };
+  int64_t pieces = 0;
+  for (std::size_t i = 1; i < pts.size(); ++i)
+    for (int axis = 0; axis < 2; ++axis)
+      pieces += std::llabs(index(pts[i][axis]) - index(pts[i - 1][axis]));
+  return pieces + int64_t(pts.size());
 }
 
 // Cuts a polyline where it crosses the tile grid; each piece lies in one tile.
@@ -54,8 +78,10 @@ void cutAtTiles(const std::vector<Vec3>& pts, double size, std::size_t obs,
       if (std::abs(d[axis]) < 1e-12) continue;
       const double lo = std::min(a[axis], a[axis] + d[axis]);
       const double hi = std::max(a[axis], a[axis] + d[axis]);
-      for (double g = std::ceil(lo / size) * size; g < hi; g += size) {
-        const double t = (g - a[axis]) / d[axis];
+      // Grid lines by integer index: `g += size` stops advancing once g is large against size
+      // (one point at x = 1e308 looped forever).
+      for (auto k = int64_t(std::ceil(lo / size)); double(k) * size < hi; ++k) {
+        const double t = (double(k) * size - a[axis]) / d[axis];
         if (t > 1e-9 && t < 1 - 1e-9) ts.push_back(t);
       }
     }
@@ -117,6 +143,25 @@ OverlapPolygon toOverlapPolygon(const MPoly2& mp, const Eigen::Vector2d& origin)
 // short for a line dropped).
 std::vector<Piece> cutObservations(const std::vector<Observation>& items,
                                    const std::vector<std::size_t>& indices, double tile_size) {
+  // Budget before allocating: a real observation crosses a few tiles (a marking seen from one
+  // keyframe is tens of metres long); absurd geometry within the readers' bounds is refused here
+  // instead of exhausting memory (one element reaching 1e8 m allocated 5.7 GB).
+  const int64_t budget = kPiecesPerObservation * int64_t(indices.size()) + kMinPieceBudget;
+  int64_t total = 0;
+  std::size_t longest = indices.empty() ? 0 : indices.front();
+  int64_t longest_pieces = 0;
+  for (std::size_t idx : indices) {
+    const int64_t n = piecesOf(items[idx].points, tile_size);
+    total += n;
+    if (n > longest_pieces) longest_pieces = n, longest = idx;
+  }
+  if (total > budget)
+    throw InputError("lane observations would be cut into " + std::to_string(total) +
+                     " pieces of " + io::bounds::numberText(tile_size) + " m tiles (limit " +
+                     std::to_string(budget) + "): element " +
+                     std::to_string(items[longest].element_id) + " of input LSM #" +
+                     std::to_string(items[longest].drive + 1) + " (command-line order) crosses " +
+                     std::to_string(longest_pieces) + " tiles");
   std::vector<Piece> pieces;
   for (std::size_t idx : indices) cutAtTiles(items[idx].points, tile_size, idx, pieces);
   pieces.erase(std::remove_if(pieces.begin(), pieces.end(),

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
+#include <limits>
 #include <sstream>
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/kitti_sequence.hpp"
+#include "mapfuse/io/oxts_line.hpp"
 
 namespace mapfuse::io {
 namespace fs = std::filesystem;
@@ -14,17 +17,8 @@ namespace {
 
 /// Lines of a timestamps file, parsed; empty when the file does not exist.
 std::vector<double> readTimestamps(const fs::path& path) {
-  std::vector<double> out;
-  if (!fs::exists(path)) return out;
-  std::istringstream in(readBytes(path));
-  std::string line;
-  int n = 0;
-  while (std::getline(in, line)) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) continue;
-    out.push_back(parseKittiTimestamp(line, path.string(), "line " + std::to_string(++n)));
-  }
-  return out;
+  if (!fs::exists(path)) return {};
+  return parseKittiTimestamps(readBytes(path), path.string());
 }
 
 }  // namespace
@@ -33,7 +27,8 @@ long kittiFrameNumber(const std::string& stem) {
   if (stem.empty() || stem.size() > 12) return -1;
   for (char c : stem)
     if (!std::isdigit(static_cast<unsigned char>(c))) return -1;
-  return std::stol(stem);
+  const long n = std::stol(stem);
+  return n <= std::numeric_limits<int>::max() ? n : -1;  // frame indices are ints
 }
 
 void checkFrameRange(const FrameRange& range) {
@@ -44,14 +39,62 @@ void checkFrameRange(const FrameRange& range) {
                      std::to_string(range.first));
 }
 
+std::vector<double> parseKittiTimestamps(const std::string& text, const std::string& file) {
+  std::vector<double> out;
+  std::istringstream in(text);
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) {
+    ++n;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    out.push_back(parseKittiTimestamp(line, file, "line " + std::to_string(n)));
+  }
+  return out;
+}
+
 double parseKittiTimestamp(const std::string& text, const std::string& file,
                            const std::string& field) {
-  int y = 0, mo = 0, d = 0, h = 0, mi = 0;
-  double s = 0;
-  char tail = 0;
-  if (std::sscanf(text.c_str(), "%d-%d-%d %d:%d:%lf%c", &y, &mo, &d, &h, &mi, &s, &tail) != 6 ||
-      h < 0 || h > 23 || mi < 0 || mi > 59 || s < 0 || s >= 61)
+  // YYYY-MM-DD HH:MM:SS[.fff...], every part digits only (no sign, no exponent, no "nan").
+  auto bad = [&]() {
     throw ParseError(file, field, "not a timestamp 'YYYY-MM-DD HH:MM:SS.f': '" + text + "'");
+  };
+  std::size_t i = 0;
+  auto digits = [&](std::size_t min_count, std::size_t max_count) {
+    long v = 0;
+    std::size_t count = 0;
+    while (i < text.size() && count < max_count &&
+           std::isdigit(static_cast<unsigned char>(text[i]))) {
+      if (count < 9) v = v * 10 + (text[i] - '0');  // the fraction's value is not needed
+      ++i;
+      ++count;
+    }
+    if (count < min_count) bad();
+    return v;
+  };
+  auto expect = [&](char c) {
+    if (i >= text.size() || text[i] != c) bad();
+    ++i;
+  };
+  digits(4, 4);
+  expect('-');
+  const long month = digits(1, 2);
+  expect('-');
+  const long day = digits(1, 2);
+  expect(' ');
+  const long h = digits(1, 2);
+  expect(':');
+  const long mi = digits(1, 2);
+  expect(':');
+  const std::size_t seconds_at = i;
+  digits(1, 2);
+  if (i < text.size() && text[i] == '.') {
+    ++i;
+    digits(1, 30);
+  }
+  if (i != text.size()) bad();
+  const double s = std::strtod(text.c_str() + seconds_at, nullptr);
+  if (month < 1 || month > 12 || day < 1 || day > 31 || h > 23 || mi > 59 || !(s < 61)) bad();
   return h * 3600.0 + mi * 60.0 + s;
 }
 
@@ -114,7 +157,7 @@ geo::OxtsRecord readOxts(const KittiRawFrame& frame) {
   std::string text = readBytes(frame.oxts);
   const auto eol = text.find('\n');
   if (eol != std::string::npos) text.resize(eol);
-  return geo::parseOxtsLine(text, frame.oxts.string());
+  return io::parseOxtsLine(text, frame.oxts.string());
 }
 
 }  // namespace mapfuse::io

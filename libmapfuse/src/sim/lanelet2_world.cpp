@@ -1,6 +1,10 @@
 #include "mapfuse/sim/lanelet2_world.hpp"
 
+#include <cmath>
 #include <set>
+
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/io/bounds.hpp"
 
 namespace mapfuse::sim {
 
@@ -10,6 +14,10 @@ constexpr double kCenterlineStep = 0.5;      // m
 constexpr double kSuccessorTolerance = 0.1;  // m, shared bound end points
 constexpr double kArrowStopDistance = 1.0;   // m, centreline vertex to stop line: a crossing
 constexpr double kMinArrowLaneRoom = 2.5;    // m, the arrow must fit into the lane
+// Drivable lanelets are sampled every kCenterlineStep: at most 1000 km of them (2e6 samples;
+// the Karlsruhe example map has about 30 km). One node 2700 km from the others made a single
+// lanelet take 30 s.
+constexpr double kMaxDrivableLength = 1e6;  // m
 
 bool isDrivable(const std::string& subtype) {
   return subtype.empty() || subtype == "road" || subtype == "highway" || subtype == "exit" ||
@@ -54,6 +62,7 @@ World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin
 
   IdAllocator ids;
   int64_t max_id = 0;
+  // The reader keeps |id| <= 2^63 - 2^32: abs and the fresh ids after max_id cannot overflow.
   for (const auto& w : map.linestrings) max_id = std::max(max_id, std::abs(w.id));
   for (const auto& l : map.lanelets) max_id = std::max(max_id, std::abs(l.id));
   ids.next = max_id + 1;  // ids of placed elements follow every map id
@@ -69,7 +78,18 @@ World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin
     return world.truth.instances.back();
   };
 
-  // Lanes and crosswalks from lanelets.
+  // Lanes and crosswalks from lanelets, their sampling bounded first.
+  double drivable_length = 0.0;
+  for (const auto& ll : map.lanelets)
+    if (ll.subtype != "crosswalk" && isDrivable(ll.subtype))
+      drivable_length +=
+          std::max(polylineLength(wayLine(ll.left)), polylineLength(wayLine(ll.right)));
+  if (drivable_length > kMaxDrivableLength)
+    throw InputError(
+        map.file + ": drivable lanelets are " +
+        std::to_string(std::lround(drivable_length / 1000)) + " km long in all, more than " +
+        std::to_string(std::lround(kMaxDrivableLength / 1000)) +
+        " km (the simulator samples them every " + io::bounds::numberText(kCenterlineStep) + " m)");
   int drivable = 0;
   for (const auto& ll : map.lanelets) {
     Polyline left = wayLine(ll.left), right = wayLine(ll.right);
@@ -152,13 +172,30 @@ World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin
       ++crossing_lines;
     }
   }
-  // Arrows before stop lines, one per lane ending at a stop line.
+  // Arrows before stop lines, one per lane ending at a stop line. Lanes whose bounding box is
+  // farther than kArrowStopDistance from the stop line cannot cross it: skipped unread.
   int arrows = 0;
+  struct Box {
+    Eigen::Vector2d lo, hi;
+  };
+  auto boxOf = [](const Polyline& line) {
+    Box b{line.front().head<2>(), line.front().head<2>()};
+    for (const auto& p : line) b.lo = b.lo.cwiseMin(p.head<2>()), b.hi = b.hi.cwiseMax(p.head<2>());
+    return b;
+  };
+  std::vector<Box> lane_boxes;
+  for (const auto& lane : world.lanes) lane_boxes.push_back(boxOf(lane.centerline));
   const std::size_t n_instances = world.truth.instances.size();
   for (std::size_t i = 0; i < n_instances; ++i) {
     if (world.truth.instances[i].cls != CrowdClass::kStopLine) continue;
     const Polyline stop = world.truth.instances[i].points;
-    for (const auto& lane : world.lanes) {
+    const Box sb = boxOf(stop);
+    for (std::size_t li = 0; li < world.lanes.size(); ++li) {
+      const Lane& lane = world.lanes[li];
+      const Box& lb = lane_boxes[li];
+      if ((lb.lo - sb.hi).maxCoeff() > kArrowStopDistance ||
+          (sb.lo - lb.hi).maxCoeff() > kArrowStopDistance)
+        continue;
       // Where the lane centreline crosses the stop line (closest vertex within tolerance).
       const auto cum = arcLengths(lane.centerline);
       double s_stop = -1.0, best = kArrowStopDistance;

@@ -9,6 +9,7 @@
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/map_png.hpp"
 #include "mapfuse/io/osm_export.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
 
@@ -81,8 +82,8 @@ AggregateRun runAggregate(const std::vector<std::string>& inputs,
   const auto t0 = Clock::now();
   validateParams(params);
   if (inputs.empty()) throw InputError("no input LSM given");
-  std::vector<Lsm> lsms;
-  for (const auto& f : inputs) lsms.push_back(io::readLsm(f));
+  io::OutputTransaction outputs(out_dir);  // locked and writable before the work
+  const std::vector<Lsm> lsms = io::readLsmInputs(inputs);
   const auto set = aggregate::collectObservations(lsms, inputs);
   const auto t1 = Clock::now();
   MAPFUSE_INFO("aggregate: " << set.items.size() << " observations from " << lsms.size()
@@ -98,7 +99,7 @@ AggregateRun runAggregate(const std::vector<std::string>& inputs,
   run.observations = set.items.size();
   run.instances = map.instances.size();
   run.max_deviation_limit = params.aggregator.bezier.max_deviation;
-  run.cbor_kb = double(std::filesystem::file_size(out_dir / "map.cbor")) / 1024.0;
+  run.cbor_kb = double(std::filesystem::file_size(io::contentPath(out_dir / "map.cbor"))) / 1024.0;
   run.road_km = aggregate::coveredRoadKm(lsms, params.road);
   run.lane_line_km = totalLineLength(map, CrowdClass::kLaneLine) / 1000.0;
   run.seconds_read = seconds(t0, t1);
@@ -106,6 +107,7 @@ AggregateRun runAggregate(const std::vector<std::string>& inputs,
   run.seconds_write = seconds(t2, t3);
   io::writeResolvedConfig(out_dir, "aggregate", paramsToJson(params));
   io::writeSummary(out_dir, "aggregate", toJson(run));
+  outputs.commit();
   MAPFUSE_INFO("aggregate: " << map.instances.size() << " instances, " << run.cbor_kb << " KB, "
                              << (run.road_km > 0 ? run.cbor_kb / run.road_km : 0.0) << " KB/km");
   return run;

@@ -7,7 +7,9 @@
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/geo/origin.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/document.hpp"
+#include "mapfuse/io/json_view.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/map_png.hpp"
 #include "mapfuse/io/stage_report.hpp"
@@ -99,10 +101,13 @@ nlohmann::json toJson(const EvaluateMapRun& run) {
 int traversalsOf(const std::filesystem::path& map_file, const VectorMap& map) {
   const auto summary = map_file.parent_path() / "aggregate.summary.json";
   if (std::filesystem::exists(summary)) {
-    const auto j = io::readDocument(summary);
-    if (j.contains("inputs") && j["inputs"].contains("drives") &&
-        j["inputs"]["drives"].is_number_integer())
-      return j["inputs"]["drives"].get<int>();
+    // Checked like every reader: a summary that has inputs.drives must hold a count there (it
+    // was narrowed to int unchecked: 4294967301 drives read as 5).
+    const io::Json j = io::readDocument(summary);
+    const io::JsonView doc(j, summary.string());
+    if (const auto inputs = doc.find("inputs"))
+      if (const auto drives = inputs->find("drives"))
+        return static_cast<int>(drives->integer(0, kMaxTraversals));
   }
   int best = 0;
   for (const auto& i : map.instances) best = std::max(best, i.support.drives);
@@ -113,6 +118,7 @@ EvaluateMapRun runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
                               const EvaluateMapParams& params) {
   validateParams(params);
   checkInputs(in);
+  io::OutputTransaction outputs(out_dir);  // locked and writable before the work
   EvaluateMapRun run;
   run.truth = in.truth;
   VectorMap truth = io::readVectorMap(in.truth);
@@ -141,6 +147,7 @@ EvaluateMapRun runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
   writeReport(out_dir, run, last_map, truth);
   io::writeResolvedConfig(out_dir, "evaluate", paramsToJson(params));
   io::writeSummary(out_dir, "evaluate", toJson(run));
+  outputs.commit();
   MAPFUSE_INFO("evaluate map: " << run.maps.size() << " map(s), " << run.trajectories.size()
                                 << " trajectories -> " << out_dir.string());
   return run;

@@ -63,8 +63,11 @@ long kittiFrameNumber(const std::string& stem);
 geo::OxtsRecord readOxts(const KittiRawFrame& frame);
 
 /// @brief Parses a KITTI timestamp "YYYY-MM-DD HH:MM:SS.fffffffff" into seconds since the
-/// midnight of its date. @throws ParseError(file, field) when malformed.
+/// midnight of its date. @throws ParseError(file, field) when malformed or out of range.
 double parseKittiTimestamp(const std::string& text, const std::string& file,
                            const std::string& field);
+
+/// @brief Every non-empty line of a timestamps file. @throws ParseError(file, "line N").
+std::vector<double> parseKittiTimestamps(const std::string& text, const std::string& file);
 
 }  // namespace mapfuse::io

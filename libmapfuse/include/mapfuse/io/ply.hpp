@@ -3,6 +3,7 @@
 /// `element vertex N` with `float x, y, z; uchar red, green, blue; uchar label;
 /// float confidence` (colours from the LiDAR class palette).
 #include <filesystem>
+#include <string>
 
 #include "mapfuse/core/labeled_cloud.hpp"
 
@@ -14,7 +15,10 @@ void writePly(const std::filesystem::path& path, const LabeledCloud& cloud);
 /// @brief Reads a binary little-endian PLY with vertex properties x, y, z (float or double)
 /// and optional label (any integer type) and confidence (float); other properties are skipped.
 /// @throws IoError when unreadable; ParseError(file, field) for a malformed header, an
-/// unsupported format or type, a missing x/y/z or a truncated body.
+/// unsupported format or type, a missing x/y/z, a truncated body, a coordinate beyond
+/// bounds::kMaxCoordinate, a label that is no LiDAR class id or a confidence outside [0, 1].
 LabeledCloud readPly(const std::filesystem::path& path);
+/// @brief The same from the bytes of a file; `file` names it in errors.
+LabeledCloud parsePly(const std::string& bytes, const std::string& file);
 
 }  // namespace mapfuse::io

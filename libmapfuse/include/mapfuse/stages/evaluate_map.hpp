@@ -5,6 +5,7 @@
 /// (eval::compareTrajectory). Writes evaluate.summary.json, evaluate.config.json, evaluate.md and
 /// PNG plots (docs/evaluate.md).
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -48,9 +49,13 @@ struct EvaluateMapRun {
 
 /// @brief The summary evaluate.summary.json holds.
 nlohmann::json toJson(const EvaluateMapRun& run);
+/// Largest number of traversals read from an aggregate summary.
+constexpr int64_t kMaxTraversals = 1000000;
 
 /// @brief Number of traversals behind a map: "inputs.drives" of aggregate.summary.json in the
 /// map's folder when present, else the largest instance support (0 for an empty map).
+/// @throws ParseError naming the summary and the field when inputs.drives is there but is not an
+/// integer in [0, kMaxTraversals]; IoError / ParseError when the summary cannot be read.
 int traversalsOf(const std::filesystem::path& map_file, const VectorMap& map);
 
 /// @brief Runs the evaluation and writes the outputs into `out_dir`.
