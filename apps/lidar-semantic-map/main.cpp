@@ -15,8 +15,8 @@ int main(int argc, char** argv) {
       "forests), Bayesian voxel fusion, batch refinement. Outputs below --out: map.ply, map.pcd,\n"
       "labels/<frame>.label, topdown.png, poses.txt (KITTI T_world_cam0), poses_velo.txt\n"
       "(T_map_velo), lidar-semantic-map.{config,summary}.json. Untrusted odometry steps are\n"
-      "listed on stderr and in the summary; more than --odom-max-untrusted stop the run (exit 3)\n"
-      "before anything is written.\n"
+      "listed on stderr and in the summary; more than --odom-max-untrusted stop the run (exit 3).\n"
+      "A failed run leaves the previous outputs in the folder unchanged.\n"
       "`train DRIVE... -o DIR` fits rtrees_<label>.yml from drives with labels/<frame>.label.\n"
       "Exit codes: 0 ok, 2 usage/config, 3 bad input, 4 I/O.",
       "lidar-semantic-map"};

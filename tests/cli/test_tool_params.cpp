@@ -12,6 +12,7 @@
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/stages/align.hpp"
 #include "mapfuse/stages/balance.hpp"
+#include "mapfuse/stages/evaluate_voxels.hpp"
 #include "mapfuse/stages/georef.hpp"
 #include "mapfuse/stages/lsm_build.hpp"
 #include "mapfuse/stages/simulate.hpp"
@@ -78,8 +79,8 @@ void checkTool(const std::string& tool) {
                               outside(d.range.hi, d.range.hi_open, false, integer)}) {
         if (!bad) continue;
         Params p;
-        nlohmann::json j = {{d.key, integer ? nlohmann::json(std::llround(*bad))
-                                            : nlohmann::json(*bad)}};
+        nlohmann::json j = {
+            {d.key, integer ? nlohmann::json(std::llround(*bad)) : nlohmann::json(*bad)}};
         INFO("value " << j.dump());
         CHECK_THROWS_WITH(paramsFromJson(p, j, tool + ".json"),
                           Catch::Contains(tool + ".json") && Catch::Contains(d.key));
@@ -117,4 +118,5 @@ TEST_CASE("every tool's parameters are declared once, bounded and refused outsid
   checkTool<stages::LsmBuildParams>("lsm-build");
   checkTool<stages::SimulateParams>("simulate");
   checkTool<stages::SimulateLidarParams>("simulate-lidar");
+  checkTool<stages::EvaluateVoxelsParams>("evaluate-voxels");
 }

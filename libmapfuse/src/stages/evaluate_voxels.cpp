@@ -7,6 +7,7 @@
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/kitti_raw.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/ply.hpp"
 #include "mapfuse/io/semantic_kitti.hpp"
 #include "mapfuse/io/stage_report.hpp"
@@ -16,7 +17,6 @@
 namespace mapfuse::stages {
 namespace {
 constexpr const char* kStage = "evaluate-voxels";
-constexpr const char* kStageName = "EvaluateVoxelsParams";
 
 std::filesystem::path truthLabels(const io::KittiRawDrive& d, const io::KittiRawFrame& f) {
   return d.dir / "labels" / (f.name + ".label");
@@ -42,18 +42,10 @@ std::vector<Pose3> truthPoses(const io::KittiRawDrive& drive, const std::filesys
 }
 }  // namespace
 
-void EvaluateVoxelsParams::validate() const {
-  requireParam(voxel_size > 0.0, kStageName, "voxel_size", voxel_size, "> 0");
-  requireParam(min_range >= 0.0 && min_range < max_range, kStageName, "min_range", min_range,
-               "in [0, max_range)");
-  requireParam(pose_source == "auto" || pose_source == "oxts" || pose_source == "oxts-enu" ||
-                   pose_source == "poses_file",
-               kStageName, "pose_source", pose_source, "auto, oxts, oxts-enu or poses_file");
-}
-
 nlohmann::json runEvaluateVoxels(const EvaluateVoxelsInputs& in, const std::filesystem::path& out,
                                  const EvaluateVoxelsParams& P) {
-  P.validate();
+  validateParams(P);
+  io::OutputTransaction outputs(out);  // locked and writable before the work (exit 4)
   if (in.map.empty() == in.predicted_labels.empty())
     throw InputError(
         "evaluate voxels: give exactly one of a voxel map or a predicted labels folder");
@@ -77,7 +69,7 @@ nlohmann::json runEvaluateVoxels(const EvaluateVoxelsInputs& in, const std::file
   } else {
     // (a) voxel map vs truth voxels from the labelled scans in the same frame.
     std::vector<Pose3> poses = truthPoses(drive, in.drive, P);
-    eval::VoxelTruth truth(P.voxel_size);
+    eval::VoxelTruth truth(P.truth.voxel_size);
     const Eigen::Matrix<double, 3, 4> P2 = drive.calib.veloToImage2();
     for (std::size_t k = 0; k < drive.frames.size(); ++k) {
       const auto& f = drive.frames[k];
@@ -86,9 +78,9 @@ nlohmann::json runEvaluateVoxels(const EvaluateVoxelsInputs& in, const std::file
       if (labels.size() != scan.size())
         throw InputError(truthLabels(drive, f).string() + ": " + std::to_string(labels.size()) +
                          " labels for " + std::to_string(scan.size()) + " points");
-      eval::addLabelledScan(truth, scan.points, labels, poses[k], P.min_range, P.max_range,
-                            P.camera_fov ? &P2 : nullptr, drive.calib.image_width,
-                            drive.calib.image_height);
+      eval::addLabelledScan(truth, scan.points, labels, poses[k], P.truth.min_range,
+                            P.truth.max_range, P.truth.camera_fov ? &P2 : nullptr,
+                            drive.calib.image_width, drive.calib.image_height);
     }
     const LabeledCloud map = io::readPly(in.map);
     const eval::MapComparison cmp = eval::compareVoxelMap(map, truth);
@@ -122,6 +114,7 @@ nlohmann::json runEvaluateVoxels(const EvaluateVoxelsInputs& in, const std::file
                     {"mean_iou", doc["scores"]["mean_iou"]},
                     {"mean_accuracy", doc["scores"]["mean_accuracy"]},
                     {"evaluated", scores.evaluated}});
+  outputs.commit();
   doc["markdown"] = md;
   return doc;
 }

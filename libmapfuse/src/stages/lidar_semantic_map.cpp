@@ -7,6 +7,7 @@
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/core/progress.hpp"
 #include "mapfuse/io/kitti_poses.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/pcd.hpp"
 #include "mapfuse/io/ply.hpp"
 #include "mapfuse/io/png_frames.hpp"
@@ -119,6 +120,7 @@ void LidarSemanticMapParams::validate() const {
 json runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,
                          const LidarSemanticMapParams& p) {
   p.validate();
+  io::OutputTransaction outputs(output);  // locked and writable before the work (exit 4)
   const auto t_start = Clock::now();
   json timings, summary;
   // Inputs.
@@ -289,6 +291,7 @@ json runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,
   summary["timings_s"] = timings;
   io::writeResolvedConfig(output, kStage, paramsToJson(p));
   io::writeSummary(output, kStage, summary);
+  outputs.commit();  // every output replaced as a set: a failed run above left the previous ones
   return summary;
 }
 

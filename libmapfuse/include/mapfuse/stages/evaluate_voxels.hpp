@@ -11,14 +11,13 @@
 #include <nlohmann/json.hpp>
 
 #include "mapfuse/cli/params.hpp"
+#include "mapfuse/eval/voxel_truth.hpp"
 
 namespace mapfuse::stages {
 
 struct EvaluateVoxelsParams {
-  double voxel_size = 0.05;          ///< m, must equal the map's voxel size
-  double min_range = 5.0;            ///< m, truth only from points the mapper uses
-  double max_range = 50.0;           ///< m
-  bool camera_fov = true;            ///< truth only from points that land in image_02
+  static constexpr const char* kName = "EvaluateVoxelsParams";
+  eval::VoxelTruthSettings truth;    ///< which labelled points become truth voxels
   std::string pose_source = "auto";  ///< auto | oxts (devkit Mercator) | oxts-enu | poses_file
   std::string poses_file;            ///< T_world_cam0 poses (KITTI), e.g. the map's poses.txt
   bool recenter = true;              ///< first pose at the origin (as the map is written)
@@ -26,20 +25,16 @@ struct EvaluateVoxelsParams {
 
   template <class V>
   void visit(V& v) {
-    v("voxel_size", voxel_size, "m", "voxel edge, equal to the evaluated map's");
-    v("min_range", min_range, "m", "truth voxels only from points at least this far");
-    v("max_range", max_range, "m", "truth voxels only from points at most this far");
-    v("camera_fov", camera_fov, "", "truth voxels only from points that land in image_02");
+    truth.visit(v);
     v("pose_source", pose_source, "",
       "poses of the truth scans: auto (OXTS when every frame has it, else the poses file or the "
-      "sequence's poses.txt), oxts (devkit), oxts-enu or poses_file");
+      "sequence's poses.txt), oxts (devkit), oxts-enu or poses_file",
+      param::oneOf({"auto", "oxts", "oxts-enu", "poses_file"}));
     v("poses_file", poses_file, "",
       "KITTI poses file (T_world_cam0), e.g. the evaluated map's poses.txt");
     v("recenter", recenter, "", "move the first pose to the origin, as the map is written");
     v("title", title, "", "method name in the first column of the Markdown table");
   }
-  /// @throws ConfigError naming field, value and rule.
-  void validate() const;
 };
 
 /// Inputs of the evaluation: exactly one of `map` and `predicted_labels`.
