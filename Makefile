@@ -4,12 +4,13 @@ JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 # The sanitizer build (clang, AddressSanitizer + UBSan, libFuzzer instrumentation; fuzz/README.md):
 # unit tests run there once, and the fuzz targets. `make fuzz` runs each target FUZZ_SECONDS,
-# FUZZ_JOBS at a time.
+# FUZZ_JOBS at a time; `make test` adds a pass of CI_FUZZ_SECONDS per target.
 SANITIZE_BUILD ?= build-sanitize
 FUZZ_WORK ?= $(SANITIZE_BUILD)/fuzz-work
 FUZZ_SECONDS ?= 60
 FUZZ_JOBS ?= 1
-SANITIZE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMAPFUSE_FUZZ=ON -DMAPFUSE_WITH_PCL=OFF \
+CI_FUZZ_SECONDS ?= 20
+SANITIZE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMAPFUSE_FUZZ=ON -DMAPFUSE_BUILD_BENCH=OFF \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only" \
   "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only"
@@ -31,6 +32,8 @@ demo: build
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+	$(MAKE) --no-print-directory test-sanitize
+	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(CI_FUZZ_SECONDS) FUZZ_JOBS=$(JOBS)
 
 sanitize-configure: deps
 	@if [ ! -f $(SANITIZE_BUILD)/build.ninja ]; then \
