@@ -7,12 +7,12 @@
 using namespace mapfuse;
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
-  lidar::LabeledCloud c;
+  LabeledCloud c;
   if (!fuzz::accepts([&] { c = io::parsePly(fuzz::bytesOf(data, size), "map.ply"); })) return 0;
   for (uint8_t l : c.labels) MAPFUSE_FUZZ_CHECK(l < kNumLidarClasses);
   const auto path = fuzz::scratchDir() / "map.ply";
   io::writePly(path, c);
-  const lidar::LabeledCloud back = io::readPly(path);
+  const LabeledCloud back = io::readPly(path);
   MAPFUSE_FUZZ_CHECK(back.points == c.points && back.labels == c.labels &&
                      back.confidence == c.confidence);
   return 0;

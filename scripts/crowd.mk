@@ -39,6 +39,7 @@ endif
 
 NAMES := $(notdir $(LSMS))
 GEOREF := $(foreach n,$(NAMES),$(WORK)/georef/$(n).d/$(n))
+GEOREF_DONE := $(foreach n,$(NAMES),$(WORK)/georef/$(n).d/georef.summary.json)
 ALIGN_SUMMARY := $(WORK)/align/align.summary.json
 ALIGNED := $(foreach n,$(NAMES),$(WORK)/align/$(n))
 MAP_SUMMARY := $(WORK)/aggregate/aggregate.summary.json
@@ -69,14 +70,14 @@ $(WORK)/origin.txt: | $(firstword $(LSMS))
 
 # ---- georef: one rule per drive, all sharing origin.txt ----
 define GEOREF_RULE
-$(WORK)/georef/$(notdir $(1)).d/$(notdir $(1)): $(1) $(WORK)/origin.txt
+$(WORK)/georef/$(notdir $(1)).d/georef.summary.json: $(1) $(WORK)/origin.txt
 	$(BIN)/georef $(Q) $(call cfg,georef) --origin $$(file <$(WORK)/origin.txt) -o $(WORK)/georef/$(notdir $(1)).d $(1)
 endef
 $(foreach l,$(LSMS),$(eval $(call GEOREF_RULE,$(l))))
 
 ifeq ($(TILE_SIZE),)
 # ---- align: all drives together; its summary is written last ----
-$(ALIGN_SUMMARY): $(GEOREF)
+$(ALIGN_SUMMARY): $(GEOREF_DONE)
 	$(BIN)/align $(Q) $(call cfg,align) --method $(METHOD) -o $(WORK)/align $(GEOREF)
 
 # ---- aggregate ----
@@ -87,7 +88,7 @@ else
 # registration groups consistently); aggregate per tile; stitch. Per-tile steps run in sub-makes
 # over the tile list, which exists only once `tile` has run. ----
 BALANCE_SUMMARY := $(WORK)/balance/balance.summary.json
-$(WORK)/tiles/tiles.txt: $(GEOREF)
+$(WORK)/tiles/tiles.txt: $(GEOREF_DONE)
 	@mkdir -p $(WORK)/tiles
 	$(BIN)/tile $(Q) $(call cfg,tile) --tile-size $(TILE_SIZE) --margin $(TILE_MARGIN) -o $(WORK)/tiles $(GEOREF) > $@.tmp && mv $@.tmp $@
 

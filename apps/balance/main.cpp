@@ -2,31 +2,28 @@
 // (per-tile registration groups and per-drive georef errors solved together).
 #include <iostream>
 
-#include "mapfuse/core/cli.hpp"
+#include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/balance.hpp"
+
+static const char* const kAbout =
+    "Place the tiles of a tiled run consistently: each tile's align leaves every group of\n"
+    "drive pieces it registered together at the mean GPS error of those pieces; balance\n"
+    "carries every drive's GPS error across the tiles it runs through and moves each group to\n"
+    "where one untiled run would put it. Reads tiles.json and, per tile, align's output in\n"
+    "<tile>/align/; writes the moved LSMs to <out>/<tile>/ (same file names) for aggregate,\n"
+    "plus balance.config.json and balance.summary.json.\n"
+    "Exit codes: 0 ok, 2 usage/config, 3 bad input (missing align output), 4 I/O.";
 
 int main(int argc, char** argv) {
   using namespace mapfuse;
-  CLI::App app{
-      "Place the tiles of a tiled run consistently: each tile's align leaves every group of\n"
-      "drive pieces it registered together at the mean GPS error of those pieces; balance\n"
-      "carries every drive's GPS error across the tiles it runs through and moves each group to\n"
-      "where one untiled run would put it. Reads tiles.json and, per tile, align's output in\n"
-      "<tile>/align/; writes the moved LSMs to <out>/<tile>/ (same file names) for aggregate,\n"
-      "plus balance.config.json and balance.summary.json.\n"
-      "Exit codes: 0 ok, 2 usage/config, 3 bad input (missing align output), 4 I/O.",
-      "balance"};
-  stages::BalanceParams params;
-  cli::CommonOptions common;
+  cli::StageTool<stages::BalanceParams> tool("balance", kAbout);
   std::string tiles_json, out;
-  app.add_option("--tiles", tiles_json, "tiles.json written by `tile`")
+  tool.app()
+      .add_option("--tiles", tiles_json, "tiles.json written by `tile`")
       ->required()
       ->check(CLI::ExistingFile);
-  app.add_option("-o,--out", out, "Output folder (one folder per tile)")->required();
-  cli::addCommonOptions(app, common);
-  cli::addParamOptions(app, params);
-  return cli::runStage(app, argc, argv, params, [&] {
-    cli::applyCommonOptions(common);
+  tool.app().add_option("-o,--out", out, "Output folder (one folder per tile)")->required();
+  return tool.run(argc, argv, [&](const stages::BalanceParams& params) {
     stages::runBalance(tiles_json, out, params);
     std::cout << out << '\n';
   });

@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "mapfuse/core/cli.hpp"
+#include "mapfuse/cli/app.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/stages/evaluate_voxels.hpp"
 

@@ -1,6 +1,6 @@
 // lsm-build: one raw drive (simulate --level frames folder, or a KITTI raw drive with a poses
 // file) -> one local semantic map (LSM) in the drive's odom frame (Song et al. 2023 §3).
-#include "mapfuse/core/cli.hpp"
+#include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/lsm_build.hpp"
 
 int main(int argc, char** argv) {

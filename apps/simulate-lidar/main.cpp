@@ -3,7 +3,7 @@
 // network-like class probabilities (semantics_02/*.prob). See docs/lidar-ground-truth.md.
 #include <iostream>
 
-#include "mapfuse/core/cli.hpp"
+#include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/simulate_lidar.hpp"
 
 int main(int argc, char** argv) {

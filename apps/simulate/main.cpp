@@ -2,7 +2,7 @@
 // (docs/simulate.md). Prints the summary JSON on stdout.
 #include <iostream>
 
-#include "mapfuse/core/cli.hpp"
+#include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/simulate.hpp"
 
 int main(int argc, char** argv) {

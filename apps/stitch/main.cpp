@@ -1,26 +1,27 @@
 // stitch: merge per-tile vector maps into one map without duplicates or gaps at tile borders.
-#include "mapfuse/core/cli.hpp"
+#include <iostream>
+
+#include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/stitch.hpp"
 
 int main(int argc, char** argv) {
   using namespace mapfuse;
-  CLI::App app("Merge per-tile vector maps (paths containing tile_<ix>_<iy>) into one map.",
-               "stitch");
-  tiling::StitchParams params;
-  cli::CommonOptions common;
+  cli::StageTool<tiling::StitchParams> tool(
+      "stitch", "Merge per-tile vector maps (paths containing tile_<ix>_<iy>) into one map.");
   std::vector<std::string> maps;
   std::string tiles_json, out;
-  app.add_option("maps", maps, "Tile vector maps, @list.txt, or - for a list on stdin")->required();
-  app.add_option("--tiles", tiles_json, "tiles.json written by `tile`")
+  tool.app()
+      .add_option("maps", maps, "Tile vector maps, @list.txt, or - for a list on stdin")
+      ->required();
+  tool.app()
+      .add_option("--tiles", tiles_json, "tiles.json written by `tile`")
       ->required()
       ->check(CLI::ExistingFile);
-  app.add_option("-o,--out", out, "Stitched map (.cbor or .json); a .geojson is written beside it")
+  tool.app()
+      .add_option("-o,--out", out, "Stitched map (.cbor or .json); a .geojson is written beside it")
       ->required();
-  cli::addCommonOptions(app, common);
-  cli::addParamOptions(app, params);
-  return cli::runStage(app, argc, argv, params, [&] {
-    cli::applyCommonOptions(common);
-    const auto map = stages::runStitch(tiles_json, cli::expandInputList(maps), out, params);
+  return tool.run(argc, argv, [&](const tiling::StitchParams& params) {
+    stages::runStitch(tiles_json, cli::expandInputList(maps), out, params);
     std::cout << out << '\n';
   });
 }

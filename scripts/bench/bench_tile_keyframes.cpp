@@ -13,7 +13,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "mapfuse/core/cli.hpp"
+#include "mapfuse/cli/app.hpp"
 #include "mapfuse/eval/trajectory_metrics.hpp"
 #include "mapfuse/geo/origin.hpp"
 #include "mapfuse/io/document.hpp"

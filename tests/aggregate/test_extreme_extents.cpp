@@ -2,9 +2,9 @@
 // instead of an endless loop or an allocation of gigabytes (issue 19).
 #include <catch2/catch.hpp>
 
-#include "mapfuse/aggregate/lane_instantiation.hpp"
+#include "aggregate/lane_instantiation.hpp"
+#include "mapfuse/aggregate/road_length.hpp"
 #include "mapfuse/core/error.hpp"
-#include "mapfuse/stages/aggregate.hpp"
 
 using namespace mapfuse;
 using namespace mapfuse::aggregate;
@@ -64,9 +64,9 @@ TEST_CASE("road coverage skips a keyframe jump instead of sampling it every metr
     k.T_frame_body.translation() = Eigen::Vector3d(10.0 * i, 0, 0);
     lsm.keyframes.push_back(k);
   }
-  constexpr double kTolerance = 10.0;  // m, the stage default (road_tolerance)
-  const double straight = stages::coveredRoadKm({lsm}, kTolerance);
+  const RoadLengthSettings settings;  // the default road_tolerance, 10 m
+  const double straight = coveredRoadKm({lsm}, settings);
   CHECK(straight == Approx(0.030).margin(1e-9));
   lsm.keyframes[2].T_frame_body.translation() = Eigen::Vector3d(1e7, -1e7, 0);
-  CHECK(stages::coveredRoadKm({lsm}, kTolerance) == Approx(0.010).margin(1e-9));
+  CHECK(coveredRoadKm({lsm}, settings) == Approx(0.010).margin(1e-9));
 }

@@ -51,7 +51,7 @@ cmp -s skt/stitch/map.cbor mkt/stitch/map.cbor || fail "tiled snakemake map diff
 setsid "${MK[@]}" WORK=kill >/dev/null 2>&1 &
 pid=$!
 for _ in $(seq 1 600); do
-  done_drives=(kill/georef/*.d/*.lsm.cbor)
+  done_drives=(kill/georef/*.d/georef.summary.json)
   (( ${#done_drives[@]} == 6 )) && break
   sleep 0.05
 done
@@ -59,10 +59,11 @@ kill -TERM -- -"$pid" 2>/dev/null || true
 wait "$pid" 2>/dev/null || true
 stage="finished"; [[ -f kill/aggregate/map.cbor ]] || stage="killed before aggregate"
 echo "kill: $stage"
-# Drives georeferenced before the kill must be untouched by the rerun. (A georef job that had
-# just renamed its output when the signal came is one make deletes as unfinished: it is not in
-# the list, and the rerun makes it again.)
-finished=(kill/georef/*.d/*.lsm.cbor)
+# Drives georeferenced before the kill (their summary, the file georef commits last and make
+# targets, exists) must be untouched by the rerun. A drive killed while georef was committing
+# has no summary: the rerun makes it again.
+finished=()
+for s in kill/georef/*.d/georef.summary.json; do finished+=("$(dirname "$s")"/*.lsm.cbor); done
 stamps() { (( $# == 0 )) || stat -c '%n %y' "$@"; }
 stamp_before=$(stamps "${finished[@]}")
 sleep 1

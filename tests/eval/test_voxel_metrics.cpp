@@ -104,7 +104,7 @@ TEST_CASE("voxel metrics: a voxel map against truth voxels with moving and parke
   truth.addPoint({9.2, 0.1, 0.6}, word(10, 5));  // majority moving: still a moving voxel
   truth.addPoint({9.3, 0.1, 0.6}, word(252, 1000));
   REQUIRE(truth.size() == 6);
-  lidar::LabeledCloud map;
+  LabeledCloud map;
   auto put = [&](Eigen::Vector3f p, LidarClass c) {
     map.points.push_back(p);
     map.labels.push_back(static_cast<uint8_t>(c));
@@ -170,7 +170,7 @@ TEST_CASE("evaluate voxels: stage on a synthetic drive, scans and voxel map") {
   stages::EvaluateVoxelsParams vp;
   in.predicted_labels.clear();
   in.map = dir / "empty.ply";
-  io::writePly(in.map, lidar::LabeledCloud{});
+  io::writePly(in.map, LabeledCloud{});
   const auto empty = stages::runEvaluateVoxels(in, dir / "vox0", vp);
   CHECK(empty["scores"]["mean_iou"].get<double>() == Approx(0.0).margin(kExact));
   const uint64_t truth_voxels = empty["counts"]["truth_voxels"];
@@ -186,7 +186,7 @@ TEST_CASE("evaluate voxels: stage on a synthetic drive, scans and voxel map") {
     addLabelledScan(truth, io::readVelodyneBin(d.frames[k].velodyne).points,
                     io::readSemanticKittiLabels(drive / "labels" / (d.frames[k].name + ".label")),
                     poses[k], vp.min_range, vp.max_range, &P2, 1242, 375);
-  lidar::LabeledCloud perfect;
+  LabeledCloud perfect;
   for (const auto& [key, label] : truth.all()) {
     if (label.moving || label.cls == LidarClass::kUnlabeled) continue;
     Eigen::Vector3f c;

@@ -1,6 +1,7 @@
 // georef: GPS + odometry pose graph per LSM (eq. 4-6), against the fixture's ground truth.
 #include <catch2/catch.hpp>
 
+#include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/fusion/georef.hpp"
 #include "mapfuse/io/lsm_io.hpp"
@@ -99,11 +100,11 @@ TEST_CASE("configs/georef.json mirrors GeorefParams defaults") {
   const auto j = nlohmann::json::parse(
       test::readText(std::filesystem::path(MAPFUSE_SOURCE_DIR) / "configs/georef.json"));
   CHECK(j == paramsToJson(stages::GeorefParams{}));
-  CHECK_NOTHROW(stages::GeorefParams{}.validate());
+  CHECK_NOTHROW(validateParams(stages::GeorefParams{}));
   stages::GeorefParams bad;
-  bad.gravity_sigma = -0.01;
-  CHECK_THROWS_AS(bad.validate(), ConfigError);
-  CHECK_THROWS_WITH(bad.validate(), Catch::Contains("gravity_sigma"));
+  bad.georef.gravity_sigma = -0.01;
+  CHECK_THROWS_AS(validateParams(bad), ConfigError);
+  CHECK_THROWS_WITH(validateParams(bad), Catch::Contains("gravity_sigma"));
 }
 
 TEST_CASE("georef app: shared origin, summary, exit codes") {

@@ -11,8 +11,8 @@
 using namespace mapfuse;
 
 namespace {
-lidar::LabeledCloud sampleCloud(std::size_t n) {
-  lidar::LabeledCloud c;
+LabeledCloud sampleCloud(std::size_t n) {
+  LabeledCloud c;
   for (std::size_t i = 0; i < n; ++i) {
     c.points.emplace_back(0.05f * i, -0.1f * i, 1.0f + 0.01f * i);
     c.labels.push_back(static_cast<uint8_t>(i % 8));
@@ -20,7 +20,7 @@ lidar::LabeledCloud sampleCloud(std::size_t n) {
   }
   return c;
 }
-void checkSame(const lidar::LabeledCloud& a, const lidar::LabeledCloud& b) {
+void checkSame(const LabeledCloud& a, const LabeledCloud& b) {
   REQUIRE(a.size() == b.size());
   for (std::size_t i = 0; i < a.size(); ++i) {
     CHECK(a.points[i] == b.points[i]);

@@ -7,7 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
-#include "mapfuse/core/params.hpp"
+#include "mapfuse/cli/params.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
 #include "mapfuse/io/lsm_io.hpp"

@@ -3,6 +3,7 @@
 // then every placed drive must sit at the batch-wide mean error.
 #include <catch2/catch.hpp>
 
+#include "mapfuse/core/error.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/stages/balance.hpp"

@@ -3,6 +3,7 @@
 #include <functional>
 #include <random>
 
+#include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/tiling/piece_links.hpp"
 #include "mapfuse/tiling/placement.hpp"
@@ -221,15 +222,16 @@ TEST_CASE("registration groups are the connected components of the kept links", 
 
 TEST_CASE("placement parameters are validated with their field names", "[tiling][config]") {
   PlacementParams p;
-  CHECK_NOTHROW(p.validate());
+  CHECK_NOTHROW(validateParams(p, "BalanceParams"));
   p.keyframe_sigma = 0.0;
-  CHECK_THROWS_WITH(p.validate(), Catch::Contains("BalanceParams::keyframe_sigma"));
+  CHECK_THROWS_WITH(validateParams(p, "BalanceParams"),
+                    Catch::Contains("BalanceParams::keyframe_sigma"));
   p = PlacementParams{};
   p.rounds = 0;
-  CHECK_THROWS_AS(p.validate(), ConfigError);
+  CHECK_THROWS_AS(validateParams(p, "BalanceParams"), ConfigError);
   p = PlacementParams{};
   p.robust_scale = -1.0;
-  CHECK_THROWS_AS(p.validate(), ConfigError);
+  CHECK_THROWS_AS(validateParams(p, "BalanceParams"), ConfigError);
 }
 
 TEST_CASE("pieces whose elements coincide after alignment are linked", "[tiling][placement]") {

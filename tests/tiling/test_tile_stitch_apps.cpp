@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include "mapfuse/cli/params.hpp"
+#include "mapfuse/core/error.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/vector_map_io.hpp"

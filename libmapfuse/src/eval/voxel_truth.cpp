@@ -56,7 +56,7 @@ std::vector<std::pair<uint64_t, VoxelTruth::Label>> VoxelTruth::all() const {
   return out;
 }
 
-MapComparison compareVoxelMap(const lidar::LabeledCloud& map, const VoxelTruth& truth) {
+MapComparison compareVoxelMap(const LabeledCloud& map, const VoxelTruth& truth) {
   if (map.labels.size() != map.points.size())
     throw InputError("voxel map: " + std::to_string(map.points.size()) + " points but " +
                      std::to_string(map.labels.size()) + " labels");

@@ -11,24 +11,6 @@
 
 namespace mapfuse::fusion {
 
-std::optional<AlignMethod> alignMethodFromName(const std::string& n) {
-  if (n == "icp") return AlignMethod::kIcp;
-  if (n == "sicp") return AlignMethod::kSicp;
-  if (n == "sgicp") return AlignMethod::kSgicp;
-  if (n == "gba_sgicp") return AlignMethod::kGbaSgicp;
-  return std::nullopt;
-}
-
-const char* alignMethodName(AlignMethod m) {
-  switch (m) {
-    case AlignMethod::kIcp: return "icp";
-    case AlignMethod::kSicp: return "sicp";
-    case AlignMethod::kSgicp: return "sgicp";
-    case AlignMethod::kGbaSgicp: return "gba_sgicp";
-  }
-  return "?";
-}
-
 std::vector<InterConstraint> registerSubmaps(const std::vector<Lsm>& lsms, const AlignSettings& s) {
   using namespace detail;
   const std::vector<Submap> maps = buildSubmaps(lsms, s.submap_length);

@@ -1,7 +1,9 @@
 #include "mapfuse/fusion/georef.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <exception>
 
 #include "factors.hpp"
 #include "mapfuse/core/error.hpp"
@@ -217,6 +219,31 @@ GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin, const
     k.covariance = cov;
   }
   return res;
+}
+
+std::vector<GeorefResult> georeferenceLsms(const std::vector<Lsm>& lsms,
+                                           const geo::GeoOrigin& origin,
+                                           const GeorefSettings& settings,
+                                           const std::vector<std::string>& sources, int threads) {
+  using Clock = std::chrono::steady_clock;
+  const int n = int(lsms.size());
+  std::vector<GeorefResult> results(n);
+  std::vector<std::exception_ptr> errors(n);
+  // One thread per input at most: a per-drive batch job (one LSM) must not start and spin an
+  // idle OpenMP worker (it doubled the CPU time of such jobs).
+#pragma omp parallel for schedule(dynamic) num_threads(std::max(1, std::min(threads, n)))
+  for (int i = 0; i < n; ++i) {
+    try {
+      const auto t = Clock::now();
+      results[i] = georeferenceLsm(lsms[i], origin, settings, sources[i]);
+      results[i].seconds = std::chrono::duration<double>(Clock::now() - t).count();
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  }
+  for (auto& e : errors)
+    if (e) std::rethrow_exception(e);
+  return results;
 }
 
 }  // namespace mapfuse::fusion

@@ -1,5 +1,7 @@
 #include "mapfuse/geo/origin.hpp"
 
+#include <sstream>
+
 #include <GeographicLib/Geodesic.hpp>
 #include <GeographicLib/LocalCartesian.hpp>
 #include <cmath>
@@ -8,9 +10,14 @@
 
 namespace mapfuse::geo {
 
-bool isValid(const LatLonAlt& p) {
-  return std::isfinite(p.lat) && std::isfinite(p.lon) && std::isfinite(p.alt) &&
-         std::abs(p.lat) <= 90.0 && std::abs(p.lon) <= 180.0;
+std::optional<LatLonAlt> parseLatLonAlt(const std::string& text) {
+  std::istringstream is(text);
+  LatLonAlt o;
+  char c1 = 0, c2 = 0;
+  if (!(is >> o.lat >> c1 >> o.lon >> c2 >> o.alt) || c1 != ',' || c2 != ',' ||
+      !(is >> std::ws).eof() || !isValid(o))
+    return std::nullopt;
+  return o;
 }
 
 bool sameOrigin(const GeoOrigin& a, const GeoOrigin& b) {

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 
 namespace mapfuse::io {
 
@@ -27,6 +28,10 @@ void writeFileAtomic(const std::filesystem::path& path,
     out.flush();
     if (!out) throw IoError(tmp.string(), "write failed (disk full?)");
     out.close();
+    if (OutputTransaction* tx = OutputTransaction::active()) {
+      tx->stage(tmp, path);  // renamed with the rest of the run's outputs at commit
+      return;
+    }
     fs::rename(tmp, path, ec);
     if (ec) throw IoError(path.string(), "cannot rename temporary file: " + ec.message());
   } catch (...) {

@@ -12,6 +12,7 @@
 #include "mapfuse/io/camera_calib.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
+#include "mapfuse/io/kitti_poses.hpp"
 #include "mapfuse/io/png_decode.hpp"
 #include "mapfuse/vehicle/centerline.hpp"
 
@@ -320,52 +321,11 @@ std::vector<vehicle::GroundObservation> observationsFromMask(const cv::Mat& mask
 }
 
 std::vector<Pose3> readKittiPoses(const fs::path& path) {
-  return parseKittiPoses(readBytes(path), path.string());
+  return readKittiOdometryPoses(path);  // one reader for every poses file (io/kitti_poses.hpp)
 }
 
 std::vector<Pose3> parseKittiPoses(const std::string& text, const std::string& file) {
-  std::stringstream ss(text);
-  std::string line;
-  std::vector<Pose3> out;
-  int n = 0;
-  while (std::getline(ss, line)) {
-    ++n;
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    std::stringstream ls(line);
-    double m[12];
-    int k = 0;
-    std::string tok;
-    while (ls >> tok) {
-      if (k >= 12) throw ParseError(file, "line " + std::to_string(n), "more than 12 numbers");
-      try {
-        std::size_t used = 0;
-        m[k] = std::stod(tok, &used);
-        if (used != tok.size() || !std::isfinite(m[k])) throw std::invalid_argument("x");
-      } catch (const std::exception&) {
-        throw ParseError(file, "line " + std::to_string(n), "'" + tok + "' is not a finite number");
-      }
-      ++k;
-    }
-    if (k != 12)
-      throw ParseError(file, "line " + std::to_string(n),
-                       "expected 12 numbers, got " + std::to_string(k));
-    Pose3 T = Pose3::Identity();
-    Eigen::Matrix3d R;
-    R << m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10];
-    if ((R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-3)
-      throw ParseError(file, "line " + std::to_string(n), "R is not a rotation");
-    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    T.linear() = svd.matrixU() * svd.matrixV().transpose();
-    T.translation() = Eigen::Vector3d(m[3], m[7], m[11]);
-    if (T.translation().cwiseAbs().maxCoeff() > bounds::kMaxCoordinate)
-      throw ParseError(file, "line " + std::to_string(n),
-                       "translation outside " +
-                           bounds::rangeText(-bounds::kMaxCoordinate, bounds::kMaxCoordinate) +
-                           " m");
-    out.push_back(T);
-  }
-  if (out.empty()) throw ParseError(file, "", "no poses");
-  return out;
+  return parseKittiOdometryPoses(text, file);
 }
 
 }  // namespace mapfuse::io

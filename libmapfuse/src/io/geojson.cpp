@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "mapfuse/geo/origin.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 
 namespace mapfuse::io {

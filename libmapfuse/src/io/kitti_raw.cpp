@@ -8,19 +8,11 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/kitti_sequence.hpp"
 
 namespace mapfuse::io {
 namespace fs = std::filesystem;
 namespace {
-
-/// Frame number of a file stem made of digits only that fits in an int, or -1.
-long frameNumber(const std::string& stem) {
-  if (stem.empty() || stem.size() > 12) return -1;
-  for (char c : stem)
-    if (!std::isdigit(static_cast<unsigned char>(c))) return -1;
-  const long n = std::stol(stem);
-  return n <= std::numeric_limits<int>::max() ? n : -1;
-}
 
 /// Lines of a timestamps file, parsed; empty when the file does not exist.
 std::vector<double> readTimestamps(const fs::path& path) {
@@ -29,6 +21,22 @@ std::vector<double> readTimestamps(const fs::path& path) {
 }
 
 }  // namespace
+
+long kittiFrameNumber(const std::string& stem) {
+  if (stem.empty() || stem.size() > 12) return -1;
+  for (char c : stem)
+    if (!std::isdigit(static_cast<unsigned char>(c))) return -1;
+  const long n = std::stol(stem);
+  return n <= std::numeric_limits<int>::max() ? n : -1;  // frame indices are ints
+}
+
+void checkFrameRange(const FrameRange& range) {
+  if (range.stride < 1) throw InputError("frame stride must be >= 1");
+  if (range.first < 0) throw InputError("first frame must be >= 0");
+  if (range.last >= 0 && range.last < range.first)
+    throw InputError("last frame " + std::to_string(range.last) + " is before first frame " +
+                     std::to_string(range.first));
+}
 
 std::vector<double> parseKittiTimestamps(const std::string& text, const std::string& file) {
   std::vector<double> out;
@@ -90,11 +98,8 @@ double parseKittiTimestamp(const std::string& text, const std::string& file,
 }
 
 KittiRawDrive openKittiRawDrive(const fs::path& drive_dir, const FrameRange& range) {
-  if (range.stride < 1) throw InputError("frame stride must be >= 1");
-  if (range.first < 0) throw InputError("first frame must be >= 0");
-  if (range.last >= 0 && range.last < range.first)
-    throw InputError("last frame " + std::to_string(range.last) + " is before first frame " +
-                     std::to_string(range.first));
+  checkFrameRange(range);
+  if (isKittiSequence(drive_dir)) return openKittiSequence(drive_dir, range);
   KittiRawDrive drive;
   drive.dir = fs::absolute(drive_dir).lexically_normal();
   if (!drive.dir.has_filename()) drive.dir = drive.dir.parent_path();
@@ -106,7 +111,7 @@ KittiRawDrive openKittiRawDrive(const fs::path& drive_dir, const FrameRange& ran
   std::vector<std::pair<long, fs::path>> scans;
   for (const auto& e : fs::directory_iterator(velo_dir)) {
     if (e.path().extension() != ".bin") continue;
-    const long n = frameNumber(e.path().stem().string());
+    const long n = kittiFrameNumber(e.path().stem().string());
     if (n >= 0) scans.emplace_back(n, e.path());
   }
   std::sort(scans.begin(), scans.end());

@@ -1,5 +1,6 @@
 #include "mapfuse/io/lsm_io.hpp"
 
+#include "mapfuse/core/error.hpp"
 #include <algorithm>
 #include <cmath>
 
@@ -188,6 +189,27 @@ Lsm lsmFromJson(const Json& doc, const std::string& file) {
 
 Lsm readLsm(const std::filesystem::path& path) {
   return lsmFromJson(readDocument(path), path.string());
+}
+
+std::vector<Lsm> readLsmInputs(const std::vector<std::string>& files) {
+  namespace fs = std::filesystem;
+  for (std::size_t i = 0; i < files.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j) {
+      std::error_code ec;
+      if (files[i] == files[j] || fs::equivalent(files[i], files[j], ec))
+        throw ConfigError("inputs " + files[j] + " and " + files[i] +
+                          " are the same file (its data would count twice)");
+    }
+  std::vector<Lsm> lsms;
+  lsms.reserve(files.size());
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    lsms.push_back(readLsm(files[i]));
+    for (std::size_t j = 0; j < i; ++j)
+      if (lsms[j].drive_id == lsms[i].drive_id)
+        throw ConfigError("inputs " + files[j] + " and " + files[i] + " hold the same drive '" +
+                          lsms[i].drive_id + "' (its data would count twice)");
+  }
+  return lsms;
 }
 
 void writeLsm(const std::filesystem::path& path, const Lsm& lsm) {

@@ -4,6 +4,7 @@
 #include <pugixml.hpp>
 #include <sstream>
 
+#include "mapfuse/geo/origin.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 
 namespace mapfuse::io {

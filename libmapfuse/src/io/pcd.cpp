@@ -19,7 +19,7 @@ namespace {
 constexpr int64_t kMaxCount = 1 << 20;
 }  // namespace
 
-void writePcd(const std::filesystem::path& path, const lidar::LabeledCloud& cloud) {
+void writePcd(const std::filesystem::path& path, const LabeledCloud& cloud) {
   if (cloud.labels.size() != cloud.size() || cloud.confidence.size() != cloud.size())
     throw InputError(path.string() + ": points, labels and confidence differ in size");
   std::ostringstream h;
@@ -46,11 +46,11 @@ void writePcd(const std::filesystem::path& path, const lidar::LabeledCloud& clou
   });
 }
 
-lidar::LabeledCloud readPcd(const std::filesystem::path& path) {
+LabeledCloud readPcd(const std::filesystem::path& path) {
   return parsePcd(readBytes(path), path.string());
 }
 
-lidar::LabeledCloud parsePcd(const std::string& bytes, const std::string& file) {
+LabeledCloud parsePcd(const std::string& bytes, const std::string& file) {
   std::vector<std::string> fields, types;
   std::vector<int64_t> sizes, counts;
   long long points = -1;
@@ -123,7 +123,7 @@ lidar::LabeledCloud parsePcd(const std::string& bytes, const std::string& file) 
   const auto need = bounds::checkedMultiply(points, stride);
   if (!need || uint64_t(*need) > bytes.size() - pos)
     throw ParseError(file, "DATA", "body truncated");
-  lidar::LabeledCloud c;
+  LabeledCloud c;
   c.points.resize(static_cast<std::size_t>(points));
   c.labels.assign(c.points.size(), 0);
   c.confidence.assign(c.points.size(), 1.0f);

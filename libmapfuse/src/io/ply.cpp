@@ -12,7 +12,7 @@
 namespace mapfuse::io {
 namespace {
 
-void checkCloud(const lidar::LabeledCloud& c, const std::string& what) {
+void checkCloud(const LabeledCloud& c, const std::string& what) {
   if (c.labels.size() != c.size() || c.confidence.size() != c.size())
     throw InputError(what + ": points, labels and confidence differ in size");
 }
@@ -61,7 +61,7 @@ double readValue(const char* p, const std::string& t) {
 
 }  // namespace
 
-void writePly(const std::filesystem::path& path, const lidar::LabeledCloud& cloud) {
+void writePly(const std::filesystem::path& path, const LabeledCloud& cloud) {
   checkCloud(cloud, path.string());
   std::ostringstream h;
   h << "ply\nformat binary_little_endian 1.0\ncomment mapfuse semantic voxel map\n"
@@ -88,11 +88,11 @@ void writePly(const std::filesystem::path& path, const lidar::LabeledCloud& clou
   });
 }
 
-lidar::LabeledCloud readPly(const std::filesystem::path& path) {
+LabeledCloud readPly(const std::filesystem::path& path) {
   return parsePly(readBytes(path), path.string());
 }
 
-lidar::LabeledCloud parsePly(const std::string& bytes, const std::string& file) {
+LabeledCloud parsePly(const std::string& bytes, const std::string& file) {
   const auto end = bytes.find("end_header\n");
   if (bytes.rfind("ply\n", 0) != 0 || end == std::string::npos)
     throw ParseError(file, "header", "not a PLY file (missing 'ply' or 'end_header')");
@@ -154,7 +154,7 @@ lidar::LabeledCloud parsePly(const std::string& bytes, const std::string& file) 
     throw ParseError(file, "vertex",
                      "body truncated: " + std::to_string(bytes.size() - body) + " bytes for " +
                          std::to_string(n) + " vertices of " + std::to_string(stride) + " bytes");
-  lidar::LabeledCloud c;
+  LabeledCloud c;
   c.points.resize(static_cast<std::size_t>(n));
   c.labels.assign(static_cast<std::size_t>(n), 0);
   c.confidence.assign(static_cast<std::size_t>(n), 1.0f);

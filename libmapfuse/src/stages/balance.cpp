@@ -4,12 +4,13 @@
 #include <chrono>
 #include <map>
 
+#include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
-#include "mapfuse/core/params.hpp"
 #include "mapfuse/core/progress.hpp"
 #include "mapfuse/io/align_registrations.hpp"
 #include "mapfuse/io/lsm_io.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/tiles_manifest.hpp"
 #include "mapfuse/tiling/piece_links.hpp"
@@ -17,14 +18,6 @@
 namespace mapfuse::stages {
 
 namespace fs = std::filesystem;
-
-void BalanceParams::validate() const {
-  placement.validate();
-  requireParam(!aligned_subdir.empty(), "BalanceParams", "aligned_subdir", aligned_subdir,
-               "not empty");
-  requireParam(link_distance > 0.0, "BalanceParams", "link_distance", link_distance, "> 0");
-  requireParam(link_min_points >= 1, "BalanceParams", "link_min_points", link_min_points, ">= 1");
-}
 
 namespace {
 
@@ -82,7 +75,7 @@ std::vector<std::pair<PieceFiles, tiling::TilePiece>> measureTile(const io::Tile
   }
   auto links = keptRegistrations(summary_path, files);
   const auto agreeing =
-      tiling::agreeingPieces(aligned, params.link_distance, params.link_min_points);
+      tiling::agreeingPieces(aligned, params.links.link_distance, params.links.link_min_points);
   links.insert(links.end(), agreeing.begin(), agreeing.end());
   const std::vector<int> group = tiling::registrationGroups(int(files.size()), links);
 
@@ -103,8 +96,9 @@ std::vector<std::pair<PieceFiles, tiling::TilePiece>> measureTile(const io::Tile
 
 nlohmann::json runBalance(const fs::path& tiles_json, const fs::path& out,
                           const BalanceParams& params) {
-  params.validate();
+  validateParams(params);
   const auto t0 = std::chrono::steady_clock::now();
+  io::OutputTransaction outputs(out);  // locked and writable before the work
   const io::TilesManifest manifest = io::readTilesManifest(tiles_json);
   const fs::path tiles_dir = tiles_json.parent_path();
 
@@ -182,6 +176,7 @@ nlohmann::json runBalance(const fs::path& tiles_json, const fs::path& out,
                             {"per_tile", per_tile},
                             {"seconds", seconds}};
   io::writeSummary(out, "balance", summary);
+  outputs.commit();
   MAPFUSE_INFO("balance: " << report.pieces << " pieces of " << report.drives << " drives in "
                            << report.groups << " groups on " << report.tiles
                            << " tiles, largest shift " << report.max_shift << " m, residual rms "

@@ -3,12 +3,13 @@
 #include <chrono>
 #include <regex>
 
+#include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
-#include "mapfuse/core/params.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/geojson.hpp"
 #include "mapfuse/io/json_view.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/tiles_manifest.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
@@ -32,8 +33,10 @@ tiling::TileKey tileOfPath(const std::filesystem::path& path) {
 
 VectorMap runStitch(const std::filesystem::path& tiles_json, const std::vector<std::string>& maps,
                     const std::filesystem::path& out_map, const tiling::StitchParams& params) {
-  params.validate();
+  validateParams(params);
   const auto t0 = std::chrono::steady_clock::now();
+  const auto dir = out_map.has_parent_path() ? out_map.parent_path() : std::filesystem::path(".");
+  io::OutputTransaction outputs(dir);  // locked and writable before the work
   const io::TilesManifest manifest = io::readTilesManifest(tiles_json);
   const tiling::TileGrid grid(manifest.tile_size, manifest.margin);
 
@@ -45,7 +48,6 @@ VectorMap runStitch(const std::filesystem::path& tiles_json, const std::vector<s
   io::writeVectorMap(out_map, stitched);
   auto geojson = out_map;
   io::writeGeoJson(geojson.replace_extension(".geojson"), stitched);
-  const auto dir = out_map.has_parent_path() ? out_map.parent_path() : std::filesystem::path(".");
   io::writeResolvedConfig(dir, "stitch", paramsToJson(params));
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -57,6 +59,7 @@ VectorMap runStitch(const std::filesystem::path& tiles_json, const std::vector<s
                     {"line_pieces", report.line_pieces},
                     {"joins", report.joins},
                     {"seconds", seconds}});
+  outputs.commit();
   MAPFUSE_INFO("stitch: " << report.tiles << " tiles, " << report.instances_in << " -> "
                           << report.instances_out << " instances, " << report.joins << " joins");
   return stitched;

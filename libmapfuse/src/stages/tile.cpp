@@ -1,32 +1,53 @@
 #include "mapfuse/stages/tile.hpp"
 
 #include <chrono>
+#include <set>
 
+#include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
 #include "mapfuse/io/lsm_io.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/tiling/split.hpp"
 
 namespace mapfuse::stages {
 
-void TileParams::validate() const {
-  requireParam(tile_size > 0.0, "TileParams", "tile_size", tile_size, "tile_size > 0");
-  requireParam(margin >= 0.0 && margin < tile_size / 2, "TileParams", "margin", margin,
-               "0 <= margin < tile_size / 2");
-  requireParam(min_keyframes >= 2, "TileParams", "min_keyframes", min_keyframes, ">= 2");
-  requireParam(format == "cbor" || format == "json", "TileParams", "format", format,
-               "cbor or json");
+namespace {
+/// Tiles of an earlier tiling in `out` (their folders, with whatever later steps wrote there) and
+/// tile LSMs the new tiling no longer lists: batch rules take a tile's inputs by wildcard.
+void pruneStaleTiles(const std::filesystem::path& out, const nlohmann::json& manifest) {
+  namespace fs = std::filesystem;
+  std::set<std::string> tiles, lsms;
+  for (const auto& t : manifest["tiles"]) {
+    tiles.insert(t["name"].get<std::string>());
+    for (const auto& f : t["lsms"]) lsms.insert(f.get<std::string>());
+  }
+  for (const auto& e : fs::directory_iterator(out)) {
+    const std::string name = e.path().filename().string();
+    if (!e.is_directory() || name.rfind("tile_", 0) != 0) continue;
+    if (!tiles.count(name)) {
+      fs::remove_all(e.path());
+      continue;
+    }
+    for (const auto& f : fs::directory_iterator(e.path())) {
+      const auto ext = f.path().extension();
+      if (f.is_regular_file() && (ext == ".cbor" || ext == ".json") &&
+          !lsms.count(name + "/" + f.path().filename().string()))
+        fs::remove(f.path());
+    }
+  }
 }
+}  // namespace
 
 nlohmann::json runTile(const std::vector<std::string>& lsm_files, const std::filesystem::path& out,
                        const TileParams& params) {
-  params.validate();
+  validateParams(params);
   const auto t0 = std::chrono::steady_clock::now();
+  io::OutputTransaction outputs(out);  // locked and writable before the work
   if (lsm_files.empty()) throw InputError("tile: no input LSM given");
-  std::vector<Lsm> lsms;
-  for (const auto& f : lsm_files) lsms.push_back(io::readLsm(f));
+  const std::vector<Lsm> lsms = io::readLsmInputs(lsm_files);
   const tiling::TileGrid grid(params.tile_size, params.margin);
   const auto tiles = tiling::splitIntoTiles(lsms, grid, params.min_keyframes);
 
@@ -61,6 +82,8 @@ nlohmann::json runTile(const std::vector<std::string>& lsm_files, const std::fil
                     {"tiles", tiles.size()},
                     {"tile_lsms", files},
                     {"seconds", seconds}});
+  outputs.commit();
+  pruneStaleTiles(out, manifest);
   MAPFUSE_INFO("tile: " << lsm_files.size() << " LSMs -> " << tiles.size() << " tiles, " << files
                         << " tile LSMs in " << out.string());
   return manifest;

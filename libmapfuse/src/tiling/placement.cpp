@@ -9,17 +9,9 @@
 #include <unordered_map>
 
 #include "mapfuse/core/error.hpp"
-#include "mapfuse/core/params.hpp"
 #include "mapfuse/core/union_find.hpp"
 
 namespace mapfuse::tiling {
-
-void PlacementParams::validate() const {
-  requireParam(keyframe_sigma > 0.0, "BalanceParams", "keyframe_sigma", keyframe_sigma, "> 0");
-  requireParam(bias_walk >= 0.0, "BalanceParams", "bias_walk", bias_walk, ">= 0");
-  requireParam(robust_scale > 0.0, "BalanceParams", "robust_scale", robust_scale, "> 0");
-  requireParam(rounds >= 1, "BalanceParams", "rounds", rounds, ">= 1");
-}
 
 std::string driveOfPiece(const std::string& drive_id) {
   static const std::regex kRun("(.*)\\.run[0-9]+");
@@ -79,7 +71,6 @@ void addDifference(Triplets& A, int i, int j, double w) {
 std::map<GroupKey, Eigen::Vector3d> solvePlacement(const std::vector<TilePiece>& pieces,
                                                    const PlacementParams& params,
                                                    PlacementReport& report) {
-  params.validate();
   report = PlacementReport{};
   // Unknowns: o_g for every group (0..G-1), then e_k for every distinct drive keyframe.
   std::map<GroupKey, int> group_index;

@@ -4,6 +4,7 @@
 #include <unordered_set>
 
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/geo/origin.hpp"
 
 namespace mapfuse::tiling {
 namespace {

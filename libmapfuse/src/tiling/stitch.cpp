@@ -5,15 +5,9 @@
 #include <set>
 
 #include "mapfuse/core/error.hpp"
-#include "mapfuse/core/params.hpp"
+#include "mapfuse/geo/origin.hpp"
 
 namespace mapfuse::tiling {
-
-void StitchParams::validate() const {
-  requireParam(join_tolerance > 0.0, "StitchParams", "join_tolerance", join_tolerance, "> 0");
-  requireParam(min_piece_length >= 0.0, "StitchParams", "min_piece_length", min_piece_length,
-               ">= 0");
-}
 
 std::vector<ClippedPiece> clipPolyline(const std::vector<Eigen::Vector3d>& line, const Rect& r) {
   std::vector<ClippedPiece> pieces;
@@ -159,7 +153,6 @@ std::vector<MapInstance> joinPieces(std::vector<Piece>& pieces, const StitchPara
 
 VectorMap stitchTiles(const std::vector<std::pair<TileKey, VectorMap>>& tiles, const TileGrid& grid,
                       const StitchParams& params, StitchReport& report, const BezierRefit& refit) {
-  params.validate();
   report = StitchReport{};
   VectorMap out;
   out.source = "stitch";

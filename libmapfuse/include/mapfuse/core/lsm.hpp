@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "mapfuse/core/classes.hpp"
+#include "mapfuse/core/lat_lon_alt.hpp"
 #include "mapfuse/core/se3.hpp"
-#include "mapfuse/geo/origin.hpp"
 
 namespace mapfuse {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "mapfuse/core/classes.hpp"
-#include "mapfuse/geo/origin.hpp"
+#include "mapfuse/core/lat_lon_alt.hpp"
 
 namespace mapfuse {
 

@@ -11,9 +11,9 @@
 
 #include <Eigen/Core>
 
+#include "mapfuse/core/labeled_cloud.hpp"
 #include "mapfuse/core/se3.hpp"
 #include "mapfuse/eval/voxel_metrics.hpp"
-#include "mapfuse/lidar/labeled_cloud.hpp"
 
 namespace mapfuse::eval {
 
@@ -67,7 +67,7 @@ struct MapComparison {
 /// static truth voxels give (truth, predicted or unlabeled if absent) pairs; map voxels on moving
 /// cars' truth voxels are spurious predictions (false positives of their class).
 /// @throws InputError when the cloud's arrays differ in size.
-MapComparison compareVoxelMap(const lidar::LabeledCloud& map, const VoxelTruth& truth);
+MapComparison compareVoxelMap(const LabeledCloud& map, const VoxelTruth& truth);
 
 /// @brief Per-point confusion of predicted vs true SemanticKITTI words of one scan; moving truth
 /// points count as their static class (a per-scan label of a moving car is right as vehicle).

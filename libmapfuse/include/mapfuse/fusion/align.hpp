@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "mapfuse/core/lsm.hpp"
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/fusion/point_cloud.hpp"
 
 namespace mapfuse::fusion {
@@ -20,7 +21,10 @@ enum class AlignMethod {
 };
 std::optional<AlignMethod> alignMethodFromName(const std::string& name);
 const char* alignMethodName(AlignMethod m);
+/// Config and command-line names of the methods.
+const param::Names<AlignMethod>& alignMethodNames();
 
+/// Parameters of align (docs/fusion.md); each declared once, in visit().
 struct AlignSettings {
   AlignMethod method = AlignMethod::kGbaSgicp;
   double submap_length = 60.0;  ///< m of keyframe path per submap
@@ -63,6 +67,77 @@ struct AlignSettings {
   int solver_iterations = 100;  ///< Levenberg-Marquardt iterations per solve
   double function_tolerance = 1e-3;  ///< LM stops when |cost change| / cost falls below
   int threads = 2;                   ///< OpenMP threads over pairs
+
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    v("method", method, "", "icp | sicp | sgicp | gba_sgicp", alignMethodNames());
+    v("submap_length", submap_length, "m", "keyframe path length per submap", gt(0) & le(10000));
+    v("min_overlap", min_overlap, "", "min share of coarse points near the other submap", in(0, 1));
+    v("overlap_radius", overlap_radius, "m", "overlap test radius (GPS-level initial error)",
+      gt(0) & le(100));
+    v("max_partners", max_partners, "", "per submap, register with this many other LSMs (0 = all)",
+      in(0, 100000));
+    v("partner_choice", spread_partners, "",
+      "overlap (the best-overlapping LSMs) | spread (an evenly spread subset of the overlapping "
+      "LSMs)",
+      Names<bool>{{{"overlap", false}, {"spread", true}}});
+    v("coarse_radius", coarse_radius, "m", "coarse displacement-voting search radius",
+      gt(0) & le(100));
+    v("coarse_bin", coarse_bin, "m", "coarse displacement histogram bin", gt(0) & le(10));
+    // the histogram holds (2 coarse_radius / coarse_bin)^2 cells
+    v.relation("coarse_bin", coarse_bin, coarse_bin < coarse_radius, "< coarse_radius");
+    v.relation("coarse_bin", coarse_bin, coarse_radius / coarse_bin <= 1000,
+               ">= coarse_radius / 1000");
+    v("coarse_prior_sigma", coarse_prior_sigma, "m", "Gaussian prior on the coarse shift",
+      gt(0) & le(10000));
+    v("coarse_neighbors", coarse_neighbors, "", "add votes of pairs of submaps this near",
+      in(0, 100));
+    v("min_fitness", min_fitness, "", "accept registrations with inlier fraction above", in(0, 1));
+    v("max_rmse", max_rmse, "m", "accept registrations with RMS residual below", gt(0) & le(100));
+    v("min_information", min_information, "",
+      "SGICP leaves directions with less information alone (0: off)", in(0, 1e12));
+    v("max_iterations", max_iterations, "", "GICP iterations per pyramid level", in(1, 10000));
+    v("pcm_gate", pcm_gate, "", "chi2 gate of PCM pairwise consistency (6 dof)", gt(0) & le(1e6));
+    v("pcm_exact_max", pcm_exact_max, "", "exact maximum clique up to this many constraints",
+      in(0, 200));
+    v("odom_sigma_per_m", odom_sigma_per_m, "m/m", "relative odometry sigma per metre", in(0, 1));
+    v("odom_min_sigma", odom_min_sigma, "m", "odometry sigma floor", gt(0) & le(100));
+    v("prior_rotation_sigma", prior_rotation_sigma, "rad", "GPS prior sigma on attitude",
+      gt(0) & le(10));
+    v("inter_huber", inter_huber, "sigma", "Huber delta on inter-trajectory factors",
+      gt(0) & le(1e6));
+    v("constraint_min_sigma", constraint_min_sigma, "m", "floor of an InterRPC translation sigma",
+      gt(0) & le(100));
+    v("constraint_cov_scale", constraint_cov_scale, "", "inflation of the GICP inverse Hessian",
+      gt(0) & le(1e6));
+    v("graph_reject_chi2", graph_reject_chi2, "", "drop InterRPCs this far off the graph solution",
+      gt(0) & le(1e12));
+    v("graph_rejection_rounds", graph_rejection_rounds, "", "pose-graph solve / reject rounds",
+      in(1, 100));
+    v("gba_association_distance", gba_association_distance, "m", "GBA association radius",
+      gt(0) & le(10));
+    v("gba_point_sigma", gba_point_sigma, "m", "GBA point-to-line/plane sigma", gt(0) & le(10));
+    v("gba_huber", gba_huber, "sigma", "Huber delta on GBA residuals", gt(0) & le(1e6));
+    v("gba_rounds", gba_rounds, "", "GBA association / solve rounds", in(1, 100));
+    v("gba_max_partners", gba_max_partners, "",
+      "other traversals each element point is tied to (0 = all)", in(0, 100000));
+    v("gba_dof", gba_dof, "",
+      "GBA pose freedom: 4 (x, y, z, yaw; roll and pitch held from georef) or 6", in(4, 6));
+    v.relation("gba_dof", gba_dof, gba_dof == 4 || gba_dof == 6, "is 4 or 6");
+    v("gba_line_stride", gba_line_stride, "",
+      "GBA uses every n-th point of a line element, weighted by sqrt(n)", in(1, 1000));
+    v("gba_cg_iterations", gba_cg_iterations, "",
+      "GBA linear solves: conjugate gradients (at most n iterations), 0 = sparse Cholesky",
+      in(0, 100000));
+    v("gba_early_round_tolerance", gba_early_round_tolerance, "",
+      "LM stop (relative cost change) of the GBA rounds before the last", gt(0) & lt(1));
+    v("solver_iterations", solver_iterations, "", "Levenberg-Marquardt iterations per solve",
+      in(1, 100000));
+    v("function_tolerance", function_tolerance, "", "LM stop: relative cost change below",
+      gt(0) & lt(1));
+    v("threads", threads, "", "OpenMP threads over pairs / Ceres threads", in(1, 1024));
+  }
 };
 
 /// An inter-trajectory relative pose constraint (InterRPC) between two keyframes.
@@ -112,5 +187,26 @@ double solveMultiPoseGraph(std::vector<Lsm>& lsms, const std::vector<Lsm>& prior
 /// odometry from `priors` (georef output). Updates keyframe poses in place. @return final cost.
 double solveGba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const AlignSettings& s,
                 int* residuals = nullptr, bool* converged = nullptr);
+
+/// What align did: every registration with its checks, the solves' costs and timings.
+struct AlignResult {
+  AlignMethod method = AlignMethod::kGbaSgicp;
+  std::vector<InterConstraint> constraints;  ///< proposed registrations, with their outcome
+  int constraints_accepted = 0;              ///< passed the registration checks
+  int constraints_pcm_kept = 0;              ///< kept by PCM
+  int constraints_graph_outliers = 0;        ///< dropped by the pose graph
+  double cost_pose_graph = 0;
+  bool converged_pose_graph = false;
+  bool ran_gba = false;  ///< method gba_sgicp
+  double cost_gba = 0;
+  int gba_residuals = 0;
+  bool converged_gba = false;
+  bool converged = false;  ///< the last solve converged
+  double seconds_registration = 0, seconds_pcm = 0, seconds_pose_graph = 0, seconds_gba = 0;
+};
+
+/// @brief The whole of §4.2: registrations (eq. 7), PCM, the multi-trajectory pose graph
+/// (eq. 8-11) and, for gba_sgicp, GBA (eq. 12-14). Moves the keyframes of `lsms` in place.
+AlignResult alignLsms(std::vector<Lsm>& lsms, const AlignSettings& s);
 
 }  // namespace mapfuse::fusion

@@ -7,10 +7,12 @@
 #include <vector>
 
 #include "mapfuse/core/lsm.hpp"
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/geo/origin.hpp"
 
 namespace mapfuse::fusion {
 
+/// Parameters of georef (docs/fusion.md); each declared once, in visit().
 struct GeorefSettings {
   double odom_sigma_translation_per_m = 0.02;  ///< relative odometry sigma per metre travelled
   double odom_sigma_rotation_per_m = 0.001;    ///< rad per metre travelled
@@ -25,6 +27,33 @@ struct GeorefSettings {
   double chi2_gate = 11.34;      ///< reject fixes with whitened squared residual above (3 dof, 99%)
   int max_rejection_rounds = 3;  ///< solve / reject / re-solve rounds
   int max_iterations = 100;      ///< Levenberg-Marquardt iterations per solve
+
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    v("odom_sigma_translation_per_m", odom_sigma_translation_per_m, "m/m",
+      "relative odometry translation sigma per metre travelled", in(0, 10));
+    v("odom_sigma_rotation_per_m", odom_sigma_rotation_per_m, "rad/m",
+      "relative odometry rotation sigma per metre travelled", in(0, 10));
+    v("odom_min_sigma_translation", odom_min_sigma_translation, "m", "floor of odometry sigma",
+      gt(0) & le(1000));
+    v("odom_min_sigma_rotation", odom_min_sigma_rotation, "rad", "floor of odometry sigma",
+      gt(0) & le(10));
+    v("gravity_sigma", gravity_sigma, "rad",
+      "tilt prior per keyframe from the odometry, whose z is up (0: none)", in(0, 10));
+    v("gps_time_offset", gps_time_offset, "s", "added to GPS stamps before association",
+      in(-3600, 3600));
+    v("gps_max_extrapolation", gps_max_extrapolation, "s",
+      "fixes further outside the keyframe span are dropped", in(0, 3600));
+    v("cauchy_scale", cauchy_scale, "sigma", "Cauchy loss scale on whitened GPS residuals",
+      gt(0) & le(1e6));
+    v("chi2_gate", chi2_gate, "", "reject GPS fixes with whitened squared residual above",
+      gt(0) & le(1e12));
+    v("max_rejection_rounds", max_rejection_rounds, "", "solve / reject / re-solve rounds",
+      in(1, 100));
+    v("max_iterations", max_iterations, "", "Levenberg-Marquardt iterations per solve",
+      in(1, 100000));
+  }
 };
 
 struct GeorefResult {
@@ -37,6 +66,7 @@ struct GeorefResult {
   double residual_rms = 0.0;   ///< m
   double residual_max = 0.0;   ///< m
   double final_cost = 0.0;     ///< Ceres cost of the last solve
+  double seconds = 0.0;        ///< wall time of this LSM (georeferenceLsms)
 };
 
 /// @brief Georeferences one LSM into ENU of `origin`.
@@ -46,6 +76,14 @@ struct GeorefResult {
 /// @throws InputError when the LSM has no keyframe or no usable GPS fix.
 GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin,
                              const GeorefSettings& settings, const std::string& source);
+
+/// @brief Georeferences every LSM into ENU of `origin`, `threads` at a time (one per LSM at
+/// most). @param sources file names for error messages, one per LSM.
+/// @throws the first error of any LSM (InputError when one cannot be georeferenced).
+std::vector<GeorefResult> georeferenceLsms(const std::vector<Lsm>& lsms,
+                                           const geo::GeoOrigin& origin,
+                                           const GeorefSettings& settings,
+                                           const std::vector<std::string>& sources, int threads);
 
 /// @brief Relative odometry covariance between two consecutive keyframes: the growth of their
 /// absolute covariances (diagonal), bounded below by the distance-proportional model.

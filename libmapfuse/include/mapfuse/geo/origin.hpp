@@ -3,20 +3,16 @@
 /// there is no default origin.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <optional>
+#include <string>
+
+#include "mapfuse/core/lat_lon_alt.hpp"
 
 namespace mapfuse::geo {
 
-/// A WGS84 point: latitude and longitude in degrees, altitude in metres (ellipsoidal).
-struct LatLonAlt {
-  double lat = 0.0;  ///< deg, [-90, 90]
-  double lon = 0.0;  ///< deg, [-180, 180]
-  double alt = 0.0;  ///< m
-};
-
-using GeoOrigin = LatLonAlt;
-
-/// @brief True when lat/lon are finite and within their ranges.
-bool isValid(const LatLonAlt& p);
+/// @brief Parses "lat,lon,alt" (degrees, degrees, metres); nullopt unless it is exactly three
+/// numbers forming a valid point.
+std::optional<LatLonAlt> parseLatLonAlt(const std::string& text);
 
 /// @brief Two origins are the same when they agree within 1e-9 deg and 1 mm.
 bool sameOrigin(const GeoOrigin& a, const GeoOrigin& b);

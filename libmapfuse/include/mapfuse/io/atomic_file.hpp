@@ -9,7 +9,8 @@
 
 namespace mapfuse::io {
 
-/// @brief Calls `write` with a stream to a temporary file, then renames it onto `path`.
+/// @brief Calls `write` with a stream to a temporary file, then renames it onto `path` (or, while
+/// an OutputTransaction is open, leaves the rename to its commit).
 /// Parent folders are created. If `write` throws, the temporary file is removed, the target
 /// is untouched and the exception propagates.
 /// @throws IoError when the file cannot be created, written or renamed.

@@ -2,6 +2,8 @@
 /// @file LSM files (docs/formats.md "LSM"): format "mapfuse.lsm", version 1, JSON or CBOR by
 /// extension.
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "mapfuse/core/lsm.hpp"
 #include "mapfuse/io/json_view.hpp"
@@ -17,6 +19,11 @@ Lsm lsmFromJson(const Json& doc, const std::string& file);
 
 /// @throws IoError, ParseError (file, field, problem), InputError (inconsistent content).
 Lsm readLsm(const std::filesystem::path& path);
+
+/// @brief Reads the input LSMs of one run. The same file given twice (by path or by identity,
+/// e.g. through a link) or one drive (drive_id) under two file names would count its data twice:
+/// both are refused with a ConfigError (exit 2) naming the two inputs.
+std::vector<Lsm> readLsmInputs(const std::vector<std::string>& files);
 /// @brief Atomic write (temp file + rename).
 void writeLsm(const std::filesystem::path& path, const Lsm& lsm);
 

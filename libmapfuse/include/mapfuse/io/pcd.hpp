@@ -5,20 +5,20 @@
 #include <filesystem>
 #include <string>
 
-#include "mapfuse/lidar/labeled_cloud.hpp"
+#include "mapfuse/core/labeled_cloud.hpp"
 
 namespace mapfuse::io {
 
 /// @brief Writes the cloud atomically. @throws InputError for inconsistent array sizes.
-void writePcd(const std::filesystem::path& path, const lidar::LabeledCloud& cloud);
+void writePcd(const std::filesystem::path& path, const LabeledCloud& cloud);
 
 /// @brief Reads a `DATA binary` PCD with fields x, y, z and optional label / confidence
 /// (SIZE 4, any order; other fields skipped).
 /// @throws IoError when unreadable; ParseError(file, field) for a malformed header, `ascii` or
 /// `binary_compressed` data, missing x/y/z, a truncated body, a coordinate beyond
 /// bounds::kMaxCoordinate, a label that is no LiDAR class id or a confidence outside [0, 1].
-lidar::LabeledCloud readPcd(const std::filesystem::path& path);
+LabeledCloud readPcd(const std::filesystem::path& path);
 /// @brief The same from the bytes of a file; `file` names it in errors.
-lidar::LabeledCloud parsePcd(const std::string& bytes, const std::string& file);
+LabeledCloud parsePcd(const std::string& bytes, const std::string& file);
 
 }  // namespace mapfuse::io

@@ -5,20 +5,20 @@
 #include <filesystem>
 #include <string>
 
-#include "mapfuse/lidar/labeled_cloud.hpp"
+#include "mapfuse/core/labeled_cloud.hpp"
 
 namespace mapfuse::io {
 
 /// @brief Writes the cloud atomically. @throws InputError for inconsistent array sizes.
-void writePly(const std::filesystem::path& path, const lidar::LabeledCloud& cloud);
+void writePly(const std::filesystem::path& path, const LabeledCloud& cloud);
 
 /// @brief Reads a binary little-endian PLY with vertex properties x, y, z (float or double)
 /// and optional label (any integer type) and confidence (float); other properties are skipped.
 /// @throws IoError when unreadable; ParseError(file, field) for a malformed header, an
 /// unsupported format or type, a missing x/y/z, a truncated body, a coordinate beyond
 /// bounds::kMaxCoordinate, a label that is no LiDAR class id or a confidence outside [0, 1].
-lidar::LabeledCloud readPly(const std::filesystem::path& path);
+LabeledCloud readPly(const std::filesystem::path& path);
 /// @brief The same from the bytes of a file; `file` names it in errors.
-lidar::LabeledCloud parsePly(const std::string& bytes, const std::string& file);
+LabeledCloud parsePly(const std::string& bytes, const std::string& file);
 
 }  // namespace mapfuse::io

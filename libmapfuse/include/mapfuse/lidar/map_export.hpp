@@ -7,8 +7,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "mapfuse/core/labeled_cloud.hpp"
 #include "mapfuse/core/se3.hpp"
-#include "mapfuse/lidar/labeled_cloud.hpp"
 #include "mapfuse/lidar/voxel_map.hpp"
 
 namespace mapfuse::lidar {

@@ -5,27 +5,25 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "mapfuse/tiling/piece_links.hpp"
 #include "mapfuse/tiling/placement.hpp"
 
 namespace mapfuse::stages {
 
 struct BalanceParams {
+  static constexpr const char* kName = "BalanceParams";
   tiling::PlacementParams placement;
+  tiling::PieceLinkSettings links;
   std::string aligned_subdir = "align";  ///< per tile folder: where align wrote its output
-  double link_distance = 0.3;            ///< m: element points of two pieces this close coincide
-  int link_min_points = 10;              ///< coinciding points that make two pieces one group
 
   template <class V>
   void visit(V& v) {
     placement.visit(v);
-    v("link_distance", link_distance, "m",
-      "element points of two aligned pieces this close coincide (tiling/piece_links.hpp)");
-    v("link_min_points", link_min_points, "",
-      "coinciding element points that put two pieces of a tile in one group");
+    links.visit(v);
     v("aligned_subdir", aligned_subdir, "",
-      "folder, inside each tile folder, holding align's output and align.summary.json");
+      "folder, inside each tile folder, holding align's output and align.summary.json",
+      param::TextRule{[](const std::string& s) { return !s.empty(); }, "not empty"});
   }
-  void validate() const;
 };
 
 /// @brief Reads tiles.json (written by `tile`), every tile's input LSMs and, from

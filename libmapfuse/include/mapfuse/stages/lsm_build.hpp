@@ -7,7 +7,7 @@
 #include <string>
 
 #include "mapfuse/core/lsm.hpp"
-#include "mapfuse/core/params.hpp"
+#include "mapfuse/cli/params.hpp"
 
 namespace mapfuse::stages {
 

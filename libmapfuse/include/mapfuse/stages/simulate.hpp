@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "mapfuse/core/params.hpp"
+#include "mapfuse/cli/params.hpp"
 #include "mapfuse/sim/drive.hpp"
 #include "mapfuse/sim/frames_writer.hpp"
 #include "mapfuse/sim/lsm_observer.hpp"

@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mapfuse/core/params.hpp"
+#include "mapfuse/cli/params.hpp"
 #include "mapfuse/sim/lidar_network_error.hpp"
 #include "mapfuse/sim/lidar_scene_generator.hpp"
 #include "mapfuse/sim/lidar_sensor.hpp"

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "mapfuse/core/lsm.hpp"
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/tiling/tile_grid.hpp"
 
 namespace mapfuse::tiling {
@@ -39,13 +40,15 @@ struct PlacementParams {
 
   template <class V>
   void visit(V& v) {
-    v("keyframe_sigma", keyframe_sigma, "m", "1-sigma of align's shift of one keyframe");
-    v("bias_walk", bias_walk, "m/sqrt(s)", "random walk of a drive's georef error in time");
+    using namespace param;
+    v("keyframe_sigma", keyframe_sigma, "m", "1-sigma of align's shift of one keyframe",
+      gt(0) & le(1000));
+    v("bias_walk", bias_walk, "m/sqrt(s)", "random walk of a drive's georef error in time",
+      in(0, 1000));
     v("robust_scale", robust_scale, "m",
-      "Cauchy scale of piece residuals (pieces further off count less)");
-    v("rounds", rounds, "", "reweighting rounds (1 = plain least squares)");
+      "Cauchy scale of piece residuals (pieces further off count less)", gt(0) & le(1000));
+    v("rounds", rounds, "", "reweighting rounds (1 = plain least squares)", in(1, 100));
   }
-  void validate() const;
 };
 
 /// One registration group: the pieces of one tile that its align linked together.

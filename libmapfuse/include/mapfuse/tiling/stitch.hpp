@@ -6,22 +6,25 @@
 #include <utility>
 #include <vector>
 
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/core/vector_map.hpp"
 #include "mapfuse/tiling/tile_grid.hpp"
 
 namespace mapfuse::tiling {
 
 struct StitchParams {
+  static constexpr const char* kName = "StitchParams";
   double join_tolerance = 1.0;    ///< m: border ends of one line in two tiles closer than this join
   double min_piece_length = 0.5;  ///< m: shorter clipped line pieces are dropped
 
   template <class V>
   void visit(V& v) {
-    v("join_tolerance", join_tolerance, "m", "border ends of one line closer than this are joined");
+    using namespace param;
+    v("join_tolerance", join_tolerance, "m", "border ends of one line closer than this are joined",
+      gt(0) & le(100));
     v("min_piece_length", min_piece_length, "m",
-      "clipped line pieces shorter than this are dropped");
+      "clipped line pieces shorter than this are dropped", in(0, 1000));
   }
-  void validate() const;
 };
 
 struct StitchReport {

@@ -1,4 +1,4 @@
-#include "mapfuse/core/cli.hpp"
+#include "mapfuse/cli/app.hpp"
 
 #include <fstream>
 #include <iostream>
@@ -21,6 +21,13 @@ void applyCommonOptions(const CommonOptions& common) {
     setLogLevel(LogLevel::kDebug);
   else
     setLogLevel(LogLevel::kInfo);
+}
+
+std::string optionHelp(const char* help, const char* unit, const std::string& rule) {
+  std::string text = help;
+  if (unit && *unit) text += " [" + std::string(unit) + "]";
+  if (!rule.empty()) text += " (" + rule + ")";
+  return text;
 }
 
 std::string optionName(const char* key) {
@@ -70,6 +77,29 @@ int run(CLI::App& app, int argc, char** argv, const std::function<void()>& body)
     std::cerr << tool << ": internal error: " << e.what() << '\n';
     return static_cast<int>(ExitCode::kInternal);
   }
+}
+
+CommandTool::CommandTool(const char* name, const char* description) : app_(description, name) {
+  app_.require_subcommand(1);
+}
+
+void CommandTool::add(const std::string& name, const std::string& help, const Setup& setup) {
+  Command c;
+  c.sub = app_.add_subcommand(name, help);
+  c.common = std::make_unique<CommonOptions>();
+  addCommonOptions(*c.sub, *c.common);
+  c.action = setup(*c.sub);
+  commands_.push_back(std::move(c));
+}
+
+int CommandTool::run(int argc, char** argv) {
+  return cli::run(app_, argc, argv, [&] {
+    for (const auto& c : commands_)
+      if (c.sub->parsed()) {
+        applyCommonOptions(*c.common);
+        c.action();
+      }
+  });
 }
 
 std::vector<std::string> expandInputList(const std::vector<std::string>& args) {

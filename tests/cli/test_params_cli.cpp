@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "mapfuse/core/cli.hpp"
-#include "mapfuse/core/params.hpp"
+#include "mapfuse/cli/app.hpp"
+#include "mapfuse/cli/params.hpp"
 #include "mapfuse/io/document.hpp"
 #include "support/test_support.hpp"
 

@@ -5,13 +5,13 @@
 #include <cstdint>
 #include <vector>
 
-namespace mapfuse::lidar {
+namespace mapfuse {
 
 struct LabeledCloud {
   std::vector<Eigen::Vector3f> points;  ///< m, map frame
-  std::vector<uint8_t> labels;          ///< LidarClass per point
+  std::vector<uint8_t> labels;          ///< LidarClass per point (core/classes.hpp)
   std::vector<float> confidence;        ///< posterior of the label, 0..1
   std::size_t size() const { return points.size(); }
 };
 
-}  // namespace mapfuse::lidar
+}  // namespace mapfuse

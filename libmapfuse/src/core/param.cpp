@@ -1,0 +1,46 @@
+#include "mapfuse/core/param.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace mapfuse::param {
+
+namespace {
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", v);
+  return text;
+}
+}  // namespace
+
+bool Range::contains(double x) const {
+  if (!std::isfinite(x)) return false;
+  if (lo_open ? !(x > lo) : !(x >= lo)) return false;
+  if (hi_open ? !(x < hi) : !(x <= hi)) return false;
+  return true;
+}
+
+std::string Range::describe(const std::string& key) const {
+  const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
+  if (key.empty()) return describe("x").substr(2);  // "in [0, 1]", "> 0"
+  if (has_lo && has_hi)
+    return key + " in " + (lo_open ? "(" : "[") + number(lo) + ", " + number(hi) +
+           (hi_open ? ")" : "]");
+  if (has_lo) return key + (lo_open ? " > " : " >= ") + number(lo);
+  if (has_hi) return key + (hi_open ? " < " : " <= ") + number(hi);
+  return key + " finite";
+}
+
+bool OneOf::contains(const std::string& s) const {
+  for (const auto& n : names)
+    if (n == s) return true;
+  return false;
+}
+
+std::string OneOf::describe(const std::string& key) const {
+  std::string text = key.empty() ? "one of " : key + " one of ";
+  for (std::size_t i = 0; i < names.size(); ++i) text += (i ? ", " : "") + names[i];
+  return text;
+}
+
+}  // namespace mapfuse::param

@@ -1,0 +1,167 @@
+#include "mapfuse/io/output_transaction.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+
+#include "mapfuse/core/error.hpp"
+
+namespace mapfuse::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+std::atomic<OutputTransaction*> g_active{nullptr};
+constexpr const char* kLockName = ".mapfuse.lock";
+
+/// The pid of a "<name>.tmp-<pid>" file, or 0.
+long tempOwner(const fs::path& p) {
+  const std::string name = p.filename().string();
+  const auto at = name.rfind(".tmp-");
+  if (at == std::string::npos || at + 5 >= name.size()) return 0;
+  long pid = 0;
+  for (std::size_t i = at + 5; i < name.size(); ++i) {
+    if (name[i] < '0' || name[i] > '9' || pid > 100000000) return 0;
+    pid = pid * 10 + (name[i] - '0');
+  }
+  return pid;
+}
+
+bool processRuns(long pid) {
+  return ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM;
+}
+}  // namespace
+
+std::size_t removeStaleTemporaries(const fs::path& folder) {
+  std::size_t removed = 0;
+  std::error_code ec;
+  for (fs::recursive_directory_iterator
+           it(folder, fs::directory_options::skip_permission_denied, ec),
+       end;
+       !ec && it != end; it.increment(ec)) {
+    if (!it->is_regular_file(ec)) continue;
+    const long pid = tempOwner(it->path());
+    if (pid <= 0 || pid == ::getpid() || processRuns(pid)) continue;
+    std::error_code rm;
+    if (fs::remove(it->path(), rm)) ++removed;
+  }
+  return removed;
+}
+
+OutputTransaction::OutputTransaction(const fs::path& folder) : folder_(folder) {
+  if (g_active.load() != nullptr)
+    throw std::logic_error("an output transaction is already open in this process");
+  std::error_code ec;
+  fs::create_directories(folder_, ec);
+  if (ec || !fs::is_directory(folder_))
+    throw IoError(folder_.string(),
+                  "cannot create the output folder: " +
+                      (ec ? ec.message() : std::string("a file of that name is in the way")));
+  const fs::path lock = folder_ / kLockName;
+  lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock_fd_ < 0)
+    throw IoError(folder_.string(),
+                  std::string("output folder is not writable: ") + std::strerror(errno));
+  if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+    char owner[32] = {0};
+    const ssize_t n = ::pread(lock_fd_, owner, sizeof owner - 1, 0);
+    ::close(lock_fd_);
+    lock_fd_ = -1;
+    throw IoError(folder_.string(),
+                  "another mapfuse run is writing this output folder" +
+                      (n > 0 ? " (pid " + std::string(owner, static_cast<std::size_t>(n)) + ")"
+                             : std::string()) +
+                      "; wait for it to finish or choose another folder");
+  }
+  const std::string pid = std::to_string(::getpid());
+  if (::ftruncate(lock_fd_, 0) != 0 || ::pwrite(lock_fd_, pid.data(), pid.size(), 0) < 0) {
+    ::close(lock_fd_);
+    lock_fd_ = -1;
+    throw IoError(lock.string(), std::string("cannot write: ") + std::strerror(errno));
+  }
+  removeStaleTemporaries(folder_);
+  g_active.store(this);
+}
+
+OutputTransaction::~OutputTransaction() {
+  if (!done_) rollback();
+  if (g_active.load() == this) g_active.store(nullptr);
+  if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the lock
+}
+
+OutputTransaction* OutputTransaction::active() {
+  return g_active.load();
+}
+
+void OutputTransaction::stage(const fs::path& tmp, const fs::path& target) {
+  std::lock_guard<std::mutex> guard(mutex_);
+  for (auto& f : files_)
+    if (f.second == target) {  // written again: the newer content counts
+      if (f.first != tmp) {
+        std::error_code ec;
+        fs::remove(f.first, ec);
+        f.first = tmp;
+      }
+      return;
+    }
+  files_.emplace_back(tmp, target);
+}
+
+fs::path OutputTransaction::stagedPath(const fs::path& target) {
+  std::lock_guard<std::mutex> guard(mutex_);
+  for (const auto& f : files_)
+    if (f.second == target) return f.first;
+  return {};
+}
+
+fs::path contentPath(const fs::path& target) {
+  if (OutputTransaction* t = OutputTransaction::active()) {
+    fs::path staged = t->stagedPath(target);
+    if (!staged.empty()) return staged;
+  }
+  return target;
+}
+
+void OutputTransaction::commit() {
+  std::lock_guard<std::mutex> guard(mutex_);
+  if (done_) return;
+  for (const auto& [tmp, target] : files_) {
+    std::error_code ec;
+    if (fs::is_directory(target, ec)) {
+      const std::string name = target.string();  // rollback() clears files_
+      rollback();
+      throw IoError(name,
+                    "is a folder; cannot replace it with a file (no output of "
+                    "this run was written)");
+    }
+  }
+  for (const auto& [tmp, target] : files_) {
+    std::error_code ec;
+    fs::rename(tmp, target, ec);
+    if (ec) {
+      const std::string name = target.string();
+      rollback();
+      throw IoError(name, "cannot rename temporary file: " + ec.message());
+    }
+  }
+  files_.clear();
+  done_ = true;
+  g_active.store(nullptr);
+}
+
+void OutputTransaction::rollback() noexcept {
+  for (const auto& f : files_) {
+    std::error_code ec;
+    fs::remove(f.first, ec);
+  }
+  files_.clear();
+  done_ = true;
+}
+
+}  // namespace mapfuse::io
