@@ -69,6 +69,7 @@ for stage in aggregate align balance evaluate evaluate-voxels georef lidar-seman
   { printf "\\$(printf '%03o' "$i")"; cat "$root/configs/$stage.json"; } | seed fuzz_config "$stage.json"
   i=$((i + 1))
 done
+printf '\014{}' | seed fuzz_config info.json  # info (index 12) has no parameters
 
 # ---- KITTI raw: a 2-frame synthetic drive and its voxel map
 "$bin/simulate-lidar" -q --seed 3 --frames 2 -o "$work/kitti" > "$work/kitti.txt"

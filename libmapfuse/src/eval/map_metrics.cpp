@@ -310,7 +310,9 @@ VectorMap clipToCoverage(const VectorMap& truth, const std::vector<Pose3>& poses
   const double tan_fov =
       wedge.half_fov_deg < 90 ? std::tan(wedge.half_fov_deg * M_PI / 180.0) : 1e18;
   auto key = [&](double x, double y) {
-    return (int64_t(std::floor(x / cell)) << 32) ^ (int64_t(std::floor(y / cell)) & 0xffffffffLL);
+    const auto ix = uint64_t(int64_t(std::floor(x / cell))),
+               iy = uint64_t(int64_t(std::floor(y / cell)));
+    return int64_t((ix << 32) ^ (iy & 0xffffffffULL));  // unsigned: a negative cell shifts too
   };
   std::unordered_multimap<int64_t, const Pose3*> grid;
   for (const auto& p : poses) grid.emplace(key(p.translation().x(), p.translation().y()), &p);

@@ -85,7 +85,9 @@ class PieceIndex {
   std::vector<int> near(const Eigen::Vector3d& center, double radius) const;
 
  private:
-  static int64_t key(int64_t ix, int64_t iy) { return (ix << 32) ^ (iy & 0xffffffff); }
+  static int64_t key(int64_t ix, int64_t iy) {  // unsigned shift: defined for negative ix
+    return int64_t((uint64_t(ix) << 32) ^ (uint64_t(iy) & 0xffffffffULL));
+  }
   double cell_ = 10.0;
   std::vector<Piece> pieces_;
   std::unordered_map<int64_t, std::vector<int>> grid_;
