@@ -11,11 +11,9 @@
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/geojson.hpp"
 #include "mapfuse/io/json_geometry.hpp"
-#include "mapfuse/io/lanelet2_osm.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
-#include "mapfuse/sim/lanelet2_world.hpp"
 #include "mapfuse/stages/simulate_stats.hpp"
 
 namespace mapfuse::stages {
@@ -119,13 +117,7 @@ SimulateResult runSimulate(const SimulateParams& P, const std::filesystem::path&
   if (P.map.empty()) {
     world = sim::buildProceduralWorld(P.world, origin, sim::deriveSeed(P.seed, 1000001));
   } else {
-    if (!std::filesystem::exists(P.map)) throw IoError(P.map, "map file does not exist");
-    const io::Lanelet2Map osm = io::readLanelet2Osm(P.map);
-    if (P.osm_origin == "first_node") {
-      if (!osm.first_node) throw InputError(P.map + ": the map has no nodes");
-      origin = {osm.first_node->lat, osm.first_node->lon, P.origin_alt};
-    }
-    world = sim::worldFromLanelet2(osm, origin);
+    world = sim::loadMapWorld(P.map, P.osm_origin == "first_node", P.map_world, &origin);
   }
   if (world.lanes.empty()) throw InputError("simulate: the world has no drivable lanes");
   MAPFUSE_INFO("simulate: world " << world.name << ": " << world.lanes.size() << " lanes, "

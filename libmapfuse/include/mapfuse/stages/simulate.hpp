@@ -12,6 +12,7 @@
 #include "mapfuse/sim/drive.hpp"
 #include "mapfuse/sim/frames_writer.hpp"
 #include "mapfuse/sim/lsm_observer.hpp"
+#include "mapfuse/sim/map_world.hpp"
 #include "mapfuse/sim/procedural_world.hpp"
 #include "mapfuse/sim/sim_camera.hpp"
 
@@ -31,6 +32,7 @@ struct SimulateParams {
   int routes = 4;                ///< distinct routes; traversal i drives route i % routes
   double route_length = 1500.0;  ///< m
   sim::ProceduralParams world;
+  sim::MapWorldSettings map_world;
   sim::DriveParams drive;
   sim::CameraParams camera;
   sim::ObservationParams obs;
@@ -43,6 +45,7 @@ struct SimulateParams {
     v("format", format, "", "LSM encoding: cbor | json");
     v("map", map, "", "Lanelet2 OSM map; empty = the procedural world");
     v("osm_origin", osm_origin, "", "ENU origin of a Lanelet2 map: first_node | config");
+    map_world.visit(v);
     v("origin_lat", origin_lat, "deg", "ENU origin latitude (procedural world, osm_origin=config)");
     v("origin_lon", origin_lon, "deg", "ENU origin longitude");
     v("origin_alt", origin_alt, "m", "ENU origin ellipsoidal altitude");
