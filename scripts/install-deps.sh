@@ -12,6 +12,7 @@ PACKAGES=(
   libpugixml-dev zlib1g-dev
   libopenmpi-dev
   gdal-bin snakemake
+  osmium-tool python3-shapely
   slurmctld slurmd slurm-client munge
 )
 

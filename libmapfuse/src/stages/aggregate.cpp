@@ -129,7 +129,11 @@ nlohmann::json runAggregate(const std::vector<std::string>& inputs,
   io::writeVectorMap(out_dir / "map.cbor", map, compact);
   io::writeVectorMap(out_dir / "map.json", map);
   io::writeGeoJson(out_dir / "map.geojson", map);
-  io::writeOsm(out_dir / "map.osm", map);
+  std::vector<io::DrivePath> drives(lsms.size());  // travel directions of the lanelets
+  for (std::size_t d = 0; d < lsms.size(); ++d)
+    for (const auto& k : lsms[d].keyframes) drives[d].push_back(k.T_frame_body.translation());
+  io::Lanelet2ExportStats osm_stats;
+  io::writeOsm(out_dir / "map.osm", map, drives, &osm_stats);
   if (params.write_png) {
     std::vector<std::vector<Eigen::Vector3d>> background;
     background.reserve(set.items.size());
@@ -171,6 +175,14 @@ nlohmann::json runAggregate(const std::vector<std::string>& inputs,
         {"lane_line_km", lane_km},
         {"kb_per_km", road_km > 0 ? nlohmann::json(cbor_kb / road_km) : nlohmann::json(nullptr)},
         {"target_kb_per_km", 20.0}}},
+      {"lanelet2",
+       {{"lanelets", osm_stats.lanelets},
+        {"lanelets_direction_known", osm_stats.lanelets_direction_known},
+        {"connector_lanelets", osm_stats.connector_lanelets},
+        {"crosswalk_lanelets", osm_stats.crosswalk_lanelets},
+        {"regulatory_elements", osm_stats.regulatory_elements},
+        {"lane_line_bound_share",
+         osm_stats.lane_line_m > 0 ? osm_stats.bound_m / osm_stats.lane_line_m : 0.0}}},
       {"timings_s",
        {{"read", seconds(t0, t1)}, {"aggregate", seconds(t1, t2)}, {"write", seconds(t2, t3)}}},
       {"converged", true}};
