@@ -84,7 +84,8 @@ LsmBuildResult runLsmBuild(const LsmBuildInputs& in, const LsmBuildParams& p) {
                        ls.bev_resolution});
     const double res_m = tiles.empty() ? 0.2 : 0.05;
     const cv::Mat img = vehicle::renderTopDown(proc.lsm, drive.T_odom_body, res_m, tiles);
-    io::writePngFrame(in.out / (drive.drive_id + ".bev.png"), img);
+    io::writePngFrame(in.out / (drive.drive_id + ".bev.png"),
+                      io::withPictureKey(img, vehicle::topDownKey(proc.lsm, res_m)));
   }
   res.summary = proc.stats;
   res.summary["drive_id"] = drive.drive_id;
