@@ -39,6 +39,9 @@ check() {
 lsms=(sim/lsm/*.cbor)
 check georef geo "$(basename "${lsms[1]}")" "$BIN/georef" -q -o geo "${lsms[@]}"
 check align al "$(basename "${lsms[2]}")" "$BIN/align" -q -o al geo/*.cbor
+check aggregate agg map.geojson "$BIN/aggregate" -q -o agg al/*.cbor
+check evaluate ev error_per_class.png "$BIN/evaluate" map -q --map agg/map.cbor \
+  --truth sim/truth/vector_map.json -o ev
 
 # an output folder below a regular file: refused before any work
 touch afile
@@ -47,8 +50,8 @@ rc=0; "$BIN/align" -q -o afile/out geo/*.cbor >/dev/null 2>err.txt || rc=$?
 
 # duplicate inputs: the same file twice, or one drive under two names (exit 2, both named)
 cp "${lsms[0]}" copy.cbor
-for tool in georef align; do
-  in=("${lsms[@]}"); [[ $tool == align ]] && in=(geo/*.cbor)
+for tool in georef align aggregate; do
+  in=("${lsms[@]}"); [[ $tool != georef ]] && in=(geo/*.cbor)
   rc=0; "$BIN/$tool" -q -o dup "${in[0]}" "${in[@]}" >/dev/null 2>err.txt || rc=$?
   [[ $rc == 2 ]] && grep -q "same file" err.txt || { cat err.txt; fail "$tool: same file twice gave $rc"; }
 done

@@ -183,7 +183,7 @@ TEST_CASE("coverage keeps what is beside or ahead of a drive, not what lies behi
                  inst(3, CrowdClass::kStopLine, {{105, -2, 0}, {105, 2, 0}}),  // ahead of the end
                  inst(4, CrowdClass::kPole, {{50, 11, 0}}, 6),                 // beside, in range
                  inst(5, CrowdClass::kPole, {{50, 13, 0}}, 6)};                // beside, too far
-  const VectorMap c = clipToCoverage(t, poses, CoverageWedge{12.0, 12.0, M_PI / 2});
+  const VectorMap c = clipToCoverage(t, poses, CoverageWedge{12.0, 12.0, 90.0});
   std::vector<int64_t> ids;
   double lane_length = 0;
   for (const auto& m : c.instances) {
@@ -204,7 +204,7 @@ TEST_CASE("coverage keeps what is beside or ahead of a drive, not what lies behi
 TEST_CASE("the coverage wedge follows the camera's field of view and reach", "[eval][map]") {
   // One pose at the origin heading north (body x = ENU y); wedge 22 m ahead, 12 m wide, 31 deg.
   const Pose3 pose(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
-  const CoverageWedge wedge{12.0, 22.0, 31.0 * M_PI / 180.0};  // tan 31 deg = 0.601
+  const CoverageWedge wedge{12.0, 22.0, 31.0};  // tan 31 deg = 0.601
   auto seen = [&](double ahead, double left) {
     VectorMap t;
     t.instances = {inst(1, CrowdClass::kPole, {{-left, ahead, 0}}, 6)};
@@ -232,7 +232,7 @@ TEST_CASE("map elements of true elements outside the scored scope count neither 
                  inst(2, CrowdClass::kPole, {{50, -3, 0}}, 6),
                  inst(3, CrowdClass::kPole, {{-20, -3, 0}}, 6)};  // behind the start
   VectorMap outside;
-  const VectorMap scored = clipToCoverage(t, poses, CoverageWedge{12.0, 12.0, M_PI / 2}, &outside);
+  const VectorMap scored = clipToCoverage(t, poses, CoverageWedge{12.0, 12.0, 90.0}, &outside);
   REQUIRE(scored.instances.size() == 2);
   double out_length = 0;
   int out_poles = 0;

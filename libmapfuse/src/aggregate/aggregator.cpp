@@ -4,6 +4,9 @@
 #include <map>
 #include <set>
 
+#include "bezier_fit.hpp"
+#include "discrete_merge.hpp"
+#include "lane_instantiation.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
 
 namespace mapfuse::aggregate {

@@ -1,4 +1,4 @@
-#include "mapfuse/aggregate/discrete_merge.hpp"
+#include "discrete_merge.hpp"
 
 // Boost.Geometry instantiations trigger GCC false positives.
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
@@ -12,7 +12,7 @@
 #include <map>
 #include <set>
 
-#include "mapfuse/aggregate/dbscan.hpp"
+#include "dbscan.hpp"
 
 namespace mapfuse::aggregate {
 namespace {

@@ -14,7 +14,7 @@
 #include <unordered_map>
 
 #include "mapfuse/aggregate/geometry2d.hpp"
-#include "mapfuse/aggregate/observations.hpp"
+#include "mapfuse/geo/origin.hpp"
 
 namespace mapfuse::eval {
 namespace {
@@ -307,7 +307,8 @@ MapMetrics evaluateMap(const VectorMap& map_in, const VectorMap& truth, const Ma
 VectorMap clipToCoverage(const VectorMap& truth, const std::vector<Pose3>& poses,
                          const CoverageWedge& wedge, VectorMap* outside) {
   const double cell = std::hypot(wedge.range, wedge.lateral);  // farthest covered point
-  const double tan_fov = wedge.half_fov < M_PI / 2 ? std::tan(wedge.half_fov) : 1e18;
+  const double tan_fov =
+      wedge.half_fov_deg < 90 ? std::tan(wedge.half_fov_deg * M_PI / 180.0) : 1e18;
   auto key = [&](double x, double y) {
     return (int64_t(std::floor(x / cell)) << 32) ^ (int64_t(std::floor(y / cell)) & 0xffffffffLL);
   };

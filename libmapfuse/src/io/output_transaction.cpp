@@ -113,6 +113,21 @@ void OutputTransaction::stage(const fs::path& tmp, const fs::path& target) {
   files_.emplace_back(tmp, target);
 }
 
+fs::path OutputTransaction::stagedPath(const fs::path& target) {
+  std::lock_guard<std::mutex> guard(mutex_);
+  for (const auto& f : files_)
+    if (f.second == target) return f.first;
+  return {};
+}
+
+fs::path contentPath(const fs::path& target) {
+  if (OutputTransaction* t = OutputTransaction::active()) {
+    fs::path staged = t->stagedPath(target);
+    if (!staged.empty()) return staged;
+  }
+  return target;
+}
+
 void OutputTransaction::commit() {
   std::lock_guard<std::mutex> guard(mutex_);
   if (done_) return;

@@ -8,11 +8,11 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/core/progress.hpp"
-#include "mapfuse/io/document.hpp"
-#include "mapfuse/io/json_view.hpp"
+#include "mapfuse/io/align_registrations.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
+#include "mapfuse/io/tiles_manifest.hpp"
 #include "mapfuse/tiling/piece_links.hpp"
 
 namespace mapfuse::stages {
@@ -32,38 +32,28 @@ struct PieceFiles {
 // index pairs into the tile's list of inputs.
 std::vector<std::pair<int, int>> keptRegistrations(const fs::path& summary_path,
                                                    const std::vector<PieceFiles>& files) {
-  const io::Json summary_doc = io::readDocument(summary_path);
-  const io::JsonView summary(summary_doc, summary_path.string());
-  const io::JsonView inputs = summary.at("inputs");
+  const io::AlignRegistrations summary = io::readAlignRegistrations(summary_path);
   std::map<std::string, int> piece_of;  // file name -> index in `files`
   for (std::size_t i = 0; i < files.size(); ++i)
     piece_of[files[i].input.filename().string()] = int(i);
-  std::vector<int> piece(inputs.size(), -1);  // align's input index -> index in `files`
-  for (std::size_t i = 0; i < inputs.size(); ++i) {
-    const auto it = piece_of.find(fs::path(inputs.at(i).string()).filename().string());
+  std::vector<int> piece(summary.inputs.size(), -1);  // align's input -> index in `files`
+  for (std::size_t i = 0; i < summary.inputs.size(); ++i) {
+    const auto it = piece_of.find(fs::path(summary.inputs[i]).filename().string());
     if (it != piece_of.end()) piece[i] = it->second;
   }
   std::vector<std::pair<int, int>> links;
-  const io::JsonView pairs = summary.at("pairs");
-  for (std::size_t i = 0; i < pairs.size(); ++i) {
-    const io::JsonView p = pairs.at(i);
-    if (!p.at("accepted").boolean() || !p.at("pcm_consistent").boolean() ||
-        p.at("graph_outlier").boolean())
-      continue;
-    const int64_t a = p.at("lsm_a").integer(), b = p.at("lsm_b").integer();
-    if (a < 0 || b < 0 || a >= int64_t(piece.size()) || b >= int64_t(piece.size()))
-      p.fail("lsm_a / lsm_b outside the summary's inputs");
-    if (piece[a] >= 0 && piece[b] >= 0) links.emplace_back(piece[a], piece[b]);
-  }
+  for (const auto& p : summary.pairs)
+    if (p.kept && piece[p.lsm_a] >= 0 && piece[p.lsm_b] >= 0)
+      links.emplace_back(piece[p.lsm_a], piece[p.lsm_b]);
   return links;
 }
 
 // The pieces of one tile, in groups, with what align did to each.
-std::vector<std::pair<PieceFiles, tiling::TilePiece>> measureTile(const io::JsonView& tile,
+std::vector<std::pair<PieceFiles, tiling::TilePiece>> measureTile(const io::TilesManifestTile& tile,
                                                                   const fs::path& tiles_dir,
                                                                   const BalanceParams& params) {
-  const std::string name = tile.at("name").string();
-  const tiling::TileKey key{tile.at("ix").integer(), tile.at("iy").integer()};
+  const std::string& name = tile.name;
+  const tiling::TileKey key{tile.ix, tile.iy};
   const fs::path align_dir = tiles_dir / name / params.aligned_subdir;
   const fs::path summary_path = align_dir / "align.summary.json";
   if (!fs::exists(summary_path))
@@ -71,11 +61,10 @@ std::vector<std::pair<PieceFiles, tiling::TilePiece>> measureTile(const io::Json
                      " first (balance needs every tile's align output)");
   std::vector<PieceFiles> files;
   std::vector<Lsm> inputs, aligned;
-  const io::JsonView lsms = tile.at("lsms");
-  for (std::size_t i = 0; i < lsms.size(); ++i) {
+  for (const std::string& lsm : tile.lsms) {
     PieceFiles f;
     f.tile_name = name;
-    f.input = tiles_dir / lsms.at(i).string();
+    f.input = tiles_dir / lsm;
     f.aligned = align_dir / f.input.filename();
     if (!fs::exists(f.aligned))
       throw InputError(f.aligned.string() + ": align's output for " + f.input.string() +
@@ -110,21 +99,18 @@ nlohmann::json runBalance(const fs::path& tiles_json, const fs::path& out,
   validateParams(params);
   const auto t0 = std::chrono::steady_clock::now();
   io::OutputTransaction outputs(out);  // locked and writable before the work
-  const io::Json doc = io::readDocument(tiles_json);
-  const io::JsonView manifest(doc, tiles_json.string());
-  manifest.checkFormat("mapfuse.tiles", 1);
+  const io::TilesManifest manifest = io::readTilesManifest(tiles_json);
   const fs::path tiles_dir = tiles_json.parent_path();
 
   // Pass 1, tile by tile: groups and what align did to every piece. Pass 2 reads the aligned
   // LSMs again, one at a time, so that memory holds one tile, not the whole batch.
   std::vector<PieceFiles> files;
   std::vector<tiling::TilePiece> pieces;
-  const io::JsonView tiles = manifest.at("tiles");
   std::size_t total = 0;
-  for (std::size_t t = 0; t < tiles.size(); ++t) total += tiles.at(t).at("lsms").size();
+  for (const auto& tile : manifest.tiles) total += tile.lsms.size();
   Progress progress("LSMs", 2 * total);
-  for (std::size_t t = 0; t < tiles.size(); ++t)
-    for (auto& [f, piece] : measureTile(tiles.at(t), tiles_dir, params)) {
+  for (const auto& tile : manifest.tiles)
+    for (auto& [f, piece] : measureTile(tile, tiles_dir, params)) {
       files.push_back(f);
       pieces.push_back(piece);
       progress.advance();

@@ -21,14 +21,34 @@ constexpr const char* kStageName = "EvaluateVoxelsParams";
 std::filesystem::path truthLabels(const io::KittiRawDrive& d, const io::KittiRawFrame& f) {
   return d.dir / "labels" / (f.name + ".label");
 }
+/// Poses of the truth scans in the map's frame (docs/evaluate.md).
+std::vector<Pose3> truthPoses(const io::KittiRawDrive& drive, const std::filesystem::path& dir,
+                              const EvaluateVoxelsParams& P) {
+  const std::filesystem::path file =
+      P.poses_file.empty() ? drive.poses_file : std::filesystem::path(P.poses_file);
+  std::string src = P.pose_source;
+  if (src == "auto") src = drive.has_oxts ? "oxts" : "poses_file";
+  if (src == "poses_file") {
+    if (file.empty())
+      throw InputError(dir.string() +
+                       ": truth voxels need poses: no OXTS, give --poses-file (e.g. the map's "
+                       "poses.txt)");
+    return lidar::veloPosesFromFile(drive, file);
+  }
+  if (!drive.has_oxts) throw InputError(dir.string() + ": truth voxels need OXTS poses");
+  std::vector<Pose3> poses = lidar::oxtsVeloPoses(drive, src == "oxts-enu");
+  if (P.recenter) lidar::recenter(poses);
+  return poses;
+}
 }  // namespace
 
 void EvaluateVoxelsParams::validate() const {
   requireParam(voxel_size > 0.0, kStageName, "voxel_size", voxel_size, "> 0");
   requireParam(min_range >= 0.0 && min_range < max_range, kStageName, "min_range", min_range,
                "in [0, max_range)");
-  requireParam(pose_source == "oxts" || pose_source == "oxts-enu", kStageName, "pose_source",
-               pose_source, "oxts or oxts-enu");
+  requireParam(pose_source == "auto" || pose_source == "oxts" || pose_source == "oxts-enu" ||
+                   pose_source == "poses_file",
+               kStageName, "pose_source", pose_source, "auto, oxts, oxts-enu or poses_file");
 }
 
 nlohmann::json runEvaluateVoxels(const EvaluateVoxelsInputs& in, const std::filesystem::path& out,
@@ -56,9 +76,7 @@ nlohmann::json runEvaluateVoxels(const EvaluateVoxelsInputs& in, const std::file
     doc = {{"mode", "scans"}, {"counts", {{"scans", scans}}}};
   } else {
     // (a) voxel map vs truth voxels from the labelled scans in the same frame.
-    if (!drive.has_oxts) throw InputError(in.drive.string() + ": truth voxels need OXTS poses");
-    std::vector<Pose3> poses = lidar::oxtsVeloPoses(drive, P.pose_source == "oxts-enu");
-    if (P.recenter) lidar::recenter(poses);
+    std::vector<Pose3> poses = truthPoses(drive, in.drive, P);
     eval::VoxelTruth truth(P.voxel_size);
     const Eigen::Matrix<double, 3, 4> P2 = drive.calib.veloToImage2();
     for (std::size_t k = 0; k < drive.frames.size(); ++k) {

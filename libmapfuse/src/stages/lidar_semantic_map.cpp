@@ -15,10 +15,10 @@
 #include "mapfuse/io/semantic_kitti.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/velodyne.hpp"
+#include "mapfuse/lidar/drive_odometry.hpp"
 #include "mapfuse/lidar/drive_poses.hpp"
 #include "mapfuse/lidar/map_export.hpp"
 #include "mapfuse/lidar/refinement.hpp"
-#include "mapfuse/lidar/scan_odometry.hpp"
 #include "mapfuse/lidar/seen_through_filter.hpp"
 #include "mapfuse/stages/lidar_semantic_map_detail.hpp"
 
@@ -38,9 +38,9 @@ std::vector<Pose3> drivePoses(const io::KittiRawDrive& drive, const LidarSemanti
                               json& report) {
   std::string src = p.pose_source;
   if (src == "auto")
-    src = (drive.has_oxts && drive.calib.has_imu) ? "oxts"
-          : !p.poses_file.empty()                 ? "poses_file"
-                                                  : "odometry";
+    src = (drive.has_oxts && drive.calib.has_imu)              ? "oxts"
+          : !p.poses_file.empty() || !drive.poses_file.empty() ? "poses_file"
+                                                               : "odometry";
   report["source"] = src;
   std::vector<Pose3> poses;
   if (src == "oxts" || src == "oxts_enu") {
@@ -51,49 +51,20 @@ std::vector<Pose3> drivePoses(const io::KittiRawDrive& drive, const LidarSemanti
     const auto ox = io::readOxts(drive.frames.front());
     report["origin_wgs84"] = {{"lat", ox.lat}, {"lon", ox.lon}, {"alt", ox.alt}};
   } else if (src == "poses_file") {
-    if (p.poses_file.empty()) throw ConfigError("pose_source poses_file needs --poses-file");
-    const auto cam = io::readKittiOdometryPoses(p.poses_file);
-    std::vector<Pose3> sel;
-    for (const auto& f : drive.frames) {
-      if (f.index >= static_cast<int>(cam.size()))
-        throw InputError(p.poses_file + ": no pose for frame " + std::to_string(f.index));
-      sel.push_back(cam[static_cast<std::size_t>(f.index)]);
-    }
-    poses = lidar::veloPosesFromCameraPoses(sel, drive.calib.T_rect0_velo());
-    const Pose3 T0inv = poses.front().inverse();
-    for (Pose3& T : poses) T = T0inv * T;
+    const fs::path file = !p.poses_file.empty() ? fs::path(p.poses_file) : drive.poses_file;
+    if (file.empty())
+      throw ConfigError("pose_source poses_file needs --poses-file (or a sequence's poses.txt)");
+    report["file"] = file.string();
+    poses = lidar::veloPosesFromFile(drive, file);
   } else if (src == "odometry") {
-    lidar::OdometrySettings os;
-    os.voxel_size = p.odom_voxel_size;
-    os.local_map_scans = p.odom_local_map_scans;
-    os.coarse_correspondence = p.odom_coarse_distance;
-    os.fine_correspondence = p.odom_fine_distance;
-    os.deskew = p.odom_deskew;
-    os.num_threads = p.num_threads;
-    lidar::ScanOdometry odo(os);
-    Progress progress("odometry scans", drive.frames.size());
-    for (const auto& f : drive.frames) {
-      odo.add(io::readVelodyneBin(f.velodyne).points);
-      progress.advance();
-    }
-    progress.finish();
-    poses = odo.poses();
-    int converged = 0;
-    json steps = json::array();
-    double length = 0;
-    for (std::size_t i = 0; i < poses.size(); ++i) {
-      const auto& st = odo.steps()[i];
-      converged += st.converged;
-      if (i > 0) length += (poses[i].translation() - poses[i - 1].translation()).norm();
-      steps.push_back({{"frame", drive.frames[i].index},
-                       {"converged", st.converged},
-                       {"iterations", st.iterations},
-                       {"rmse", st.rmse},
-                       {"inliers", st.num_inliers}});
-    }
-    report["converged_scans"] = converged;
-    report["travelled_distance_m"] = length;
-    report["steps"] = steps;
+    lidar::DriveOdometrySettings os;
+    os.odometry.voxel_size = p.odom_voxel_size;
+    os.odometry.deskew = p.odom_deskew;
+    os.odometry.exclude_road_users = p.odom_exclude_road_users;
+    os.max_untrusted = p.odom_max_untrusted;
+    const lidar::DriveOdometryResult odo = lidar::runDriveOdometry(drive, os);
+    poses = odo.T_odom_velo;
+    report.update(lidar::odometryReport(odo, os));
   } else {
     throw ConfigError("pose_source = \"" + src +
                       "\". Violated constraint: one of auto, oxts, oxts_enu, poses_file, odometry");
@@ -109,10 +80,7 @@ void LidarSemanticMapParams::validate() const {
                "-1 or >= first_frame");
   requireParam(stride >= 1, s, "stride", stride, ">= 1");
   requireParam(odom_voxel_size > 0, s, "odom_voxel_size", odom_voxel_size, "> 0");
-  requireParam(odom_local_map_scans >= 1, s, "odom_local_map_scans", odom_local_map_scans, ">= 1");
-  requireParam(odom_fine_distance > 0, s, "odom_fine_distance", odom_fine_distance, "> 0");
-  requireParam(odom_coarse_distance >= odom_fine_distance, s, "odom_coarse_distance",
-               odom_coarse_distance, ">= odom_fine_distance");
+  requireParam(odom_max_untrusted >= 0, s, "odom_max_untrusted", odom_max_untrusted, ">= 0");
   requireParam(enet_scale > 0.1 && enet_scale <= 4, s, "enet_scale", enet_scale, "in (0.1, 4]");
   requireParam(label_confidence > 1.0 / kNumLidarClasses && label_confidence <= 1, s,
                "label_confidence", label_confidence, "in (1/8, 1]");
@@ -268,7 +236,9 @@ json runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,
     if (path_shown > 0) key.legend.push_back({"trajectory", path_rgb, true});
     io::writePngFrame(output / "topdown.png", io::withPictureKey(img, key));
   }
-  io::writeKittiOdometryPoses(output / "poses.txt", poses);
+  io::writeKittiOdometryPoses(output / "poses.txt",
+                              lidar::cameraPosesForFile(poses, drive.calib.T_rect0_velo()));
+  io::writeKittiOdometryPoses(output / "poses_velo.txt", poses);
   std::size_t label_files = 0, labelled_points = 0, scan_points = 0;
   if (p.write_scan_labels) {
     for (std::size_t i = 0; i < drive.frames.size(); ++i) {

@@ -82,7 +82,15 @@ void loadFramesLayout(const LsmBuildInputs& in, const LsmBuildParams& p, LoadedD
   }
 }
 
-void loadKittiLayout(const LsmBuildInputs& in, const LsmBuildParams& p, LoadedDrive& d) {
+/// Poses file rows and drive frames must agree; checked before any network work.
+void checkPoseCount(const LsmBuildInputs& in, std::size_t poses, std::size_t frames) {
+  if (poses != frames)
+    throw InputError(in.poses.string() + " has " + std::to_string(poses) +
+                     " poses but the drive has " + std::to_string(frames) + " frames");
+}
+
+void loadKittiLayout(const LsmBuildInputs& in, const LsmBuildParams& p, LoadedDrive& d,
+                     const std::vector<Pose3>& file_poses) {
   const io::KittiRawDrive kd =
       io::openKittiRawDrive(in.drive, io::FrameRange{0, p.kitti_last_frame, 1});
   d.drive_id = in.drive_id.empty() ? in.drive.filename().string() : in.drive_id;
@@ -116,6 +124,9 @@ void loadKittiLayout(const LsmBuildInputs& in, const LsmBuildParams& p, LoadedDr
   } else if (d.egomotion != "poses") {
     throw ConfigError("LsmBuildParams::egomotion = \"" + d.egomotion +
                       "\". Violated constraint: a KITTI raw drive supports poses or oxts");
+  } else {
+    if (in.poses.empty()) throw InputError("egomotion = poses needs a poses file (--poses)");
+    checkPoseCount(in, file_poses.size(), d.stamps.size());
   }
   d.semantics = p.semantics == "auto" ? "segmenter" : p.semantics;
   if (d.semantics != "segmenter")
@@ -149,6 +160,9 @@ void loadKittiLayout(const LsmBuildInputs& in, const LsmBuildParams& p, LoadedDr
 LoadedDrive loadDrive(const LsmBuildInputs& in, const LsmBuildParams& p) {
   if (!fs::is_directory(in.drive)) throw IoError(in.drive.string(), "no such drive folder");
   LoadedDrive d;
+  // The poses file is read and checked (rows, rotations) before any image or network work.
+  const std::vector<Pose3> file_poses =
+      in.poses.empty() ? std::vector<Pose3>{} : io::readKittiPoses(in.poses);
   d.input_kind = p.input_kind;
   if (d.input_kind == "auto")
     d.input_kind = fs::exists(in.drive / "frames.json") ? "frames"
@@ -157,16 +171,16 @@ LoadedDrive loadDrive(const LsmBuildInputs& in, const LsmBuildParams& p) {
   if (d.input_kind == "frames")
     loadFramesLayout(in, p, d);
   else if (d.input_kind == "kitti_raw")
-    loadKittiLayout(in, p, d);
+    loadKittiLayout(in, p, d, file_poses);
   else
     throw InputError(in.drive.string() +
                      ": neither a frames folder (frames.json) nor a KITTI raw drive (image_02)");
 
   if (d.egomotion == "poses") {
     if (in.poses.empty()) throw InputError("egomotion = poses needs a poses file (--poses)");
-    auto T_world_cam0 = io::readKittiPoses(in.poses);
+    auto T_world_cam0 = file_poses;
     if (p.poses_frame == "velo") {
-      // LiDAR odometry poses (lidar-semantic-map poses.txt) are T_world_velo:
+      // Velodyne poses (lidar-semantic-map poses_velo.txt) are T_world_velo:
       // T_world_cam0 = T_world_velo * T_cam0_velo^-1 with T_cam0_velo = R_rect_00 T_velo_to_cam.
       if (!d.calib.has_velo)
         throw ConfigError(
@@ -175,9 +189,7 @@ LoadedDrive loadDrive(const LsmBuildInputs& in, const LsmBuildParams& p) {
       const Pose3 T_velo_cam0 = d.calib.T_posecam_velo.inverse();
       for (Pose3& T : T_world_cam0) T = T * T_velo_cam0;
     }
-    if (T_world_cam0.size() != d.stamps.size())
-      throw InputError(in.poses.string() + " has " + std::to_string(T_world_cam0.size()) +
-                       " poses but the drive has " + std::to_string(d.stamps.size()) + " frames");
+    checkPoseCount(in, T_world_cam0.size(), d.stamps.size());
     // KITTI poses are of (rectified) camera 0; ours is camera 2 shifted by the baseline.
     const Pose3 T_cam0_cam = d.calib.T_cam_posecam.inverse();
     const Pose3 T_cam_body = d.calib.T_body_cam.inverse();

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "mapfuse/core/lsm.hpp"
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/eval/error_stats.hpp"
 
 namespace mapfuse::eval {
@@ -38,6 +39,17 @@ std::optional<Pose3> truePoseAt(const std::vector<const TruePose*>& sorted, doub
 
 /// @brief Reads a `mapfuse.trajectory` file (JSON or CBOR). @throws IoError, ParseError.
 TrueTrajectory readTrueTrajectory(const std::filesystem::path& path);
+
+/// Parameters of the trajectory comparison (compareTrajectory takes rpe_distance).
+struct TrajectoryEvalSettings {
+  double rpe_distance = 10.0;  ///< m, travelled distance of the relative pose error
+
+  template <class V>
+  void visit(V& v) {
+    v("rpe_distance", rpe_distance, "m", "travelled distance of the relative pose error",
+      param::gt(0));
+  }
+};
 
 struct TrajectoryMetrics {
   std::string drive_id;

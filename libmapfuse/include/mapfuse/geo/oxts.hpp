@@ -24,8 +24,10 @@ struct OxtsRecord {
 /// Earth radius used by the KITTI devkit (m).
 constexpr double kKittiEarthRadius = 6378137.0;
 
-/// @brief Parses one OXTS text line (30 whitespace-separated numbers).
-/// @throws ParseError naming `file` and the field that is missing or not a number.
+/// @brief Parses one OXTS text line (30 whitespace-separated numbers), each within its range of
+/// docs/formats.md "Value bounds" (|lat| <= 85 deg for the Mercator pose, the status fields
+/// integers). @throws ParseError naming `file` and the field that is missing, not a number or
+/// out of range.
 OxtsRecord parseOxtsLine(const std::string& line, const std::string& file);
 
 /// @brief Mercator scale of the devkit: cos(lat0 * pi / 180).

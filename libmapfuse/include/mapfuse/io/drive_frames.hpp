@@ -54,7 +54,10 @@ cv::Mat readMask(const std::filesystem::path& path, int width, int height);
 std::vector<vehicle::GroundObservation> observationsFromMask(const cv::Mat& mask, int min_area);
 
 /// @brief KITTI odometry poses: one line per frame, 12 numbers = row-major [R|t] of
-/// T_world_cam0. @throws IoError, ParseError(file, "line N") when malformed.
+/// T_world_cam0. @throws IoError, ParseError(file, "line N") when malformed or a translation is
+/// beyond bounds::kMaxCoordinate.
 std::vector<Pose3> readKittiPoses(const std::filesystem::path& path);
+/// @brief The same from the text of a file; `file` names it in errors.
+std::vector<Pose3> parseKittiPoses(const std::string& text, const std::string& file);
 
 }  // namespace mapfuse::io

@@ -1,8 +1,9 @@
 #pragma once
 /// @file Consistency and accuracy of georeferenced / aligned LSMs against the simulator's truth
-/// (docs/fusion.md "Measuring alignment"): per true element, the spread of its observed position
+/// (docs/performance-fusion-accuracy.md): per true element, the spread of its observed position
 /// across traversals and its absolute error, plus keyframe ATE against the true trajectories.
-/// Used by tests/fusion and scripts/bench/bench_fusion_errors.cpp.
+/// Evaluation code (it scores fusion output); used by tests/eval and
+/// scripts/bench/bench_fusion_errors.cpp.
 #include <map>
 #include <string>
 #include <vector>
@@ -11,7 +12,7 @@
 #include "mapfuse/core/vector_map.hpp"
 #include "mapfuse/eval/trajectory_metrics.hpp"
 
-namespace mapfuse::fusion {
+namespace mapfuse::eval {
 
 struct ElementTruthErrors {
   int observations = 0;        ///< element observations with a known truth id
@@ -43,7 +44,7 @@ struct TrajectoryTruthErrors {
 /// @brief Keyframe position errors vs true trajectories matched by drive id and keyframe id
 /// (true positions converted into the LSM origin when it differs). @throws InputError when an
 /// LSM is not in enu.
-TrajectoryTruthErrors trajectoryTruthErrors(
-    const std::vector<Lsm>& lsms, const std::map<std::string, eval::TrueTrajectory>& truth);
+TrajectoryTruthErrors trajectoryTruthErrors(const std::vector<Lsm>& lsms,
+                                            const std::map<std::string, TrueTrajectory>& truth);
 
-}  // namespace mapfuse::fusion
+}  // namespace mapfuse::eval

@@ -1,5 +1,5 @@
-// Element and trajectory errors of LSMs against the simulator's truth (docs/fusion.md).
-#include "mapfuse/fusion/truth_errors.hpp"
+// Element and trajectory errors of LSMs against the simulator's truth (docs/evaluate.md).
+#include "mapfuse/eval/truth_errors.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/geo/origin.hpp"
 
-namespace mapfuse::fusion {
+namespace mapfuse::eval {
 
 namespace {
 
@@ -134,8 +134,8 @@ ElementTruthErrors elementTruthErrors(const std::vector<Lsm>& lsms, const Vector
   return r;
 }
 
-TrajectoryTruthErrors trajectoryTruthErrors(
-    const std::vector<Lsm>& lsms, const std::map<std::string, eval::TrueTrajectory>& truth) {
+TrajectoryTruthErrors trajectoryTruthErrors(const std::vector<Lsm>& lsms,
+                                            const std::map<std::string, TrueTrajectory>& truth) {
   TrajectoryTruthErrors r;
   for (const auto& l : lsms) {
     const auto it = truth.find(l.drive_id);
@@ -147,12 +147,12 @@ TrajectoryTruthErrors trajectoryTruthErrors(
     const bool convert = !geo::sameOrigin(*l.origin, truth_origin);
     const geo::EnuConverter from(truth_origin), to(*l.origin);
     // matched by stamp, as evaluate does (lsm-build's keyframe ids are not the simulator's)
-    const std::vector<const eval::TruePose*> by_stamp = eval::sortedByStamp(it->second);
+    const std::vector<const TruePose*> by_stamp = sortedByStamp(it->second);
     double sq = 0;
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     int n = 0;
     for (const auto& k : l.keyframes) {
-      const std::optional<Pose3> T = eval::truePoseAt(by_stamp, k.stamp);
+      const std::optional<Pose3> T = truePoseAt(by_stamp, k.stamp);
       if (!T) continue;
       const Eigen::Vector3d t = T->translation();
       const Eigen::Vector3d d =
@@ -175,4 +175,4 @@ TrajectoryTruthErrors trajectoryTruthErrors(
   return r;
 }
 
-}  // namespace mapfuse::fusion
+}  // namespace mapfuse::eval

@@ -7,18 +7,10 @@
 #include <vector>
 
 #include "mapfuse/aggregate/observations.hpp"
+#include "mapfuse/aggregate/settings.hpp"
 #include "mapfuse/core/vector_map.hpp"
 
 namespace mapfuse::aggregate {
-
-struct DiscreteMergeParams {
-  double min_iou = 0.2;             ///< arrows, crosswalks: eps = 1 - min_iou on 1 - IoU
-  double sign_radius = 1.0;         ///< m, traffic signs: eps on 3D centroid distance
-  double point_radius = 1.0;        ///< m, poles and lights: eps on 3D base distance
-  double stop_line_radius = 1.5;    ///< m, stop lines: eps on midpoint distance
-  double stop_line_angle_deg = 20;  ///< deg, stop lines: largest direction difference
-  int min_pts = 3;                  ///< DBSCAN MinPts (capped by the number of drives)
-};
 
 /// @brief Four corners of an oriented rectangle fitted to a planar element (its own 4 points
 /// when it has exactly 4, else the principal-axes bounding rectangle in its best-fit plane).

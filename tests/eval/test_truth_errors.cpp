@@ -1,8 +1,8 @@
-// fusion::elementTruthErrors / trajectoryTruthErrors on hand-made LSMs whose errors are known.
+// eval::elementTruthErrors / trajectoryTruthErrors on hand-made LSMs whose errors are known.
 #include <catch2/catch.hpp>
 
 #include "mapfuse/core/error.hpp"
-#include "mapfuse/fusion/truth_errors.hpp"
+#include "mapfuse/eval/truth_errors.hpp"
 #include "mapfuse/geo/origin.hpp"
 
 using namespace mapfuse;
@@ -41,12 +41,12 @@ Lsm drive(const std::string& id, double dx) {
 }  // namespace
 
 TEST_CASE("truth errors: element spread, absolute error and common offset of known shifts",
-          "[fusion][truth]") {
+          "[eval][truth]") {
   VectorMap truth;
   truth.origin = kOrigin;
   truth.instances = {pole(1, 10.0, 0.0), pole(2, 30.0, 5.0)};
   // Drive a sees both poles 0.3 m east, drive b 0.1 m west.
-  const auto e = fusion::elementTruthErrors({drive("a", 0.3), drive("b", -0.1)}, truth);
+  const auto e = eval::elementTruthErrors({drive("a", 0.3), drive("b", -0.1)}, truth);
   CHECK(e.observations == 4);
   CHECK(e.groups == 2);
   CHECK(e.mean_abs == Approx(0.2).margin(kExact));  // (0.3 + 0.3 + 0.1 + 0.1) / 4
@@ -56,11 +56,11 @@ TEST_CASE("truth errors: element spread, absolute error and common offset of kno
 
   Lsm odom = drive("c", 0.0);
   odom.frame = LsmFrame::kOdom;
-  CHECK_THROWS_AS(fusion::elementTruthErrors({odom}, truth), InputError);
+  CHECK_THROWS_AS(eval::elementTruthErrors({odom}, truth), InputError);
 }
 
 TEST_CASE("truth errors: a line seen in part is compared with the line, not its centroid",
-          "[fusion][truth]") {
+          "[eval][truth]") {
   // A 15 m lane line (shorter than a 20 m piece) and a 6 m stop line along East; each drive
   // sees only the first 5 m of the lane line and 2 m of the stop line, shifted 0.2 m north
   // (drive a) or 0.2 m south (drive b). Their centroids differ from the true ones by ~5 m and
@@ -93,7 +93,7 @@ TEST_CASE("truth errors: a line seen in part is compared with the line, not its 
     }
     return l;
   };
-  const auto e = fusion::elementTruthErrors({seen("a", 0.2), seen("b", -0.2)}, truth);
+  const auto e = eval::elementTruthErrors({seen("a", 0.2), seen("b", -0.2)}, truth);
   CHECK(e.observations == 4);
   CHECK(e.groups == 2);
   CHECK(e.mean_abs == Approx(0.2).margin(kExact));
@@ -102,7 +102,7 @@ TEST_CASE("truth errors: a line seen in part is compared with the line, not its 
 }
 
 TEST_CASE("truth errors: keyframe ATE with a true trajectory in another ENU origin",
-          "[fusion][truth]") {
+          "[eval][truth]") {
   // The LSM's keyframes every 10 m along East; the truth, in an origin ~100 m away, holds the
   // same points shifted 0.5 m south.
   const geo::GeoOrigin truth_origin{49.0009, 8.4, 110.0};
@@ -129,7 +129,7 @@ TEST_CASE("truth errors: keyframe ATE with a true trajectory in another ENU orig
     kf.T_frame_body.translation() = Eigen::Vector3d(10.0 * kf.stamp, 0.0, 0.0);
     l.keyframes.push_back(kf);
   }
-  const auto r = fusion::trajectoryTruthErrors({l}, {{"a", t}});
+  const auto r = eval::trajectoryTruthErrors({l}, {{"a", t}});
   CHECK(r.drives == 1);
   CHECK(r.ate_mean == Approx(0.5).margin(kGeoTol));
   CHECK(r.ate_max == Approx(0.5).margin(kGeoTol));

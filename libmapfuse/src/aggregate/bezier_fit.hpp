@@ -6,15 +6,10 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "mapfuse/aggregate/settings.hpp"
 #include "mapfuse/core/vector_map.hpp"
 
 namespace mapfuse::aggregate {
-
-struct BezierFitParams {
-  double max_deviation = 0.08;  ///< m, largest allowed point-to-curve distance
-  int reparam_iterations = 4;   ///< Newton re-parametrisation rounds per fit
-  double tangent_window = 3.0;  ///< m, arc length used to estimate end tangents
-};
 
 struct BezierFitResult {
   std::vector<BezierSegment> chain;
