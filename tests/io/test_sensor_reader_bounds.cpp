@@ -7,6 +7,7 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/geo/oxts.hpp"
+#include "mapfuse/io/oxts_line.hpp"
 #include "mapfuse/io/kitti_calib.hpp"
 #include "mapfuse/io/kitti_raw.hpp"
 #include "mapfuse/io/pcd.hpp"
@@ -69,17 +70,17 @@ TEST_CASE("KITTI calibration: image size and extrinsics within bounds", "[io][bo
 
 TEST_CASE("OXTS: ranges checked, status fields integers before the int conversion",
           "[io][bounds][kitti]") {
-  const geo::OxtsRecord r = geo::parseOxtsLine(kOxts, "o.txt");
+  const geo::OxtsRecord r = io::parseOxtsLine(kOxts, "o.txt");
   CHECK(r.numsats == 10);
   // navstat 1e300 converted to int was undefined behaviour.
-  CHECK_THROWS_WITH(geo::parseOxtsLine(replaced(kOxts, " 4 10 4 4 0", " 1e300 10 4 4 0"), "o.txt"),
+  CHECK_THROWS_WITH(io::parseOxtsLine(replaced(kOxts, " 4 10 4 4 0", " 1e300 10 4 4 0"), "o.txt"),
                     Contains("navstat"));
-  CHECK_THROWS_WITH(geo::parseOxtsLine(replaced(kOxts, " 4 10 4 4 0", " 4 10.5 4 4 0"), "o.txt"),
+  CHECK_THROWS_WITH(io::parseOxtsLine(replaced(kOxts, " 4 10 4 4 0", " 4 10.5 4 4 0"), "o.txt"),
                     Contains("numsats") && Contains("integer"));
   // The devkit's Mercator pose is infinite at the poles.
-  CHECK_THROWS_WITH(geo::parseOxtsLine(replaced(kOxts, "49.011212804408", "-90"), "o.txt"),
+  CHECK_THROWS_WITH(io::parseOxtsLine(replaced(kOxts, "49.011212804408", "-90"), "o.txt"),
                     Contains("field 'lat'"));
-  CHECK_THROWS_WITH(geo::parseOxtsLine(replaced(kOxts, "112.83492279053", "1e9"), "o.txt"),
+  CHECK_THROWS_WITH(io::parseOxtsLine(replaced(kOxts, "112.83492279053", "1e9"), "o.txt"),
                     Contains("field 'alt'"));
 }
 

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "mapfuse/io/oxts_line.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/kitti_raw.hpp"
 #include "mapfuse/io/kitti_raw_writer.hpp"
@@ -114,7 +115,7 @@ TEST_CASE("lidar drive io: OXTS lines and timestamps parse back exactly") {
   io::MercatorAnchor a;
   const Pose3 T = poseFromXyzRpy(123.25, -48.5, 2.0, 0.01, -0.02, 2.5);
   const geo::OxtsRecord r = io::oxtsFromPose(T, a);
-  const geo::OxtsRecord back = geo::parseOxtsLine(io::formatOxtsLine(r), "x.txt");
+  const geo::OxtsRecord back = io::parseOxtsLine(io::formatOxtsLine(r), "x.txt");
   CHECK(back.lat == r.lat);
   CHECK(back.lon == r.lon);
   CHECK(back.yaw == r.yaw);

@@ -1,5 +1,7 @@
 #include "mapfuse/io/align_registrations.hpp"
 
+#include <map>
+
 #include "mapfuse/io/document.hpp"
 
 namespace mapfuse::io {
@@ -30,6 +32,22 @@ AlignRegistrations alignRegistrationsFromJson(const Json& doc, const std::string
 
 AlignRegistrations readAlignRegistrations(const std::filesystem::path& path) {
   return alignRegistrationsFromJson(readDocument(path), path.string());
+}
+
+std::vector<std::pair<int, int>> keptPairsAmong(const AlignRegistrations& summary,
+                                                const std::vector<std::filesystem::path>& files) {
+  std::map<std::string, int> index_of;  // file name -> index in `files`
+  for (std::size_t i = 0; i < files.size(); ++i) index_of[files[i].filename().string()] = int(i);
+  std::vector<int> index(summary.inputs.size(), -1);  // align's input -> index in `files`
+  for (std::size_t i = 0; i < summary.inputs.size(); ++i) {
+    const auto it = index_of.find(std::filesystem::path(summary.inputs[i]).filename().string());
+    if (it != index_of.end()) index[i] = it->second;
+  }
+  std::vector<std::pair<int, int>> links;
+  for (const auto& p : summary.pairs)
+    if (p.kept && index[p.lsm_a] >= 0 && index[p.lsm_b] >= 0)
+      links.emplace_back(index[p.lsm_a], index[p.lsm_b]);
+  return links;
 }
 
 }  // namespace mapfuse::io

@@ -9,6 +9,7 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/kitti_sequence.hpp"
+#include "mapfuse/io/oxts_line.hpp"
 
 namespace mapfuse::io {
 namespace fs = std::filesystem;
@@ -156,7 +157,7 @@ geo::OxtsRecord readOxts(const KittiRawFrame& frame) {
   std::string text = readBytes(frame.oxts);
   const auto eol = text.find('\n');
   if (eol != std::string::npos) text.resize(eol);
-  return geo::parseOxtsLine(text, frame.oxts.string());
+  return io::parseOxtsLine(text, frame.oxts.string());
 }
 
 }  // namespace mapfuse::io

@@ -7,9 +7,9 @@
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/geo/origin.hpp"
 #include "mapfuse/io/atomic_file.hpp"
-#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_view.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/map_png.hpp"
 #include "mapfuse/io/stage_report.hpp"
@@ -31,24 +31,14 @@ void checkInputs(const EvaluateMapInputs& in) {
 // name order), which must share the truth map's origin; `files` receives their number.
 std::vector<Pose3> readTruePoses(const EvaluateMapInputs& in, const geo::GeoOrigin& truth_origin,
                                  std::size_t* files) {
-  const std::string& folder = in.truth_trajectories;
-  if (!std::filesystem::is_directory(folder))
-    throw IoError(folder, "not a folder of <drive>.trajectory.json files");
-  std::vector<std::filesystem::path> paths;
-  for (const auto& e : std::filesystem::directory_iterator(folder)) {
-    const std::string name = e.path().filename().string();
-    if (name.size() > 16 && name.rfind(".trajectory.json") == name.size() - 16)
-      paths.push_back(e.path());
-  }
-  std::sort(paths.begin(), paths.end());
+  const auto trajectories = eval::readTrueTrajectories(in.truth_trajectories);
   std::vector<Pose3> poses;
-  for (const auto& f : paths) {
-    const auto t = eval::readTrueTrajectory(f);
+  for (const auto& [file, t] : trajectories) {
     if (!geo::sameOrigin(t.origin, truth_origin))
-      throw InputError(f.string() + ": origin differs from the truth map " + in.truth);
+      throw InputError(file.string() + ": origin differs from the truth map " + in.truth);
     for (const auto& p : t.poses) poses.push_back(p.T_enu_body);
   }
-  *files = paths.size();
+  *files = trajectories.size();
   return poses;
 }
 

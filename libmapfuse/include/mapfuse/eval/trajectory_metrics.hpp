@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mapfuse/core/lsm.hpp"
@@ -39,6 +40,11 @@ std::optional<Pose3> truePoseAt(const std::vector<const TruePose*>& sorted, doub
 
 /// @brief Reads a `mapfuse.trajectory` file (JSON or CBOR). @throws IoError, ParseError.
 TrueTrajectory readTrueTrajectory(const std::filesystem::path& path);
+
+/// @brief Reads every `<drive>.trajectory.json` of `folder`, in file-name order, with the file
+/// each came from. @throws IoError when `folder` is not a folder; IoError, ParseError.
+std::vector<std::pair<std::filesystem::path, TrueTrajectory>> readTrueTrajectories(
+    const std::filesystem::path& folder);
 
 /// Parameters of the trajectory comparison (compareTrajectory takes rpe_distance).
 struct TrajectoryEvalSettings {

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mapfuse/io/json_view.hpp"
@@ -25,6 +26,11 @@ struct AlignRegistrations {
 /// an align summary; other keys are ignored. @throws ParseError naming `file` and the field
 /// (missing, wrong type, an index outside the inputs).
 AlignRegistrations alignRegistrationsFromJson(const Json& doc, const std::string& file);
+
+/// @brief The registrations `summary` kept, as index pairs into `files` (matched to align's
+/// inputs by file name; registrations of inputs not in `files` are left out).
+std::vector<std::pair<int, int>> keptPairsAmong(const AlignRegistrations& summary,
+                                                const std::vector<std::filesystem::path>& files);
 
 /// @brief Reads and parses an align.summary.json. @throws IoError, ParseError.
 AlignRegistrations readAlignRegistrations(const std::filesystem::path& path);
