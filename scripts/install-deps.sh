@@ -12,6 +12,7 @@ PACKAGES=(
   libpugixml-dev zlib1g-dev
   libopenmpi-dev
   gdal-bin snakemake
+  osmium-tool python3-shapely
   slurmctld slurmd slurm-client munge
   # the sanitizer build and the fuzz targets (fuzz/README.md): clang with libFuzzer and the
   # sanitizer runtimes (libclang-rt-14-dev, only recommended by clang-14), OpenMP for clang,

@@ -1,4 +1,6 @@
+#include <array>
 #include <catch2/catch.hpp>
+#include <map>
 
 #include "mapfuse/core/classes.hpp"
 
@@ -48,4 +50,23 @@ TEST_CASE("Cityscapes channels map onto the 8 LiDAR classes", "[core][classes]")
   CHECK(lidarClassFromCityscapes(14) == LidarClass::kVehicle);     // car
   CHECK(lidarClassFromCityscapes(19) == LidarClass::kVehicle);     // bicycle
   CHECK(lidarClassFromCityscapes(20) == LidarClass::kUnlabeled);   // out of range
+}
+
+TEST_CASE("LiDAR class colours are SemanticKITTI's color_map converted from BGR to RGB",
+          "[core][classes]") {
+  // semantic-kitti.yaml color_map (B, G, R) of each class's SemanticKITTI id.
+  const std::map<uint16_t, std::array<uint8_t, 3>> kBgr = {
+      {0, {0, 0, 0}},      {10, {245, 150, 100}}, {40, {255, 0, 255}}, {48, {75, 0, 75}},
+      {50, {0, 200, 255}}, {51, {50, 120, 255}},  {70, {0, 175, 0}},   {80, {150, 240, 255}}};
+  for (int i = 0; i < kNumLidarClasses; ++i) {
+    const auto c = static_cast<LidarClass>(i);
+    const auto& bgr = kBgr.at(semanticKittiId(c));
+    INFO(lidarClassName(c));
+    CHECK(lidarClassColor(c) == std::array<uint8_t, 3>{bgr[2], bgr[1], bgr[0]});
+  }
+  // Cars blue, buildings orange (as SemanticKITTI's own pictures show them).
+  const auto car = lidarClassColor(LidarClass::kVehicle);
+  CHECK((car[2] > car[0] && car[2] > 200));
+  const auto building = lidarClassColor(LidarClass::kBuilding);
+  CHECK((building[0] == 255 && building[2] == 0));
 }

@@ -185,10 +185,56 @@ TEST_CASE("GeoJSON export is RFC 7946: lon/lat order, 7 decimals, closed CCW rin
   // At most 7 decimals.
   const double lon = c[0].get<double>();
   CHECK(std::abs(lon * 1e7 - std::round(lon * 1e7)) < 1e-3);
-  // The sign polygon ring is closed and counter-clockwise.
-  const auto ring = g["features"][1]["geometry"]["coordinates"][0];
-  REQUIRE(ring.size() == 5);
-  CHECK(ring.front() == ring.back());
+  // The sign is a vertical plate: a Point at the bottom centre with its width and height.
+  const auto& sign = g["features"][1];
+  REQUIRE(sign["geometry"]["type"] == "Point");
+  const auto sc = sign["geometry"]["coordinates"];
+  const Eigen::Vector3d sign_back =
+      enu.toEnu({sc[1].get<double>(), sc[0].get<double>(), sc[2].get<double>()});
+  CHECK((sign_back - Eigen::Vector3d(10, 5.3, 2)).norm() < kGeoJsonTolerance);
+  CHECK(sign["properties"]["width"].get<double>() == Approx(0.6).margin(1e-3));
+  CHECK(sign["properties"]["height"].get<double>() == Approx(0.6).margin(1e-3));
   CHECK(g["features"][0]["geometry"]["type"] == "LineString");
   CHECK(g["features"][0]["properties"]["style"] == "solid");
+}
+
+namespace {
+/// Twice the signed area of a closed GeoJSON ring in the lon/lat plane (> 0: counter-clockwise).
+double ringArea2(const io::Json& ring) {
+  double a = 0.0;
+  for (std::size_t i = 0; i + 1 < ring.size(); ++i)
+    a += ring[i][0].get<double>() * ring[i + 1][1].get<double>() -
+         ring[i + 1][0].get<double>() * ring[i][1].get<double>();
+  return a;
+}
+}  // namespace
+
+TEST_CASE("GeoJSON footprints: clockwise outlines turn, crossing ones become their hull",
+          "[io][geojson]") {
+  VectorMap map = test::makeVectorMap();
+  MapInstance arrow;  // clockwise square
+  arrow.id = 4;
+  arrow.cls = CrowdClass::kGroundArrow;
+  arrow.points = {{0, 0, 0}, {0, 2, 0}, {2, 2, 0}, {2, 0, 0}};
+  MapInstance bowtie;  // crosses itself: 0-1 and 2-3 intersect
+  bowtie.id = 5;
+  bowtie.cls = CrowdClass::kCrosswalk;
+  bowtie.points = {{0, 0, 0}, {4, 3, 0}, {4, 0, 0}, {0, 3, 0}};
+  MapInstance sliver;  // a repeated point after rounding: 2 distinct positions, no area
+  sliver.id = 6;
+  sliver.cls = CrowdClass::kCrosswalk;
+  sliver.points = {{0, 0, 0}, {0, 0.0001, 0}, {3, 0, 0}};
+  map.instances = {arrow, bowtie, sliver};
+  const io::Json g = io::vectorMapToGeoJson(map);
+  const auto& square = g["features"][0]["geometry"];
+  REQUIRE(square["type"] == "Polygon");
+  CHECK(square["coordinates"][0].size() == 5);
+  CHECK(ringArea2(square["coordinates"][0]) > 0);
+  const auto& hull = g["features"][1];
+  REQUIRE(hull["geometry"]["type"] == "Polygon");
+  CHECK(hull["geometry"]["coordinates"][0].size() == 5);  // the 4 corners of the bow tie's hull
+  CHECK(ringArea2(hull["geometry"]["coordinates"][0]) > 0);
+  CHECK(hull["properties"]["geometry_note"].get<std::string>().find("convex hull") !=
+        std::string::npos);
+  CHECK(g["features"][2]["geometry"]["type"] == "LineString");
 }

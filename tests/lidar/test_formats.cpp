@@ -1,5 +1,6 @@
 // PLY / PCD / SemanticKITTI .label / KITTI poses round trips and malformed input.
 #include <catch2/catch.hpp>
+#include <cstring>
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/kitti_poses.hpp"
@@ -37,9 +38,14 @@ TEST_CASE("PLY round-trip keeps points, labels, confidence and count", "[lidar][
   const std::string text = test::readText(dir / "m.ply");
   CHECK(text.rfind("ply\nformat binary_little_endian 1.0\n", 0) == 0);
   CHECK(text.find("element vertex 1234\n") != std::string::npos);
-  CHECK(text.find("property uchar label\nproperty float confidence\nend_header\n") !=
-        std::string::npos);
+  CHECK(text.find("property uchar label\nproperty float confidence\nproperty ushort "
+                  "semantic_kitti\nend_header\n") != std::string::npos);
+  CHECK(text.find("comment label: mapfuse LiDAR class id 0-7") != std::string::npos);
   checkSame(cloud, io::readPly(dir / "m.ply"));
+  // The semantic_kitti field of the last vertex (label 1233 % 8 = 1, road) is 40.
+  uint16_t kitti = 0;
+  std::memcpy(&kitti, text.data() + text.size() - 2, 2);
+  CHECK(kitti == 40);
   // truncated body
   test::writeText(dir / "t.ply", text.substr(0, text.size() - 7));
   try {
@@ -57,9 +63,19 @@ TEST_CASE("PCD round-trip keeps points, labels, confidence and count", "[lidar][
   const auto cloud = sampleCloud(777);
   io::writePcd(dir / "m.pcd", cloud);
   const std::string text = test::readText(dir / "m.pcd");
-  CHECK(text.find("FIELDS x y z rgb label confidence\n") != std::string::npos);
+  CHECK(text.find("FIELDS x y z rgb label confidence semantic_kitti\n") != std::string::npos);
   CHECK(text.find("POINTS 777\nDATA binary\n") != std::string::npos);
   checkSame(cloud, io::readPcd(dir / "m.pcd"));
+  // The last point: label 776 % 8 = 0 (unlabeled, SemanticKITTI 0); the one before: 7, vehicle:
+  // rgb 0x6496F5 (SemanticKITTI's car colour, its BGR [245, 150, 100] as RGB), id 10.
+  uint32_t rgb = 0, label = 0, kitti = 0;
+  const std::size_t prev = text.size() - 2 * 28;
+  std::memcpy(&rgb, text.data() + prev + 12, 4);
+  std::memcpy(&label, text.data() + prev + 16, 4);
+  std::memcpy(&kitti, text.data() + prev + 24, 4);
+  CHECK(label == 7);
+  CHECK(rgb == 0x6496F5u);
+  CHECK(kitti == 10);
   test::writeText(dir / "t.pcd", text.substr(0, text.size() - 1));
   CHECK_THROWS_AS(io::readPcd(dir / "t.pcd"), ParseError);
   std::string ascii = text;

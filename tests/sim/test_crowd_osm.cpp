@@ -56,6 +56,10 @@ TEST_CASE("Lanelet2: Karlsruhe example map counts", "[sim][osm]") {
   CHECK(map.countWays("traffic_sign") == 11);
   CHECK(map.countWays("traffic_light") == 10);
   CHECK(map.node_count == 2258);
+  // Every way type of this real map is one of Lanelet2's tagging spec (bike_marking, fence,
+  // guard_rail, keepout, rail, symbol, wall, zig-zag... included); every way has a type.
+  for (const auto& [type, n] : map.skipped_way_types) FAIL_CHECK(type << ": " << n << " skipped");
+  CHECK(map.untyped_ways == 0);
   REQUIRE(map.first_node);
   CHECK(map.first_node->lat == Approx(49.00345654351).margin(1e-11));
 
@@ -81,7 +85,11 @@ TEST_CASE("Lanelet2: negative ids, missing optional tags and unknown types load"
   CHECK(map.lanelets[1].subtype.empty());
   CHECK(map.lanelets[1].one_way);
   CHECK(map.skipped_way_types.at("hedge_of_mystery") == 1);
-  CHECK(map.skipped_way_types.at("(none)") == 1);
+  // A way without `type` is a `virtual` bound (CommonRoad conversions write them), not skipped.
+  CHECK(map.skipped_way_types.count("(none)") == 0);
+  CHECK(map.untyped_ways == 1);
+  CHECK(map.way(-16)->type == "virtual");
+  CHECK(map.way(-16)->untyped);
   CHECK(map.skipped_relation_types.at("multipolygon") == 1);
   CHECK(map.way(-15)->points[1].alt == 2.5);
 
@@ -99,7 +107,8 @@ TEST_CASE("Lanelet2: negative ids, missing optional tags and unknown types load"
   }
   CHECK(lines == 2);
   CHECK(stops == 1);
-  CHECK(world.stats.at("skipped_ways") == 2);
+  CHECK(world.stats.at("skipped_ways") == 1);
+  CHECK(world.stats.at("untyped_ways_as_virtual") == 1);
 }
 
 TEST_CASE("Lanelet2: malformed maps are ParseErrors naming file and element", "[sim][osm]") {

@@ -23,15 +23,17 @@ struct LidarInfo {
   uint16_t kitti_id;
   std::array<uint8_t, 3> color;
 };
+// Colours: SemanticKITTI's semantic-kitti.yaml `color_map` of the class's id, which lists
+// B, G, R (its visualiser hands the triples to OpenCV); stored here as R, G, B.
 constexpr std::array<LidarInfo, kNumLidarClasses> kLidar{{
-    {"unlabeled", 0, {0, 0, 0}},
-    {"road", 40, {255, 0, 255}},
-    {"sidewalk", 48, {75, 0, 75}},
-    {"building", 50, {0, 200, 255}},
-    {"fence", 51, {50, 120, 255}},
-    {"pole", 80, {150, 240, 255}},
-    {"vegetation", 70, {0, 175, 0}},
-    {"vehicle", 10, {245, 150, 100}},
+    {"unlabeled", 0, {0, 0, 0}},       // color_map[0]  = [0, 0, 0]
+    {"road", 40, {255, 0, 255}},       // color_map[40] = [255, 0, 255]
+    {"sidewalk", 48, {75, 0, 75}},     // color_map[48] = [75, 0, 75]
+    {"building", 50, {255, 200, 0}},   // color_map[50] = [0, 200, 255]
+    {"fence", 51, {255, 120, 50}},     // color_map[51] = [50, 120, 255]
+    {"pole", 80, {255, 240, 150}},     // color_map[80] = [150, 240, 255]
+    {"vegetation", 70, {0, 175, 0}},   // color_map[70] = [0, 175, 0]
+    {"vehicle", 10, {100, 150, 245}},  // color_map[10] = [245, 150, 100]
 }};
 
 constexpr std::array<LidarClass, kNumCityscapesClasses> kFromCityscapes{{

@@ -1,6 +1,7 @@
 #include "mapfuse/eval/map_report.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 #include <set>
@@ -21,8 +22,26 @@ std::string orDash(const ErrorStats& s, double v, int decimals = 3) {
   return s.count ? num(v, decimals) : "–";
 }
 
-cv::Scalar bgr(CrowdClass c) {
+constexpr double kMaxChartLuma = 150.0;  // 0-255; brighter class colours vanish on white
+
+}  // namespace
+
+std::array<uint8_t, 3> chartColor(CrowdClass c) {
+  // The map colours are chosen for dark backgrounds (lane lines white); on the charts' white
+  // paper a colour brighter than kMaxChartLuma (Rec. 601 luma) is scaled down to it.
   const auto rgb = crowdClassColor(c);
+  const double luma = 0.299 * rgb[0] + 0.587 * rgb[1] + 0.114 * rgb[2];
+  if (luma <= kMaxChartLuma) return rgb;
+  const double f = kMaxChartLuma / luma;
+  std::array<uint8_t, 3> out{};
+  for (int k = 0; k < 3; ++k) out[k] = static_cast<uint8_t>(std::lround(rgb[k] * f));
+  return out;
+}
+
+namespace {
+
+cv::Scalar bgr(CrowdClass c) {
+  const auto rgb = chartColor(c);
   return cv::Scalar(rgb[2], rgb[1], rgb[0]);
 }
 
@@ -114,8 +133,10 @@ void writeErrorPerClassPng(const std::filesystem::path& path, const MapReportEnt
     const auto& c = entry.metrics.classes[i];
     const int x = ax.area.x + int(i) * slot + slot / 6;
     const int w = slot / 3;
-    if (c.relative.count)
+    if (c.relative.count) {
       cv::rectangle(ax.img, {x, ax.y(c.relative.mean)}, {x + w, ax.y(0)}, bgr(c.cls), cv::FILLED);
+      cv::rectangle(ax.img, {x, ax.y(c.relative.mean)}, {x + w, ax.y(0)}, cv::Scalar(0, 0, 0), 1);
+    }
     if (c.absolute.count)
       cv::rectangle(ax.img, {x + w, ax.y(c.absolute.mean)}, {x + 2 * w, ax.y(0)}, bgr(c.cls), 2);
     cv::putText(ax.img, crowdClassName(c.cls), {x - slot / 8, ax.area.y + ax.area.height + 18},

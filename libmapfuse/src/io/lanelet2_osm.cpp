@@ -15,9 +15,38 @@ namespace mapfuse::io {
 
 namespace {
 
-const char* const kKnownWayTypes[] = {
-    "line_thin",     "line_thick",         "stop_line",    "curbstone",     "road_border",
-    "zebra_marking", "pedestrian_marking", "traffic_sign", "traffic_light", "virtual"};
+// lanelet2_core/doc/LinestringTagging.md: lane boundaries, other boundaries and barriers,
+// symbols on the road, signs and lights (plus `symbol`, which mapping tools write).
+const char* const kKnownWayTypes[] = {"line_thin",
+                                      "line_thick",
+                                      "stop_line",
+                                      "curbstone",
+                                      "road_border",
+                                      "zebra_marking",
+                                      "pedestrian_marking",
+                                      "bike_marking",
+                                      "traffic_sign",
+                                      "traffic_light",
+                                      "virtual",
+                                      "guard_rail",
+                                      "wall",
+                                      "fence",
+                                      "keepout",
+                                      "jersey_barrier",
+                                      "gate",
+                                      "door",
+                                      "rail",
+                                      "arrow",
+                                      "zig-zag",
+                                      "lift_gate",
+                                      "bump",
+                                      "symbol",
+                                      "parking_space"};
+
+// Node types that mark dash ends (LinestringTagging.md "Individual Dashes"), not map points.
+bool isDashMarker(const std::string& type) {
+  return type == "begin" || type == "end" || type == "start" || type == "dot";
+}
 
 /// Ids within +-(2^63 - 2^32): the simulator numbers the elements it adds (fewer than 2^32)
 /// after the largest id. The Karlsruhe example map has ids up to 9.217e18, so int64 range it is.
@@ -130,6 +159,9 @@ Lanelet2Map parseLanelet2Osm(const std::string& xml, const std::string& file) {
     }
     if (!nodes.emplace(id, p).second) throw ParseError(file, where, "duplicate node id");
     if (!map.first_node) map.first_node = p;
+    const auto type = tags.find("type");
+    if (type != tags.end() && !isDashMarker(type->second))
+      map.points.push_back({id, type->second, tags, p});
   }
   map.node_count = nodes.size();
   // Ways.
@@ -150,8 +182,13 @@ Lanelet2Map parseLanelet2Osm(const std::string& xml, const std::string& file) {
     ls.tags = readTags(w);
     ls.type = tagOr(ls.tags, "type", "");
     ls.subtype = tagOr(ls.tags, "subtype", "");
+    if (ls.type.empty()) {  // CommonRoad conversions: a bound without type is no marking
+      ls.type = "virtual";
+      ls.untyped = true;
+      ++map.untyped_ways;
+    }
     ls.known_type = isKnownLanelet2WayType(ls.type);
-    if (!ls.known_type) ++map.skipped_way_types[ls.type.empty() ? "(none)" : ls.type];
+    if (!ls.known_type) ++map.skipped_way_types[ls.type];
     if (!map.way_index.emplace(ls.id, map.linestrings.size()).second)
       throw ParseError(file, where, "duplicate way id");
     map.linestrings.push_back(std::move(ls));

@@ -23,12 +23,14 @@ void writePcd(const std::filesystem::path& path, const LabeledCloud& cloud) {
   if (cloud.labels.size() != cloud.size() || cloud.confidence.size() != cloud.size())
     throw InputError(path.string() + ": points, labels and confidence differ in size");
   std::ostringstream h;
-  h << "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\n"
-    << "FIELDS x y z rgb label confidence\nSIZE 4 4 4 4 4 4\nTYPE F F F U U F\n"
-    << "COUNT 1 1 1 1 1 1\nWIDTH " << cloud.size() << "\nHEIGHT 1\n"
+  h << "# .PCD v0.7 - Point Cloud Data file format\n"
+    << "# label: mapfuse LiDAR class id 0-7 (docs/formats.md \"LiDAR classes\")\n"
+    << "# semantic_kitti: SemanticKITTI semantic id of the class\nVERSION 0.7\n"
+    << "FIELDS x y z rgb label confidence semantic_kitti\nSIZE 4 4 4 4 4 4 4\n"
+    << "TYPE F F F U U F U\nCOUNT 1 1 1 1 1 1 1\nWIDTH " << cloud.size() << "\nHEIGHT 1\n"
     << "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << cloud.size() << "\nDATA binary\n";
   const std::string header = h.str();
-  constexpr std::size_t kStride = 24;
+  constexpr std::size_t kStride = 28;
   std::string body(cloud.size() * kStride, '\0');
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     char* p = body.data() + i * kStride;
@@ -39,6 +41,8 @@ void writePcd(const std::filesystem::path& path, const LabeledCloud& cloud) {
     std::memcpy(p + 12, &rgb, 4);
     std::memcpy(p + 16, &label, 4);
     std::memcpy(p + 20, &cloud.confidence[i], 4);
+    const uint32_t kitti = semanticKittiId(static_cast<LidarClass>(cloud.labels[i]));
+    std::memcpy(p + 24, &kitti, 4);
   }
   writeFileAtomic(path, [&](std::ostream& out) {
     out.write(header.data(), static_cast<std::streamsize>(header.size()));

@@ -65,12 +65,15 @@ void writePly(const std::filesystem::path& path, const LabeledCloud& cloud) {
   checkCloud(cloud, path.string());
   std::ostringstream h;
   h << "ply\nformat binary_little_endian 1.0\ncomment mapfuse semantic voxel map\n"
+    << "comment label: mapfuse LiDAR class id 0-7 (docs/formats.md \"LiDAR classes\")\n"
+    << "comment semantic_kitti: SemanticKITTI semantic id of the class\n"
     << "element vertex " << cloud.size() << "\n"
     << "property float x\nproperty float y\nproperty float z\n"
     << "property uchar red\nproperty uchar green\nproperty uchar blue\n"
-    << "property uchar label\nproperty float confidence\nend_header\n";
+    << "property uchar label\nproperty float confidence\nproperty ushort semantic_kitti\n"
+    << "end_header\n";
   const std::string header = h.str();
-  constexpr std::size_t kStride = 12 + 3 + 1 + 4;
+  constexpr std::size_t kStride = 12 + 3 + 1 + 4 + 2;
   std::string body(cloud.size() * kStride, '\0');
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     char* p = body.data() + i * kStride;
@@ -81,6 +84,8 @@ void writePly(const std::filesystem::path& path, const LabeledCloud& cloud) {
     p[14] = static_cast<char>(col[2]);
     p[15] = static_cast<char>(cloud.labels[i]);
     std::memcpy(p + 16, &cloud.confidence[i], 4);
+    const uint16_t kitti = semanticKittiId(static_cast<LidarClass>(cloud.labels[i]));
+    std::memcpy(p + 20, &kitti, 2);
   }
   writeFileAtomic(path, [&](std::ostream& out) {
     out.write(header.data(), static_cast<std::streamsize>(header.size()));

@@ -1,10 +1,15 @@
 #include "mapfuse/sim/lanelet2_world.hpp"
 
 #include <cmath>
+#include <cstdlib>
+#include <map>
+#include <optional>
 #include <set>
 
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/core/log.hpp"
 #include "mapfuse/io/bounds.hpp"
+#include "mapfuse/sim/line_chains.hpp"
 
 namespace mapfuse::sim {
 
@@ -14,6 +19,21 @@ constexpr double kCenterlineStep = 0.5;      // m
 constexpr double kSuccessorTolerance = 0.1;  // m, shared bound end points
 constexpr double kArrowStopDistance = 1.0;   // m, centreline vertex to stop line: a crossing
 constexpr double kMinArrowLaneRoom = 2.5;    // m, the arrow must fit into the lane
+constexpr double kJoinTolerance = 1e-3;      // m, line pieces sharing a node are one marking
+
+/// The `height` tag of a way or node in metres; nullopt when absent or not a number in
+/// (0, io::bounds::kMaxElementHeight].
+std::optional<double> heightTag(const std::map<std::string, std::string>& tags) {
+  const auto it = tags.find("height");
+  if (it == tags.end()) return std::nullopt;
+  char* end = nullptr;
+  const double h = std::strtod(it->second.c_str(), &end);
+  if (end == it->second.c_str() || !std::isfinite(h) || h <= 0.0 ||
+      h > io::bounds::kMaxElementHeight)
+    return std::nullopt;
+  return h;
+}
+
 // Drivable lanelets are sampled every kCenterlineStep: at most 1000 km of them (2e6 samples;
 // the Karlsruhe example map has about 30 km). One node 2700 km from the others made a single
 // lanelet take 30 s.
@@ -50,6 +70,9 @@ struct IdAllocator {
 
 World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin,
                         const Lanelet2Assumptions& A) {
+  if (map.untyped_ways > 0)
+    MAPFUSE_WARN(map.file << ": " << map.untyped_ways
+                          << " ways have no `type` tag; read as `virtual` (no marking)");
   World world;
   world.name = map.file;
   world.truth.origin = origin;
@@ -131,8 +154,20 @@ World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin
   }
   connectLanesByEndpoints(world, kSuccessorTolerance);
 
+  // Poles mapped as points (`type=pole`, `height`); then no pole is placed under signs.
+  bool map_has_poles = false;
+  int poles = 0;
+  for (const auto& p : map.points) {
+    if (p.type != "pole") continue;
+    add(p.id, CrowdClass::kPole, {enu.toEnu(p.position)}, "").height =
+        heightTag(p.tags).value_or(0.0);
+    map_has_poles = true;
+    ++poles;
+  }
   // Line strings.
   int lines = 0, stops = 0, signs = 0, lights = 0, boundaries = 0, crossing_lines = 0;
+  int map_arrows = 0;
+  std::map<int64_t, std::pair<int64_t, int64_t>> line_ends;  // lane-line instance -> end nodes
   for (std::size_t i = 0; i < map.linestrings.size(); ++i) {
     const auto& w = map.linestrings[i];
     const Polyline& pts = ways[i];
@@ -142,6 +177,7 @@ World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin
                         ? "double line " + w.subtype + " mapped to solid"
                         : "");
       m.attributes.style = w.subtype == "dashed" ? LineStyle::kDashed : LineStyle::kSolid;
+      line_ends[m.id] = {w.node_ids.front(), w.node_ids.back()};
       const auto c = w.tags.find("color");
       m.attributes.color =
           c != w.tags.end() && c->second == "yellow" ? LineColor::kYellow : LineColor::kWhite;
@@ -150,30 +186,52 @@ World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin
       add(w.id, CrowdClass::kStopLine, {pts.front(), pts.back()}, "");
       ++stops;
     } else if (w.type == "traffic_sign") {
+      // With a `height` tag the way is the plate's bottom edge at its true altitude (as mapfuse
+      // writes it); without, the plate is assumed (the example maps carry no heights).
+      const std::optional<double> h = heightTag(w.tags);
+      const double bottom = h ? 0.0 : A.sign_bottom, size = h ? *h : A.sign_size;
       const Eigen::Vector3d a = pts.front(), b = pts.back(), up(0, 0, 1);
       add(w.id, CrowdClass::kTrafficSign,
-          {a + A.sign_bottom * up, b + A.sign_bottom * up, b + (A.sign_bottom + A.sign_size) * up,
-           a + (A.sign_bottom + A.sign_size) * up},
-          "mounting height assumed by simulator");
-      add(ids.fresh(), CrowdClass::kPole, {0.5 * (a + b)}, "placed by simulator under a sign")
-          .height = A.sign_bottom + A.sign_size;
+          {a + bottom * up, b + bottom * up, b + (bottom + size) * up, a + (bottom + size) * up},
+          h ? "" : "mounting height assumed by simulator");
+      if (!map_has_poles)
+        add(ids.fresh(), CrowdClass::kPole, {0.5 * (a + b)}, "placed by simulator under a sign")
+            .height = bottom + size;
       ++signs;
     } else if (w.type == "traffic_light") {
+      const std::optional<double> h = heightTag(w.tags);
+      const double bottom = h ? 0.0 : A.light_bottom;
       const Eigen::Vector3d c = 0.5 * (pts.front() + pts.back());
-      add(w.id, CrowdClass::kTrafficLight, {c + Eigen::Vector3d(0, 0, A.light_bottom)},
-          "mounting height assumed by simulator")
-          .height = A.light_height;
-      add(ids.fresh(), CrowdClass::kPole, {c}, "placed by simulator under a traffic light").height =
-          A.light_bottom;
+      add(w.id, CrowdClass::kTrafficLight, {c + Eigen::Vector3d(0, 0, bottom)},
+          h ? "" : "mounting height assumed by simulator")
+          .height = h ? *h : A.light_height;
+      if (!map_has_poles)
+        add(ids.fresh(), CrowdClass::kPole, {c}, "placed by simulator under a traffic light")
+            .height = A.light_bottom;
       ++lights;
+    } else if (w.type == "arrow" && pts.size() >= 4) {  // an outline (closed way)
+      Polyline ring = pts;
+      if ((ring.front() - ring.back()).norm() < kJoinTolerance) ring.pop_back();
+      add(w.id, CrowdClass::kGroundArrow, ring, "");
+      ++map_arrows;
     } else if (w.type == "curbstone" || w.type == "road_border") {
       ++boundaries;
     } else if (w.type == "zebra_marking" || w.type == "pedestrian_marking") {
       ++crossing_lines;
     }
   }
-  // Arrows before stop lines, one per lane ending at a stop line. Lanes whose bounding box is
-  // farther than kArrowStopDistance from the stop line cannot cross it: skipped unread.
+  // One marking cut into several ways (at lanelet ends, sharing the end node) is one line.
+  const int joins =
+      joinLineChains(world.truth.instances, kJoinTolerance,
+                     [&](const MapInstance& a, int side_a, const MapInstance& b, int side_b) {
+                       const auto ea = line_ends.find(a.id), eb = line_ends.find(b.id);
+                       if (ea == line_ends.end() || eb == line_ends.end()) return false;
+                       return (side_a == 0 ? ea->second.first : ea->second.second) ==
+                              (side_b == 0 ? eb->second.first : eb->second.second);
+                     });
+  // Arrows before stop lines, one per lane ending at a stop line, unless the map has arrows.
+  // Lanes whose bounding box is farther than kArrowStopDistance from the stop line cannot cross
+  // it: skipped unread.
   int arrows = 0;
   struct Box {
     Eigen::Vector2d lo, hi;
@@ -185,7 +243,7 @@ World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin
   };
   std::vector<Box> lane_boxes;
   for (const auto& lane : world.lanes) lane_boxes.push_back(boxOf(lane.centerline));
-  const std::size_t n_instances = world.truth.instances.size();
+  const std::size_t n_instances = map_arrows > 0 ? 0 : world.truth.instances.size();
   for (std::size_t i = 0; i < n_instances; ++i) {
     if (world.truth.instances[i].cls != CrowdClass::kStopLine) continue;
     const Polyline stop = world.truth.instances[i].points;
@@ -232,7 +290,11 @@ World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin
   world.stats["boundaries_ignored"] = boundaries;
   world.stats["crossing_lines_ignored"] = crossing_lines;
   world.stats["arrows_placed"] = arrows;
-  world.stats["poles_placed"] = signs + lights;
+  world.stats["arrows_mapped"] = map_arrows;
+  world.stats["poles_placed"] = map_has_poles ? 0 : signs + lights;
+  world.stats["poles_mapped"] = poles;
+  world.stats["line_pieces_joined"] = joins;
+  world.stats["untyped_ways_as_virtual"] = map.untyped_ways;
   int skipped = 0;
   for (const auto& kv : map.skipped_way_types) skipped += kv.second;
   world.stats["skipped_ways"] = skipped;

@@ -17,8 +17,10 @@ namespace mapfuse::stages {
 namespace {
 
 // The map in every format (each written atomically), map.png over the observations in grey.
+// map.osm's lanelets take their travel direction from the drives' keyframe paths.
 void writeMap(const std::filesystem::path& out_dir, const VectorMap& map,
-              const aggregate::ObservationSet& set, const AggregateParams& params) {
+              const aggregate::ObservationSet& set, const std::vector<Lsm>& lsms,
+              const AggregateParams& params, io::Lanelet2ExportStats* osm_stats) {
   std::filesystem::create_directories(out_dir);
   io::VectorMapWriteOptions compact;
   compact.compact = true;
@@ -26,7 +28,10 @@ void writeMap(const std::filesystem::path& out_dir, const VectorMap& map,
   io::writeVectorMap(out_dir / "map.cbor", map, compact);
   io::writeVectorMap(out_dir / "map.json", map);
   io::writeGeoJson(out_dir / "map.geojson", map);
-  io::writeOsm(out_dir / "map.osm", map);
+  std::vector<io::DrivePath> drives(lsms.size());
+  for (std::size_t d = 0; d < lsms.size(); ++d)
+    for (const auto& k : lsms[d].keyframes) drives[d].push_back(k.T_frame_body.translation());
+  io::writeOsm(out_dir / "map.osm", map, drives, osm_stats);
   if (params.write_png) {
     std::vector<std::vector<Eigen::Vector3d>> background;
     background.reserve(set.items.size());
@@ -47,33 +52,42 @@ nlohmann::json toJson(const AggregateRun& run) {
                                                 {"instances", stats.instances[c]},
                                                 {"noise", stats.noise[c]}};
   const double kb_per_km = run.road_km > 0 ? run.cbor_kb / run.road_km : 0.0;
-  return {{"inputs", {{"drives", run.drives}, {"observations", run.observations}}},
-          {"instances", run.instances},
-          {"classes", per_class},
-          {"lane_instantiation",
-           {{"pieces", stats.lanes.pieces},
-            {"comparisons", stats.lanes.comparisons},
-            {"noise_pieces", stats.lanes.noise_pieces},
-            {"fragments", stats.lanes.fragments},
-            {"links", stats.lanes.links},
-            {"branch_ends", stats.lanes.branch_ends},
-            {"dropped_short", stats.lanes.dropped_short}}},
-          {"vectorization",
-           {{"bezier_segments", stats.bezier_segments},
-            {"max_deviation_limit_m", run.max_deviation_limit},
-            {"max_deviation_m", stats.bezier_max_deviation},
-            {"rms_deviation_m", stats.bezier_rms_deviation}}},
-          {"size",
-           {{"cbor_kb", run.cbor_kb},
-            {"road_km", run.road_km},
-            {"lane_line_km", run.lane_line_km},
-            {"kb_per_km", run.road_km > 0 ? nlohmann::json(kb_per_km) : nlohmann::json(nullptr)},
-            {"target_kb_per_km", 20.0}}},
-          {"timings_s",
-           {{"read", run.seconds_read},
-            {"aggregate", run.seconds_aggregate},
-            {"write", run.seconds_write}}},
-          {"converged", true}};
+  return {
+      {"inputs", {{"drives", run.drives}, {"observations", run.observations}}},
+      {"instances", run.instances},
+      {"classes", per_class},
+      {"lane_instantiation",
+       {{"pieces", stats.lanes.pieces},
+        {"comparisons", stats.lanes.comparisons},
+        {"noise_pieces", stats.lanes.noise_pieces},
+        {"fragments", stats.lanes.fragments},
+        {"links", stats.lanes.links},
+        {"branch_ends", stats.lanes.branch_ends},
+        {"dropped_short", stats.lanes.dropped_short}}},
+      {"vectorization",
+       {{"bezier_segments", stats.bezier_segments},
+        {"max_deviation_limit_m", run.max_deviation_limit},
+        {"max_deviation_m", stats.bezier_max_deviation},
+        {"rms_deviation_m", stats.bezier_rms_deviation}}},
+      {"size",
+       {{"cbor_kb", run.cbor_kb},
+        {"road_km", run.road_km},
+        {"lane_line_km", run.lane_line_km},
+        {"kb_per_km", run.road_km > 0 ? nlohmann::json(kb_per_km) : nlohmann::json(nullptr)},
+        {"target_kb_per_km", 20.0}}},
+      {"lanelet2",
+       {{"lanelets", run.lanelet2.lanelets},
+        {"lanelets_direction_known", run.lanelet2.lanelets_direction_known},
+        {"connector_lanelets", run.lanelet2.connector_lanelets},
+        {"crosswalk_lanelets", run.lanelet2.crosswalk_lanelets},
+        {"regulatory_elements", run.lanelet2.regulatory_elements},
+        {"lane_line_bound_share",
+         run.lanelet2.lane_line_m > 0 ? run.lanelet2.bound_m / run.lanelet2.lane_line_m : 0.0}}},
+      {"timings_s",
+       {{"read", run.seconds_read},
+        {"aggregate", run.seconds_aggregate},
+        {"write", run.seconds_write}}},
+      {"converged", true}};
 }
 
 AggregateRun runAggregate(const std::vector<std::string>& inputs,
@@ -93,7 +107,7 @@ AggregateRun runAggregate(const std::vector<std::string>& inputs,
   AggregateRun run;
   const VectorMap map = aggregate::aggregateObservations(set, params.aggregator, &run.stats);
   const auto t2 = Clock::now();
-  writeMap(out_dir, map, set, params);
+  writeMap(out_dir, map, set, lsms, params, &run.lanelet2);
   const auto t3 = Clock::now();
 
   run.drives = lsms.size();

@@ -1,6 +1,7 @@
 #include "mapfuse/stages/lidar_semantic_map.hpp"
 
 #include <chrono>
+#include <set>
 
 #include "mapfuse/core/classes.hpp"
 #include "mapfuse/core/error.hpp"
@@ -9,6 +10,7 @@
 #include "mapfuse/io/kitti_poses.hpp"
 #include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/pcd.hpp"
+#include "mapfuse/io/picture_key.hpp"
 #include "mapfuse/io/ply.hpp"
 #include "mapfuse/io/png_frames.hpp"
 #include "mapfuse/io/semantic_kitti.hpp"
@@ -224,8 +226,18 @@ json runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,
   io::writePly(output / "map.ply", cloud);
   io::writePcd(output / "map.pcd", cloud);
   Eigen::Vector2d topdown_origin;
-  const cv::Mat img = lidar::renderTopDown(map, p.topdown_resolution, &topdown_origin);
-  io::writePngFrame(output / "topdown.png", img);
+  cv::Mat img = lidar::renderTopDown(map, p.topdown_resolution, &topdown_origin);
+  {  // key: classes drawn, the trajectory, scale bar, north arrow (io/picture_key.hpp)
+    const std::array<uint8_t, 3> path_rgb{230, 0, 0};
+    std::vector<Eigen::Vector3d> path;
+    for (const Pose3& T : poses) path.push_back(T.translation());
+    const int path_shown = io::drawPath(img, path, topdown_origin, p.topdown_resolution, path_rgb);
+    std::set<LidarClass> present;
+    for (const auto& v : map.voxels()) present.insert(static_cast<LidarClass>(v.label));
+    io::PictureKey key{io::lidarLegend(present), p.topdown_resolution, true, "top down"};
+    if (path_shown > 0) key.legend.push_back({"trajectory", path_rgb, true});
+    io::writePngFrame(output / "topdown.png", io::withPictureKey(img, key));
+  }
   io::writeKittiOdometryPoses(output / "poses.txt",
                               lidar::cameraPosesForFile(poses, drive.calib.T_rect0_velo()));
   io::writeKittiOdometryPoses(output / "poses_velo.txt", poses);

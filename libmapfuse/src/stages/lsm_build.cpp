@@ -7,6 +7,7 @@
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/output_transaction.hpp"
+#include "mapfuse/io/picture_key.hpp"
 #include "mapfuse/io/png_frames.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/vehicle/render_topdown.hpp"
@@ -23,7 +24,8 @@ cv::Mat renderLsm(const LoadedDrive& drive, const Lsm& lsm) {
                      drive.calib.ground, ls.bev_min_x, ls.bev_max_x, ls.bev_half_width,
                      ls.bev_resolution});
   const double res_m = tiles.empty() ? 0.2 : 0.05;
-  return vehicle::renderTopDown(lsm, drive.T_odom_body, res_m, tiles);
+  return io::withPictureKey(vehicle::renderTopDown(lsm, drive.T_odom_body, res_m, tiles),
+                            vehicle::topDownKey(lsm, res_m));
 }
 
 }  // namespace

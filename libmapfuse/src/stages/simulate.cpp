@@ -9,12 +9,11 @@
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/geojson.hpp"
 #include "mapfuse/io/json_geometry.hpp"
-#include "mapfuse/io/lanelet2_osm.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
-#include "mapfuse/sim/lanelet2_world.hpp"
+#include "mapfuse/sim/map_world.hpp"
 
 namespace mapfuse::stages {
 namespace {
@@ -22,13 +21,7 @@ namespace {
 /// The procedural world, or the Lanelet2 map's (origin: its first node unless configured).
 sim::World buildWorld(const SimulateParams& P, geo::GeoOrigin& origin) {
   if (P.map.empty()) return sim::proceduralWorld(P.crowd, origin);
-  if (!std::filesystem::exists(P.map)) throw IoError(P.map, "map file does not exist");
-  const io::Lanelet2Map osm = io::readLanelet2Osm(P.map);
-  if (P.osm_origin == "first_node") {
-    if (!osm.first_node) throw InputError(P.map + ": the map has no nodes");
-    origin = {osm.first_node->lat, osm.first_node->lon, P.origin_alt};
-  }
-  return sim::worldFromLanelet2(osm, origin);
+  return sim::loadMapWorld(P.map, P.osm_origin == "first_node", P.map_world, &origin);
 }
 
 /// The true trajectory of a drive at the given samples (mapfuse.trajectory).

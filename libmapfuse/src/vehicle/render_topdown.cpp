@@ -1,9 +1,17 @@
 #include "mapfuse/vehicle/render_topdown.hpp"
 
 #include <opencv2/imgproc.hpp>
+#include <set>
 
 namespace mapfuse::vehicle {
 namespace {
+
+const std::array<uint8_t, 3> kTrajectoryRgb{0, 160, 255};
+const std::array<uint8_t, 3> kKeyframeRgb{0, 255, 255};
+
+cv::Scalar bgr(const std::array<uint8_t, 3>& rgb) {
+  return cv::Scalar(rgb[2], rgb[1], rgb[0]);
+}
 
 Eigen::Vector3d bevToCam(const GroundPlane& g, double f, double l) {
   const Eigen::Vector3d n = g.normal_cam.normalized();
@@ -63,9 +71,9 @@ cv::Mat renderTopDown(const Lsm& lsm, const std::vector<Pose3>& trajectory, doub
   }
   for (std::size_t i = 1; i < trajectory.size(); ++i)
     cv::line(img, toPx(trajectory[i - 1].translation()), toPx(trajectory[i].translation()),
-             cv::Scalar(255, 160, 0), 2);
+             bgr(kTrajectoryRgb), 2);
   for (const auto& k : lsm.keyframes)
-    cv::circle(img, toPx(k.T_frame_body.translation()), 4, cv::Scalar(255, 255, 0), -1);
+    cv::circle(img, toPx(k.T_frame_body.translation()), 4, bgr(kKeyframeRgb), -1);
   for (const auto& e : lsm.elements) {
     const auto rgb = crowdClassColor(e.cls);
     const cv::Scalar col(rgb[2], rgb[1], rgb[0]);
@@ -81,6 +89,18 @@ cv::Mat renderTopDown(const Lsm& lsm, const std::vector<Pose3>& trajectory, doub
       cv::polylines(img, px, false, col, 2);
   }
   return img;
+}
+
+io::PictureKey topDownKey(const Lsm& lsm, double resolution) {
+  std::set<CrowdClass> present;
+  for (const auto& e : lsm.elements) present.insert(e.cls);
+  io::PictureKey key;
+  key.legend = io::crowdLegend(present);
+  key.legend.push_back({"trajectory", kTrajectoryRgb, true});
+  key.legend.push_back({"keyframe", kKeyframeRgb, false});
+  key.metres_per_pixel = resolution;
+  key.title = lsm.drive_id;
+  return key;
 }
 
 }  // namespace mapfuse::vehicle

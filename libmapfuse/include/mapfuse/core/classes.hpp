@@ -70,7 +70,8 @@ constexpr int kNumLidarClasses = 8;
 
 const char* lidarClassName(LidarClass c);  ///< "unlabeled", "road", ...
 std::optional<LidarClass> lidarClassFromName(const std::string& name);
-/// @brief Display colour (R, G, B), SemanticKITTI's palette where the class exists there.
+/// @brief Display colour (R, G, B): SemanticKITTI's palette of the class's id (its color_map
+/// lists B, G, R; converted), e.g. vehicle (100, 150, 245) blue, building (255, 200, 0) orange.
 std::array<uint8_t, 3> lidarClassColor(LidarClass c);
 
 /// @brief SemanticKITTI semantic id written to .label files (road 40, sidewalk 48,

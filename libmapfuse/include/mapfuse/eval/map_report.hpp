@@ -2,6 +2,8 @@
 /// @file Human-readable outputs of `evaluate map`: a Markdown report with tables shaped like
 /// Table 1 / Table 3 of Song et al. 2023, and PNG plots (error per class; error versus the
 /// number of traversals when several maps are evaluated).
+#include <array>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -22,6 +24,10 @@ struct MapReportEntry {
 /// when there are several maps, and a trajectory table when `trajectories` is not empty.
 std::string markdownReport(const std::vector<MapReportEntry>& maps,
                            const std::vector<TrajectoryMetrics>& trajectories);
+
+/// @brief The colour (R, G, B) of a class on the charts' white paper: its map colour, scaled
+/// down to Rec. 601 luma <= 150 when brighter (white lane lines become mid grey).
+std::array<uint8_t, 3> chartColor(CrowdClass c);
 
 /// @brief Bar chart: relative precision and mean absolute error per class (m).
 void writeErrorPerClassPng(const std::filesystem::path& path, const MapReportEntry& entry);

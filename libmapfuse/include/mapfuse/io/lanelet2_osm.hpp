@@ -1,8 +1,10 @@
 #pragma once
 /// @file Lanelet2 OSM reader (docs/simulate.md "Lanelet2 maps"), with pugixml. Reads nodes
 /// (lat/lon, optional `ele`), ways (line strings typed by `type` / `subtype`) and relations
-/// (lanelets with `left` / `right` bounds, regulatory elements). Negative ids and missing
-/// optional tags are normal; unknown way / relation types are kept as geometry but counted as
+/// (lanelets with `left` / `right` bounds, regulatory elements) and tagged points (`type=pole`).
+/// Negative ids and missing optional tags are normal; a way without a `type` tag (CommonRoad
+/// conversions write them) is read as `virtual` and counted in `untyped_ways`; way types outside
+/// the Lanelet2 tagging spec and unknown relation types are kept as geometry but counted as
 /// skipped. Structural faults (XML syntax, truncation, a reference to a missing node or way, a
 /// bad coordinate, an id beyond +-(2^63 - 2^32), a lanelet without a bound) are ParseErrors naming the
 /// file and the element.
@@ -25,7 +27,16 @@ struct Lanelet2LineString {
   std::map<std::string, std::string> tags;
   std::vector<int64_t> node_ids;
   std::vector<geo::LatLonAlt> points;  ///< WGS84; alt = `ele` of the node, else 0
-  bool known_type = false;             ///< type is one the simulator interprets
+  bool known_type = false;             ///< type is one of the Lanelet2 tagging spec
+  bool untyped = false;                ///< had no `type` tag and was read as `virtual`
+};
+
+/// A node carrying a `type` tag of its own (e.g. `pole`), other than the dash markers.
+struct Lanelet2Point {
+  int64_t id = 0;
+  std::string type;
+  std::map<std::string, std::string> tags;
+  geo::LatLonAlt position;  ///< alt = `ele`, else 0
 };
 
 /// One lanelet relation.
@@ -51,6 +62,8 @@ struct Lanelet2Map {
   std::optional<geo::LatLonAlt> first_node;  ///< first node in file order (default origin)
   std::size_t node_count = 0;
   std::vector<Lanelet2LineString> linestrings;  ///< every way, file order
+  std::vector<Lanelet2Point> points;            ///< typed nodes (not `begin`/`end`/`start`)
+  int untyped_ways = 0;                         ///< ways without `type`, read as `virtual`
   std::vector<Lanelet2Lanelet> lanelets;
   std::vector<Lanelet2Regulatory> regulatory_elements;
   std::map<std::string, int> skipped_way_types;       ///< unknown way type -> count
@@ -63,7 +76,8 @@ struct Lanelet2Map {
   const Lanelet2LineString* way(int64_t id) const;
 };
 
-/// Way types the simulator interprets (others are skipped and counted).
+/// Way types of the Lanelet2 tagging spec (LinestringTagging.md: lane boundaries, barriers,
+/// symbols, signs and lights); others are skipped and counted.
 bool isKnownLanelet2WayType(const std::string& type);
 
 /// @brief Parses a Lanelet2 OSM file.

@@ -1,21 +1,47 @@
 #pragma once
-/// @file Lanelet2-style OSM export of a vector map (JOSM XML, version 0.6, WGS84 lat/lon):
-/// lane lines as ways `type=line_thin` with `subtype=solid|dashed` (and `color=white|yellow`),
-/// stop lines as ways `type=stop_line`, ground arrows as closed ways `type=arrow`, crosswalks
-/// as closed ways `type=zebra_marking`, and traffic signs, traffic lights and poles as tagged
-/// nodes (`type=traffic_sign|traffic_light|pole`, `height`). Node altitudes go to the `ele` tag.
-/// Lanelets themselves (left/right bound relations) are not derived.
+/// @file Lanelet2 export of a vector map (docs/formats.md "Lanelet2 export"): OSM XML 0.6 in
+/// WGS84 as Lanelet2's own writer produces it (negative ids, no version / visible attributes,
+/// altitude in the `ele` tag of every node). Lane lines are `line_thin` line strings with
+/// `subtype=solid|dashed` and `color`, cut where lanelets begin and end (consecutive pieces share
+/// a node); pairs of neighbouring lane lines are `type=lanelet` relations (io/lanelet2_lanes.hpp)
+/// with the travel direction from the drives; stop lines are `stop_line` ways; traffic signs
+/// `traffic_sign` ways along the bottom edge of the plate and traffic lights 0.3 m
+/// `traffic_light` ways across the approach at the housing's bottom, both with `height`; poles
+/// `type=pole` nodes with `height`; ground arrows closed `arrow` ways; crosswalks
+/// `subtype=crosswalk` lanelets bounded by two `zebra_marking` ways. Lights and signs near a stop
+/// line become `traffic_light` / `traffic_sign` regulatory elements (refers = the light or sign,
+/// ref_line = the stop line) referenced by the lanelets the stop line crosses. Where drives cross
+/// an unmarked stretch (an intersection) from one lanelet to another, a connector lanelet with
+/// `virtual` bounds shares their end nodes.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "mapfuse/core/vector_map.hpp"
+#include "mapfuse/io/lanelet2_lanes.hpp"
 
 namespace mapfuse::io {
 
-/// @brief The OSM XML document as a string (ids from 1; nodes, then ways).
-std::string vectorMapToOsm(const VectorMap& map);
+/// What the export derived (for the summary and the docs' figures).
+struct Lanelet2ExportStats {
+  int lanelets = 0;                  ///< road lanelets (both bounds)
+  int lanelets_direction_known = 0;  ///< oriented by drives or a stop line (one_way=yes)
+  int connector_lanelets = 0;        ///< across unmarked stretches, `virtual` bounds
+  int crosswalk_lanelets = 0;
+  int regulatory_elements = 0;       ///< traffic_light + traffic_sign relations
+  int lanelets_with_regulatory = 0;  ///< lanelets referring to at least one
+  int unmatched_pieces = 0;          ///< piece pairs whose cuts did not line up
+  double lane_line_m = 0.0;          ///< total lane-line length
+  double bound_m = 0.0;              ///< lane-line length that bounds at least one lanelet
+};
+
+/// @brief The OSM XML document as a string; `drives` (ENU paths of the map's frame) give the
+/// lanelets' travel direction.
+std::string vectorMapToOsm(const VectorMap& map, const std::vector<DrivePath>& drives = {},
+                           Lanelet2ExportStats* stats = nullptr);
 
 /// @brief Atomic write of vectorMapToOsm(). @throws IoError.
-void writeOsm(const std::filesystem::path& path, const VectorMap& map);
+void writeOsm(const std::filesystem::path& path, const VectorMap& map,
+              const std::vector<DrivePath>& drives = {}, Lanelet2ExportStats* stats = nullptr);
 
 }  // namespace mapfuse::io

@@ -1,7 +1,9 @@
 #pragma once
 /// @file Binary little-endian PLY of a labelled cloud, CloudCompare-compatible:
 /// `element vertex N` with `float x, y, z; uchar red, green, blue; uchar label;
-/// float confidence` (colours from the LiDAR class palette).
+/// float confidence; ushort semantic_kitti` (colours from the LiDAR class palette, RGB). `label`
+/// is mapfuse's LiDAR class id 0-7, `semantic_kitti` the SemanticKITTI semantic id of that class
+/// (docs/formats.md "LiDAR classes"); the header's comments say so.
 #include <filesystem>
 #include <string>
 

@@ -1,10 +1,13 @@
 #pragma once
 /// @file A simulator World from a Lanelet2 map (docs/simulate.md "Lanelet2 maps"): drivable
 /// lanelets become lanes (plus a reversed twin when one_way=no), successors come from shared
-/// bound end points; line_thin / line_thick ways become lane lines, stop_line ways stop lines,
-/// crosswalk lanelets crosswalks, traffic_sign ways sign quads, traffic_light ways lights.
-/// The map has no arrows or poles: the simulator places arrows before stop lines and poles under
-/// signs and lights, and says so in each instance's `note`.
+/// bound end points; line_thin / line_thick ways become lane lines (pieces sharing an end node
+/// joined into one marking), stop_line ways stop lines, crosswalk lanelets crosswalks,
+/// traffic_sign ways sign quads, traffic_light ways lights, closed `arrow` ways arrows and
+/// `pole` nodes poles. Signs and lights with a `height` tag stand at their nodes' altitude;
+/// without, their mounting is assumed. A map without arrows or poles gets them placed by the
+/// simulator (arrows before stop lines, poles under signs and lights), as each instance's `note`
+/// says. Ways without `type` (read as `virtual`) draw one warning per map.
 #include "mapfuse/geo/origin.hpp"
 #include "mapfuse/io/lanelet2_osm.hpp"
 #include "mapfuse/sim/world.hpp"

@@ -10,6 +10,7 @@
 
 #include "mapfuse/aggregate/aggregator.hpp"
 #include "mapfuse/aggregate/road_length.hpp"
+#include "mapfuse/io/osm_export.hpp"
 
 namespace mapfuse::stages {
 
@@ -49,6 +50,7 @@ struct AggregateRun {
   double road_km = 0;              ///< road covered by the drives (aggregate::coveredRoadKm)
   double lane_line_km = 0;         ///< length of the map's lane lines
   double seconds_read = 0, seconds_aggregate = 0, seconds_write = 0;
+  io::Lanelet2ExportStats lanelet2;  ///< what map.osm's Lanelet2 export derived
 };
 
 /// @brief The summary aggregate.summary.json holds (map size in KB/km against the paper's

@@ -11,6 +11,7 @@
 #include "mapfuse/core/param.hpp"
 #include "mapfuse/geo/origin.hpp"
 #include "mapfuse/sim/crowd.hpp"
+#include "mapfuse/sim/map_world.hpp"
 
 namespace mapfuse::stages {
 
@@ -23,6 +24,7 @@ struct SimulateParams {
   double origin_lat = 49.0;               ///< deg
   double origin_lon = 8.4;                ///< deg
   double origin_alt = 110.0;              ///< m
+  sim::MapWorldSettings map_world;  ///< how a Lanelet2 map becomes a world
   sim::CrowdSettings crowd;
 
   template <class V>
@@ -33,6 +35,7 @@ struct SimulateParams {
     v("map", map, "", "Lanelet2 OSM map; empty = the procedural world");
     v("osm_origin", osm_origin, "", "ENU origin of a Lanelet2 map (config: origin_lat/lon/alt)",
       oneOf({"first_node", "config"}));
+    map_world.visit(v);
     v("origin_lat", origin_lat, "deg", "ENU origin latitude (procedural world, osm_origin=config)",
       in(-90, 90));
     v("origin_lon", origin_lon, "deg", "ENU origin longitude", in(-180, 180));

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "mapfuse/core/lsm.hpp"
+#include "mapfuse/io/picture_key.hpp"
 #include "mapfuse/vehicle/camera.hpp"
 
 namespace mapfuse::vehicle {
@@ -21,5 +22,10 @@ struct BevTile {
 /// @param tiles optional background BEV images (grey), drawn first.
 cv::Mat renderTopDown(const Lsm& lsm, const std::vector<Pose3>& trajectory, double resolution,
                       const std::vector<BevTile>& tiles = {});
+
+/// @brief The key of renderTopDown's picture (io/picture_key.hpp): one legend line per class
+/// present in `lsm`, the trajectory and the keyframes, a scale bar at `resolution` m/px, north
+/// (+y) up.
+io::PictureKey topDownKey(const Lsm& lsm, double resolution);
 
 }  // namespace mapfuse::vehicle

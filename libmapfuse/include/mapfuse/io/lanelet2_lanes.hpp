@@ -1,0 +1,70 @@
+#pragma once
+/// @file Lanelets derived from a vector map's lane lines for the Lanelet2 export (docs/formats.md
+/// "Lanelet2 export"). Two lane lines are a lane's bounds where each is the other's nearest line
+/// across, 2-5 m apart and parallel; every line is cut where a neighbouring lane begins or ends
+/// so that side-by-side lanelets begin and end together and consecutive lanelets of one lane
+/// share their bounds' end nodes. The travel direction of a lanelet comes from the drives that
+/// pass through it (majority of their headings), else from a stop line across its end; without
+/// either it stays unknown (written `one_way=no`). Where a drive leaves one lanelet at its end
+/// and enters another at its start across an unmarked stretch (an intersection), a connector
+/// lanelet with `virtual` bounds joins their bounds' end points (cubic Hermite curves along
+/// both lanelets' directions).
+#include <Eigen/Core>
+#include <cstddef>
+#include <vector>
+
+#include "mapfuse/core/vector_map.hpp"
+
+namespace mapfuse::io {
+
+/// A drive's path in the map's ENU frame, in driving order (e.g. LSM keyframe positions).
+using DrivePath = std::vector<Eigen::Vector3d>;
+
+struct LaneletPlan {
+  /// A lane line with its cut points inserted; pieces run between consecutive cuts.
+  struct Line {
+    std::size_t instance = 0;             ///< index in VectorMap::instances
+    std::vector<Eigen::Vector3d> points;  ///< ENU, m: the instance's points plus cut points
+    std::vector<std::size_t> cuts;        ///< vertex indices of the cuts (first and last included)
+  };
+  /// A piece of a line between two consecutive cuts (a Lanelet2 line string).
+  struct Piece {
+    std::size_t line = 0;
+    std::size_t cut = 0;  ///< the piece runs from cuts[cut] to cuts[cut + 1]
+  };
+  struct Lanelet {
+    std::size_t left = 0, right = 0;      ///< pieces; left of the travel direction when known
+    bool direction_known = false;         ///< false: written one_way=no
+    int votes_for = 0;                    ///< drive samples inside travelling with the direction
+    int votes_against = 0;                ///< ... against it
+    std::vector<Eigen::Vector3d> centre;  ///< in the travel direction (or left piece's), m
+    std::vector<Eigen::Vector3d> ring;    ///< outline: left bound then right bound reversed
+  };
+  /// A lanelet across an unmarked stretch, from lanelet `from`'s end to lanelet `to`'s start.
+  struct Connector {
+    std::size_t from = 0, to = 0;
+    std::vector<Eigen::Vector3d> left, right;  ///< bounds in the travel direction, m
+    int drives = 0;                            ///< drives that made this connection
+  };
+  std::vector<Line> lines;  ///< every lane line with at least one lanelet
+  std::vector<Piece> pieces;
+  std::vector<Lanelet> lanelets;
+  std::vector<Connector> connectors;
+  int unmatched_pieces = 0;  ///< piece pairs skipped because their cuts did not line up
+};
+
+/// @brief Pairs the lane lines of `map` into lanelets; `drives` give travel directions.
+LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& drives);
+
+/// @brief The end point of a lanelet's left (or right) bound in the travel direction (`at_end`)
+/// or at its start: (piece, true when it is the piece's last point).
+std::pair<std::size_t, bool> boundEnd(const LaneletPlan& plan, const LaneletPlan::Lanelet& ll,
+                                      bool left, bool at_end);
+
+/// @brief The points of a piece (ENU, m), in its line's order.
+std::vector<Eigen::Vector3d> piecePoints(const LaneletPlan& plan, std::size_t piece);
+
+/// @brief True when p lies inside the closed ring (xy).
+bool insideRingXY(const std::vector<Eigen::Vector3d>& ring, const Eigen::Vector3d& p);
+
+}  // namespace mapfuse::io

@@ -1,0 +1,48 @@
+#include "mapfuse/sim/map_world.hpp"
+
+#include <filesystem>
+
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/core/log.hpp"
+#include "mapfuse/io/lanelet2_osm.hpp"
+#include "mapfuse/sim/lanelet2_world.hpp"
+
+namespace mapfuse::sim {
+
+int trueMarkings(const World& world) {
+  int n = 0;
+  for (const auto& m : world.truth.instances) {
+    const bool marking = m.cls == CrowdClass::kLaneLine || m.cls == CrowdClass::kStopLine ||
+                         m.cls == CrowdClass::kCrosswalk || m.cls == CrowdClass::kGroundArrow;
+    if (marking && m.note.rfind("placed by simulator", 0) != 0) ++n;
+  }
+  return n;
+}
+
+World loadMapWorld(const std::string& path, bool map_origin, const MapWorldSettings& settings,
+                   geo::GeoOrigin* origin) {
+  if (!std::filesystem::exists(path)) throw IoError(path, "map file does not exist");
+  const io::Lanelet2Map osm = io::readLanelet2Osm(path);
+  if (map_origin) {
+    if (!osm.first_node) throw InputError(path + ": the map has no nodes");
+    *origin = {osm.first_node->lat, osm.first_node->lon, origin->alt};
+  }
+  World world = worldFromLanelet2(osm, *origin);
+  const int untyped = osm.untyped_ways;
+  if (world.lanes.empty()) throw InputError(path + ": the map has no drivable lanes");
+  const int markings = trueMarkings(world);
+  world.stats["true_markings"] = markings;
+  if (markings == 0) {
+    const std::string why =
+        path + ": the world has no true markings (lane lines, stop lines, " +
+        "crosswalks or arrows in the map)" +
+        (untyped > 0 ? "; " + std::to_string(untyped) + " ways have no `type` tag" : std::string());
+    if (!settings.allow_no_markings)
+      throw InputError(why + ". Drives would observe nothing to map; pass " +
+                       "--allow-no-markings true to simulate anyway");
+    MAPFUSE_WARN(why + " (allowed by allow_no_markings)");
+  }
+  return world;
+}
+
+}  // namespace mapfuse::sim
