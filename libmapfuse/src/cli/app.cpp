@@ -127,4 +127,16 @@ std::vector<std::string> expandInputList(const std::vector<std::string>& args) {
   return out;
 }
 
+std::string configArgument(int argc, char** argv) {
+  std::string file;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--config" && i + 1 < argc)
+      file = argv[i + 1];
+    else if (arg.rfind("--config=", 0) == 0)
+      file = arg.substr(9);
+  }
+  return file;
+}
+
 }  // namespace mapfuse::cli

@@ -76,33 +76,49 @@ std::vector<Pose3> drivePoses(const io::KittiRawDrive& drive, const LidarSemanti
 
 void LidarSemanticMapParams::validate() const {
   const char* s = "LidarSemanticMapParams";
-  requireParam(first_frame >= 0, s, "first_frame", first_frame, ">= 0");
+  requireParam(first_frame >= 0 && first_frame <= 1000000000, s, "first_frame", first_frame,
+               "in [0, 1e9]");
   requireParam(last_frame < 0 || last_frame >= first_frame, s, "last_frame", last_frame,
                "-1 or >= first_frame");
-  requireParam(stride >= 1, s, "stride", stride, ">= 1");
-  requireParam(odom_voxel_size > 0, s, "odom_voxel_size", odom_voxel_size, "> 0");
-  requireParam(odom_max_untrusted >= 0, s, "odom_max_untrusted", odom_max_untrusted, ">= 0");
+  requireParam(stride >= 1 && stride <= 1000000, s, "stride", stride, "in [1, 1e6]");
+  requireParam(odom_voxel_size >= 0.01 && odom_voxel_size <= 10, s, "odom_voxel_size",
+               odom_voxel_size, "in [0.01, 10]");
+  requireParam(odom_max_untrusted >= 0 && odom_max_untrusted <= 1000000000, s,
+               "odom_max_untrusted", odom_max_untrusted, "in [0, 1e9]");
   requireParam(enet_scale > 0.1 && enet_scale <= 4, s, "enet_scale", enet_scale, "in (0.1, 4]");
   requireParam(label_confidence > 1.0 / kNumLidarClasses && label_confidence <= 1, s,
                "label_confidence", label_confidence, "in (1/8, 1]");
   requireParam(min_probability > 0 && min_probability < 1.0 / kNumLidarClasses, s,
                "min_probability", min_probability, "in (0, 1/8)");
-  requireParam(min_range >= 0, s, "min_range", min_range, ">= 0");
-  requireParam(max_range > min_range, s, "max_range", max_range, "> min_range");
-  requireParam(voxel_size > 0, s, "voxel_size", voxel_size, "> 0");
-  requireParam(min_log_prob < 0, s, "min_log_prob", min_log_prob, "< 0");
-  requireParam(cluster_tolerance > 0, s, "cluster_tolerance", cluster_tolerance, "> 0");
-  requireParam(cluster_min_points >= 1, s, "cluster_min_points", cluster_min_points, ">= 1");
-  requireParam(rtrees_max_depth >= 1, s, "rtrees_max_depth", rtrees_max_depth, ">= 1");
-  requireParam(rtrees_trees >= 1, s, "rtrees_trees", rtrees_trees, ">= 1");
-  requireParam(rtrees_min_samples >= 1, s, "rtrees_min_samples", rtrees_min_samples, ">= 1");
+  requireParam(min_range >= 0 && min_range <= 1000, s, "min_range", min_range, "in [0, 1000]");
+  requireParam(max_range > min_range && max_range <= 1000, s, "max_range", max_range,
+               "> min_range, <= 1000");
+  requireParam(voxel_size >= 0.005 && voxel_size <= 10, s, "voxel_size", voxel_size,
+               "in [0.005, 10]");
+  requireParam(min_log_prob < 0 && min_log_prob >= -1e6, s, "min_log_prob", min_log_prob,
+               "in [-1e6, 0)");
+  requireParam(cluster_tolerance > 0 && cluster_tolerance <= 100, s, "cluster_tolerance",
+               cluster_tolerance, "in (0, 100]");
+  requireParam(cluster_min_points >= 1 && cluster_min_points <= 1000000000, s,
+               "cluster_min_points", cluster_min_points, "in [1, 1e9]");
+  requireParam(rtrees_max_depth >= 1 && rtrees_max_depth <= 64, s, "rtrees_max_depth",
+               rtrees_max_depth, "in [1, 64]");
+  requireParam(rtrees_trees >= 1 && rtrees_trees <= 10000, s, "rtrees_trees", rtrees_trees,
+               "in [1, 10000]");
+  requireParam(rtrees_min_samples >= 1 && rtrees_min_samples <= 1000000000, s,
+               "rtrees_min_samples", rtrees_min_samples, "in [1, 1e9]");
   requireParam(knn_k >= 1 && knn_k <= 32, s, "knn_k", knn_k, "in 1..32");
-  requireParam(knn_max_mean_distance > 0, s, "knn_max_mean_distance", knn_max_mean_distance, "> 0");
-  requireParam(trace_eps > 0, s, "trace_eps", trace_eps, "> 0");
-  requireParam(trace_min_points >= 1, s, "trace_min_points", trace_min_points, ">= 1");
-  requireParam(trace_max_voxels >= 1, s, "trace_max_voxels", trace_max_voxels, ">= 1");
-  requireParam(trace_max_length > 0, s, "trace_max_length", trace_max_length, "> 0");
-  requireParam(seen_through_margin > 0, s, "seen_through_margin", seen_through_margin, "> 0");
+  requireParam(knn_max_mean_distance > 0 && knn_max_mean_distance <= 100, s,
+               "knn_max_mean_distance", knn_max_mean_distance, "in (0, 100]");
+  requireParam(trace_eps > 0 && trace_eps <= 100, s, "trace_eps", trace_eps, "in (0, 100]");
+  requireParam(trace_min_points >= 1 && trace_min_points <= 1000000000, s,
+               "trace_min_points", trace_min_points, "in [1, 1e9]");
+  requireParam(trace_max_voxels >= 1 && trace_max_voxels <= 1000000000, s,
+               "trace_max_voxels", trace_max_voxels, "in [1, 1e9]");
+  requireParam(trace_max_length > 0 && trace_max_length <= 10000, s, "trace_max_length",
+               trace_max_length, "in (0, 1e4]");
+  requireParam(seen_through_margin > 0 && seen_through_margin <= 100, s,
+               "seen_through_margin", seen_through_margin, "in (0, 100]");
   requireParam(seen_through_window >= 0 && seen_through_window <= 5, s, "seen_through_window",
                seen_through_window, "in [0, 5]");
   requireParam(seen_through_window_thin >= 0 && seen_through_window_thin <= 5, s,
@@ -115,8 +131,10 @@ void LidarSemanticMapParams::validate() const {
                "seen_through_vote_radius", seen_through_vote_radius, "in [0, 5]");
   requireParam(seen_through_vote_share > 0 && seen_through_vote_share <= 1, s,
                "seen_through_vote_share", seen_through_vote_share, "in (0, 1]");
-  requireParam(topdown_resolution > 0, s, "topdown_resolution", topdown_resolution, "> 0");
-  requireParam(num_threads >= 1, s, "num_threads", num_threads, ">= 1");
+  requireParam(topdown_resolution >= 0.001 && topdown_resolution <= 100, s,
+               "topdown_resolution", topdown_resolution, "in [0.001, 100]");
+  requireParam(num_threads >= 1 && num_threads <= 1024, s, "num_threads", num_threads,
+               "in [1, 1024]");
 }
 
 json runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,

@@ -99,17 +99,14 @@ void deferError(std::exception_ptr error);
 /// file's values become the defaults and command-line options override them. A bad file
 /// (unknown key, wrong type, out of range, empty, not JSON: ConfigError; unreadable: IoError)
 /// is reported by run().
+/// @brief The file of "--config FILE" / "--config=FILE" in argv, or empty.
+std::string configArgument(int argc, char** argv);
+
 template <class Params>
 void preloadConfig(int argc, char** argv, Params& params) {
   try {
-    for (int i = 1; i < argc; ++i) {
-      std::string arg = argv[i], file;
-      if (arg == "--config" && i + 1 < argc)
-        file = argv[i + 1];
-      else if (arg.rfind("--config=", 0) == 0)
-        file = arg.substr(9);
-      if (!file.empty()) paramsFromFile(params, file);
-    }
+    const std::string file = configArgument(argc, argv);
+    if (!file.empty()) paramsFromFile(params, file);
   } catch (...) {
     deferError(std::current_exception());
   }
@@ -127,7 +124,13 @@ int runStage(CLI::App& app, int argc, char** argv, Params& params,
              const std::function<void()>& body) {
   preloadConfig(argc, argv, params);
   return run(app, argc, argv, [&] {
-    params.validate();
+    try {
+      params.validate();
+    } catch (const ConfigError& e) {  // the value may come from the file: name it
+      const std::string file = configArgument(argc, argv);
+      if (file.empty()) throw;
+      throw ConfigError(file + " (or the command line): " + e.what());
+    }
     body();
   });
 }
