@@ -38,10 +38,10 @@ def main(rows_file, md, png):
              " 6, 9 for 2, 5, 10, 20 km), then `make -j2 -f scripts/crowd.mk LSM_DIR=... map`"
              " timed from make's start to the map (georef per drive, align gba_sgicp, aggregate);"
              " evaluate runs afterwards, untimed. Peak MB is the largest single process (GNU time"
-             " over make). Each row was measured once, at the date and load average it gives: on"
-             " this shared 2-core VM the other sessions' builds take most of the CPU, so wall"
-             " seconds are an upper bound; `cpu s` (user + system of all processes) is the"
-             " load-independent figure (wall on a quiet machine is about cpu s / 2 with -j2).",
+             " over make). Each row was measured once, at the date and load average it gives: a load"
+             " near 2 is this 2-core machine doing only the bench; at higher loads other builds"
+             " shared the CPU and wall seconds are an upper bound. `cpu s` (user + system of all"
+             " processes) is the load-independent figure.",
              "", f"- machine: 2 cores, {cpu_model()}, {os.cpu_count()} logical CPUs", "",
              "| run | traversals | road km | driven km | date | load before / after | nice |"
              " chain s | cpu s | road km/h | s per driven km | cpu s per driven km | peak MB |"
