@@ -6,6 +6,7 @@
 # A poses file lsm-build would not use (a drive with OXTS, or --egomotion imu_wheel) is refused
 # (exit 2) naming the file instead of being ignored.
 set -euo pipefail
+HERE="$(cd "$(dirname "$0")" && pwd)"
 BIN="${MAPFUSE_BIN_DIR:?}"
 for tool in simulate simulate-lidar lsm-build; do
   [[ -x "$BIN/$tool" ]] || { echo "SKIP: $tool not built"; exit 77; }
@@ -13,30 +14,8 @@ done
 TMP="$(mktemp -d)"
 trap 'rm -rf "$TMP"' EXIT
 cd "$TMP"
-fail() { echo "FAIL: $*"; exit 1; }
-snapshot() { (cd "$1" && find . -type f ! -name '.mapfuse.lock' -print0 | sort -z | xargs -0 sha1sum); }
-
-# check TOOL OUT VICTIM CMD...: CMD writes into OUT; VICTIM is one of its outputs (relative).
-check() {
-  local tool=$1 out=$2 victim=$3; shift 3
-  "$@" >/dev/null 2>&1 || fail "$tool: first run failed"
-  [[ -f "$out/$victim" ]] || fail "$tool: $out/$victim not written"
-  rm "$out/$victim" && mkdir "$out/$victim"
-  local before; before=$(snapshot "$out")
-  local rc=0; "$@" >/dev/null 2>err.txt || rc=$?
-  [[ $rc == 4 ]] || { cat err.txt; fail "$tool: a folder in an output's place gave exit $rc, not 4"; }
-  grep -qF "$victim" err.txt || { cat err.txt; fail "$tool: the message does not name $victim"; }
-  [[ "$(snapshot "$out")" == "$before" ]] || fail "$tool: a failed run changed earlier outputs"
-  [[ -z "$(find "$out" -name '*.tmp-*')" ]] || fail "$tool: temporary files left behind"
-  rmdir "$out/$victim"
-  flock "$out/.mapfuse.lock" sleep 5 & local holder=$!
-  sleep 0.3
-  rc=0; "$@" >/dev/null 2>err.txt || rc=$?
-  kill $holder 2>/dev/null || true; wait $holder 2>/dev/null || true
-  [[ $rc == 4 ]] || { cat err.txt; fail "$tool: a locked output folder gave exit $rc, not 4"; }
-  grep -q "another mapfuse run" err.txt || { cat err.txt; fail "$tool: lock message"; }
-  echo "output_sets_vehicle: $tool ok"
-}
+NAME=output_sets_vehicle
+source "$HERE/lib/output_set_check.sh"
 
 check simulate sim truth/vector_map.geojson \
   "$BIN/simulate" -q --level frames --traversals 1 --route-length 200 --seed 3 -o sim

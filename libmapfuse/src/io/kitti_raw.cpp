@@ -23,6 +23,19 @@ std::vector<double> readTimestamps(const fs::path& path) {
 
 }  // namespace
 
+std::vector<std::pair<long, fs::path>> listVelodyneScans(const fs::path& velo_dir) {
+  if (!fs::is_directory(velo_dir)) throw IoError(velo_dir.string(), "folder not found");
+  std::vector<std::pair<long, fs::path>> scans;
+  for (const auto& e : fs::directory_iterator(velo_dir)) {
+    if (e.path().extension() != ".bin") continue;
+    const long n = kittiFrameNumber(e.path().stem().string());
+    if (n >= 0) scans.emplace_back(n, e.path());
+  }
+  std::sort(scans.begin(), scans.end());
+  if (scans.empty()) throw InputError(velo_dir.string() + ": no Velodyne scans (*.bin)");
+  return scans;
+}
+
 long kittiFrameNumber(const std::string& stem) {
   if (stem.empty() || stem.size() > 12) return -1;
   for (char c : stem)
@@ -107,16 +120,7 @@ KittiRawDrive openKittiRawDrive(const fs::path& drive_dir, const FrameRange& ran
   if (!fs::is_directory(drive.dir)) throw IoError(drive_dir.string(), "drive folder not found");
   drive.date_dir = drive.dir.parent_path();
   const fs::path velo_dir = drive.dir / "velodyne_points" / "data";
-  if (!fs::is_directory(velo_dir)) throw IoError(velo_dir.string(), "folder not found");
-
-  std::vector<std::pair<long, fs::path>> scans;
-  for (const auto& e : fs::directory_iterator(velo_dir)) {
-    if (e.path().extension() != ".bin") continue;
-    const long n = kittiFrameNumber(e.path().stem().string());
-    if (n >= 0) scans.emplace_back(n, e.path());
-  }
-  std::sort(scans.begin(), scans.end());
-  if (scans.empty()) throw InputError(velo_dir.string() + ": no Velodyne scans (*.bin)");
+  const auto scans = listVelodyneScans(velo_dir);
 
   const auto stamps = readTimestamps(drive.dir / "velodyne_points" / "timestamps.txt");
   const auto starts = readTimestamps(drive.dir / "velodyne_points" / "timestamps_start.txt");

@@ -85,15 +85,7 @@ KittiRawDrive openKittiSequence(const fs::path& dir_in, const FrameRange& range)
   if (!drive.dir.has_filename()) drive.dir = drive.dir.parent_path();
   drive.date_dir = drive.dir;
   const fs::path velo_dir = drive.dir / "velodyne";
-  if (!fs::is_directory(velo_dir)) throw IoError(velo_dir.string(), "folder not found");
-  std::vector<std::pair<long, fs::path>> scans;
-  for (const auto& e : fs::directory_iterator(velo_dir)) {
-    if (e.path().extension() != ".bin") continue;
-    const long n = kittiFrameNumber(e.path().stem().string());
-    if (n >= 0) scans.emplace_back(n, e.path());
-  }
-  std::sort(scans.begin(), scans.end());
-  if (scans.empty()) throw InputError(velo_dir.string() + ": no Velodyne scans (*.bin)");
+  const auto scans = listVelodyneScans(velo_dir);
   const auto times = readTimes(drive.dir / "times.txt");
   int counter = 0;
   for (const auto& [n, path] : scans) {

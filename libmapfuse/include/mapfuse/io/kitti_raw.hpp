@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mapfuse/geo/oxts.hpp"
@@ -58,6 +59,11 @@ void checkFrameRange(const FrameRange& range);
 
 /// @brief Frame number of a file stem made of digits only (at most 12), or -1.
 long kittiFrameNumber(const std::string& stem);
+
+/// @brief The Velodyne scans of `velo_dir` (files "<frame>.bin"), as (frame, path) sorted by
+/// frame. @throws IoError when the folder does not exist; InputError when it holds no scan.
+std::vector<std::pair<long, std::filesystem::path>> listVelodyneScans(
+    const std::filesystem::path& velo_dir);
 
 /// @brief Reads one frame's OXTS record. @throws IoError when absent, ParseError when malformed.
 geo::OxtsRecord readOxts(const KittiRawFrame& frame);
