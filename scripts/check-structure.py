@@ -7,6 +7,9 @@
   - thin tools: no app main() over 25 lines;
   - parameters said once: no hand-written validate() / requireParam / settings() copy left
     (every rule lives in a `visit` declaration; tests/core checks each key is declared once).
+Files still being converted are listed, with the reason, in scripts/structure-pending.txt: their
+violations are printed as PENDING and do not fail the check; a pending file that no longer
+violates anything must leave the list (the check fails until it does), so the list only shrinks.
 usage: scripts/check-structure.py [ROOT]   (exit 1 and one line per violation)"""
 import os
 import re
@@ -99,7 +102,28 @@ for path in files(LIB):
             problems.append(f"params: {os.path.relpath(path, ROOT)}:{n}: a rule or copy outside "
                             f"the declarations: {line.strip()}")
 
+pending = {}
+pending_file = os.path.join(ROOT, "scripts", "structure-pending.txt")
+if os.path.exists(pending_file):
+    for line in open(pending_file):
+        line = line.split("#", 1)[0].strip()
+        if line:
+            pending[line] = False
+failing = []
 for p in problems:
-    print(p)
-print(f"check-structure: {len(problems)} problem(s)", file=sys.stderr)
-sys.exit(1 if problems else 0)
+    path = p.split(": ", 1)[1].split(":", 1)[0].split(" ", 1)[0]
+    if path in pending:
+        pending[path] = True
+        print("PENDING " + p)
+    else:
+        failing.append(p)
+        print(p)
+for path, used in pending.items():
+    if not used:
+        failing.append(f"pending: {path} no longer violates anything; remove it from "
+                       f"scripts/structure-pending.txt")
+        print(failing[-1])
+print(f"check-structure: {len(failing)} problem(s), "
+      f"{len(problems) - len(failing) + sum(not u for u in pending.values())} pending",
+      file=sys.stderr)
+sys.exit(1 if failing else 0)
