@@ -1,5 +1,7 @@
 #include "mapfuse/io/output_transaction.hpp"
 
+#include <cctype>
+
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/file.h>
@@ -25,10 +27,19 @@ long tempOwner(const fs::path& p) {
   const std::string name = p.filename().string();
   const auto at = name.rfind(".tmp-");
   if (at == std::string::npos || at + 5 >= name.size()) return 0;
+  // "<name>.tmp-<pid>", or "<name>.tmp-<pid>.<ext>" for writers that pick their format by the
+  // extension (OpenCV's forests: "rtrees_<class>.yml.tmp-<pid>.yml")
   long pid = 0;
-  for (std::size_t i = at + 5; i < name.size(); ++i) {
+  std::size_t i = at + 5;
+  for (; i < name.size() && name[i] != '.'; ++i) {
     if (name[i] < '0' || name[i] > '9' || pid > 100000000) return 0;
     pid = pid * 10 + (name[i] - '0');
+  }
+  if (i == at + 5) return 0;
+  if (i < name.size()) {  // an extension: letters only
+    if (i + 1 == name.size()) return 0;
+    for (std::size_t j = i + 1; j < name.size(); ++j)
+      if (!std::isalpha(static_cast<unsigned char>(name[j]))) return 0;
   }
   return pid;
 }
