@@ -23,7 +23,8 @@ std::vector<double> readTimestamps(const fs::path& path) {
 
 }  // namespace
 
-std::vector<std::pair<long, fs::path>> listVelodyneScans(const fs::path& velo_dir) {
+std::vector<std::pair<long, fs::path>> listVelodyneScans(const fs::path& velo_dir,
+                                                        const FrameRange& range) {
   if (!fs::is_directory(velo_dir)) throw IoError(velo_dir.string(), "folder not found");
   std::vector<std::pair<long, fs::path>> scans;
   for (const auto& e : fs::directory_iterator(velo_dir)) {
@@ -33,7 +34,14 @@ std::vector<std::pair<long, fs::path>> listVelodyneScans(const fs::path& velo_di
   }
   std::sort(scans.begin(), scans.end());
   if (scans.empty()) throw InputError(velo_dir.string() + ": no Velodyne scans (*.bin)");
-  return scans;
+  std::vector<std::pair<long, fs::path>> selected;
+  int counter = 0;
+  for (auto& scan : scans) {
+    const long n = scan.first;
+    if (n < range.first || (range.last >= 0 && n > range.last)) continue;
+    if (counter++ % range.stride == 0) selected.push_back(std::move(scan));
+  }
+  return selected;
 }
 
 long kittiFrameNumber(const std::string& stem) {
@@ -120,7 +128,7 @@ KittiRawDrive openKittiRawDrive(const fs::path& drive_dir, const FrameRange& ran
   if (!fs::is_directory(drive.dir)) throw IoError(drive_dir.string(), "drive folder not found");
   drive.date_dir = drive.dir.parent_path();
   const fs::path velo_dir = drive.dir / "velodyne_points" / "data";
-  const auto scans = listVelodyneScans(velo_dir);
+  const auto scans = listVelodyneScans(velo_dir, range);
 
   const auto stamps = readTimestamps(drive.dir / "velodyne_points" / "timestamps.txt");
   const auto starts = readTimestamps(drive.dir / "velodyne_points" / "timestamps_start.txt");
@@ -129,10 +137,7 @@ KittiRawDrive openKittiRawDrive(const fs::path& drive_dir, const FrameRange& ran
     return i < static_cast<long>(v.size()) ? v[static_cast<std::size_t>(i)] : std::nan("");
   };
 
-  int counter = 0;
   for (const auto& [n, path] : scans) {
-    if (n < range.first || (range.last >= 0 && n > range.last)) continue;
-    if (counter++ % range.stride != 0) continue;
     KittiRawFrame f;
     f.index = static_cast<int>(n);
     f.name = path.stem().string();

@@ -85,12 +85,9 @@ KittiRawDrive openKittiSequence(const fs::path& dir_in, const FrameRange& range)
   if (!drive.dir.has_filename()) drive.dir = drive.dir.parent_path();
   drive.date_dir = drive.dir;
   const fs::path velo_dir = drive.dir / "velodyne";
-  const auto scans = listVelodyneScans(velo_dir);
+  const auto scans = listVelodyneScans(velo_dir, range);
   const auto times = readTimes(drive.dir / "times.txt");
-  int counter = 0;
   for (const auto& [n, path] : scans) {
-    if (n < range.first || (range.last >= 0 && n > range.last)) continue;
-    if (counter++ % range.stride != 0) continue;
     KittiRawFrame f;
     f.index = static_cast<int>(n);
     f.name = path.stem().string();

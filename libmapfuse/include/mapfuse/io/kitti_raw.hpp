@@ -60,10 +60,11 @@ void checkFrameRange(const FrameRange& range);
 /// @brief Frame number of a file stem made of digits only (at most 12), or -1.
 long kittiFrameNumber(const std::string& stem);
 
-/// @brief The Velodyne scans of `velo_dir` (files "<frame>.bin"), as (frame, path) sorted by
-/// frame. @throws IoError when the folder does not exist; InputError when it holds no scan.
+/// @brief The Velodyne scans of `velo_dir` (files "<frame>.bin") that `range` selects (frames in
+/// [first, last], every stride-th of those), as (frame, path) sorted by frame.
+/// @throws IoError when the folder does not exist; InputError when it holds no scan at all.
 std::vector<std::pair<long, std::filesystem::path>> listVelodyneScans(
-    const std::filesystem::path& velo_dir);
+    const std::filesystem::path& velo_dir, const FrameRange& range);
 
 /// @brief Reads one frame's OXTS record. @throws IoError when absent, ParseError when malformed.
 geo::OxtsRecord readOxts(const KittiRawFrame& frame);
