@@ -66,5 +66,8 @@ mkdir empty_truth
 rc=0; "$BIN/localize" -q --map sim/truth/vector_map.json --truth-trajectories empty_truth -o bad \
   geo/*.cbor >/dev/null 2>err.txt || rc=$?
 [[ $rc == 4 ]] && grep -q "empty_truth" err.txt || { cat err.txt; fail "missing truth gave exit $rc"; }
+# one drive twice: refused (exit 2), both outputs would have one name
+rc=0; "$BIN/localize" -q --map sim/truth/vector_map.json -o bad geo/*.cbor geo/*.cbor >/dev/null 2>err.txt || rc=$?
+[[ $rc == 2 ]] || { cat err.txt; fail "duplicate drives gave exit $rc"; }
 [[ ! -e bad/localize.summary.json ]] || fail "a failed run left a summary"
 echo "localize: ok"

@@ -1,5 +1,6 @@
 #include "mapfuse/stages/localize.hpp"
 
+#include <exception>
 #include <map>
 #include <memory>
 
@@ -59,33 +60,58 @@ LocalizeRun runLocalize(const LocalizeInputs& in, const std::filesystem::path& o
   io::OutputTransaction outputs(out_dir);  // locked and writable before the work
   if (in.lsms.empty()) throw InputError("localize: no drive (LSM) to localise");
   const VectorMap file_map = io::readVectorMap(in.map);
-  std::optional<VectorMap> map;  // in the drives' origin
-  std::unique_ptr<localize::MapIndex> index;
   std::map<std::string, eval::TrueTrajectory> truth;
   if (!in.truth_trajectories.empty())
     for (auto& [file, t] : eval::readTrueTrajectories(in.truth_trajectories))
       truth[t.drive_id] = std::move(t);
+  const std::vector<Lsm> lsms = io::readLsmInputs(in.lsms);  // duplicates refused (exit 2)
+  const std::size_t n = lsms.size();
+  std::vector<localize::DriveObservations> obs;
+  std::vector<std::shared_ptr<const localize::MapIndex>> index(n);  // the map in each drive's ENU
+  std::vector<const eval::TrueTrajectory*> true_of(n, nullptr);
+  for (std::size_t i = 0; i < n; ++i) {  // every input checked before the work
+    obs.push_back(localize::observationsOf(lsms[i], params.localize.match_attributes, in.lsms[i]));
+    for (std::size_t j = 0; j < i && !index[i]; ++j)
+      if (geo::sameOrigin(*lsms[j].origin, *lsms[i].origin)) index[i] = index[j];
+    if (!index[i])
+      index[i] = std::make_shared<localize::MapIndex>(eval::inOrigin(file_map, *lsms[i].origin),
+                                                      params.localize.match_attributes);
+    if (in.truth_trajectories.empty()) continue;
+    const auto t = truth.find(lsms[i].drive_id);
+    if (t == truth.end())
+      throw IoError(in.truth_trajectories,
+                    "true trajectory of drive '" + lsms[i].drive_id + "' not found");
+    true_of[i] = &t->second;
+  }
   LocalizeRun run;
-  Progress progress("drives", in.lsms.size());
-  for (const auto& file : in.lsms) {
-    const Lsm lsm = io::readLsm(file);
-    const auto obs = localize::observationsOf(lsm, params.localize.match_attributes, file);
-    if (!map || !geo::sameOrigin(map->origin, *lsm.origin)) {  // the map in the drive's ENU
-      map = eval::inOrigin(file_map, *lsm.origin);
-      index = std::make_unique<localize::MapIndex>(*map, params.localize.match_attributes);
+  run.drives.resize(n);
+  std::vector<std::exception_ptr> failed(n);
+  Progress progress("drives", n);
+#pragma omp parallel for schedule(dynamic)  // drives are independent
+  for (std::size_t i = 0; i < n; ++i) {
+    try {
+      LocalizedDrive& d = run.drives[i];
+      d.file = in.lsms[i];
+      d.drive_id = lsms[i].drive_id;
+      d.result = localize::localizeDrive(*index[i], obs[i], params.localize);
+      if (true_of[i])
+        d.errors = localize::localizeErrors(d.result, *true_of[i], *lsms[i].origin, d.file);
+    } catch (...) {
+      failed[i] = std::current_exception();
     }
-    LocalizedDrive d{file, lsm.drive_id, localize::localizeDrive(*index, obs, params.localize), {}};
+    progress.advance();
+  }
+  for (const auto& e : failed)
+    if (e) std::rethrow_exception(e);
+  for (std::size_t i = 0; i < n; ++i) {
+    const LocalizedDrive& d = run.drives[i];
+    const Lsm& lsm = lsms[i];
     const std::string name =
-        lsm.drive_id.empty() ? std::filesystem::path(file).stem().string() : lsm.drive_id;
+        lsm.drive_id.empty() ? std::filesystem::path(d.file).stem().string() : lsm.drive_id;
     io::writeDocument(
         out_dir / (name + ".trajectory.json"),
         localize::trajectoryJson(d.result, lsm.drive_id, lsm.vehicle_id, *lsm.origin));
-    if (!in.truth_trajectories.empty()) {
-      const auto t = truth.find(lsm.drive_id);
-      if (t == truth.end())
-        throw IoError(in.truth_trajectories,
-                      "true trajectory of drive '" + lsm.drive_id + "' not found");
-      d.errors = localize::localizeErrors(d.result, t->second, *lsm.origin, file);
+    if (d.errors) {
       io::writeBytesAtomic(out_dir / (name + ".errors.csv"), localize::errorsCsv(*d.errors));
       localize::writeErrorPlot(out_dir / (name + ".errors.png"), *d.errors,
                                "localize " + name + ": error vs distance");
@@ -93,8 +119,6 @@ LocalizeRun runLocalize(const LocalizeInputs& in, const std::filesystem::path& o
     run.keyframes += d.result.keyframes.size();
     run.lost += static_cast<std::size_t>(d.result.lost);
     run.seconds_localize += d.result.seconds;
-    run.drives.push_back(std::move(d));
-    progress.advance();
   }
   progress.finish();
   const double share = run.lostShare();

@@ -41,7 +41,7 @@ struct LocalizeSettings {
   void visit(V& v) {
     using namespace param;
     v("window", window, "m", "observations of keyframes within this travelled distance join",
-      in(0, 1000));
+      in(0, 200));
     v("rounds", rounds, "", "matching + solve rounds per keyframe", in(1, 50));
     v("match_radius", match_radius, "m", "matching radius of the first round", gt(0) & le(50));
     v("final_match_radius", final_match_radius, "m", "matching radius of the last round",
@@ -71,6 +71,9 @@ struct LocalizeSettings {
       in(1, 1000));
     v.relation("final_match_radius", final_match_radius, final_match_radius <= match_radius,
                "<= match_radius");
+    // the acquisition tries (2 search_radius / search_step + 1)^2 shifts
+    v.relation("search_radius", search_radius, search_radius <= 100 * search_step,
+               "<= 100 * search_step");
   }
 };
 
