@@ -32,7 +32,9 @@ struct WorldPoint {
 /// The window's observed points in ENU: each keyframe's points placed by the drive's relative
 /// poses (prior_k^-1 prior_j), then by the current pose of keyframe k.
 std::vector<WorldPoint> windowPoints(const DriveObservations& d, const std::vector<double>& dist,
-                                     std::size_t k, const Pose3& T_current, double window) {
+                                     std::size_t k, const Pose3& T_current,
+                                     const LocalizeSettings& s) {
+  const double window = s.window;
   std::vector<WorldPoint> out;
   const Pose3 T_prior_inv = d.T_enu_body_prior[k].inverse();
   std::size_t j0 = k;
@@ -40,9 +42,13 @@ std::vector<WorldPoint> windowPoints(const DriveObservations& d, const std::vect
   for (std::size_t j = j0; j < d.points.size() && dist[j] - dist[k] <= window; ++j) {
     const Pose3 T = T_current * T_prior_inv * d.T_enu_body_prior[j];
     const Eigen::Matrix3d& R = T.linear();
+    // the relative pose of j seen from k is uncertain in proportion to the distance between them
+    const double sr = s.window_sigma_per_m * std::abs(dist[j] - dist[k]);
+    const Eigen::Matrix2d relative = sr * sr * Eigen::Matrix2d::Identity();
     for (const auto& p : d.points[j])
       out.push_back(
-          {&p, (T * p.p_body).head<2>(), (R * p.cov_body * R.transpose()).topLeftCorner<2, 2>()});
+          {&p, (T * p.p_body).head<2>(),
+           Eigen::Matrix2d((R * p.cov_body * R.transpose()).topLeftCorner<2, 2>()) + relative});
   }
   return out;
 }
@@ -196,7 +202,7 @@ LocalizeResult localizeDrive(const MapIndex& map, const DriveObservations& d,
       motion.sqrt_info = sqrtInformation(P);
     }
     const Pose3 T_pred = T;
-    std::vector<WorldPoint> pts = windowPoints(d, dist, k, T, s.window);
+    std::vector<WorldPoint> pts = windowPoints(d, dist, k, T, s);
     kl.observed = static_cast<int>(pts.size());
     if (reacquire && !pts.empty()) {  // acquisition: no trusted prediction
       const Eigen::Vector2d shift = searchShift(map, pts, s);

@@ -19,12 +19,13 @@
 namespace mapfuse::localize {
 
 struct LocalizeSettings {
-  double window = 12.0;             ///< m travelled either side: observations of these keyframes
-  int rounds = 4;                   ///< matching + solve rounds per keyframe
-  double match_radius = 1.5;        ///< m, matching radius of the first round
-  double final_match_radius = 0.5;  ///< m, of the last round (linear in between)
-  bool match_attributes = true;     ///< lane lines match only lines of their style and colour
-  double line_sigma = 0.05;         ///< m, map line sigma, added to the observed point's covariance
+  double window = 12.0;              ///< m travelled either side: observations of these keyframes
+  double window_sigma_per_m = 0.05;  ///< m/m, sigma added to a point per metre from keyframe k
+  int rounds = 4;                    ///< matching + solve rounds per keyframe
+  double match_radius = 1.5;         ///< m, matching radius of the first round
+  double final_match_radius = 0.5;   ///< m, of the last round (linear in between)
+  bool match_attributes = true;      ///< lane lines match only lines of their style and colour
+  double line_sigma = 0.05;       ///< m, map line sigma, added to the observed point's covariance
   double point_sigma = 0.20;      ///< m, map point sigma (pole / light / planar centre), added too
   double robust_scale = 2.0;      ///< Cauchy scale, in sigmas
   double prior_sigma = 5.0;       ///< m, horizontal sigma of the georeferenced (GPS) prior
@@ -42,6 +43,10 @@ struct LocalizeSettings {
     using namespace param;
     v("window", window, "m", "observations of keyframes within this travelled distance join",
       in(0, 200));
+    v("window_sigma_per_m", window_sigma_per_m, "m/m",
+      "sigma added to a window point per metre between its keyframe and the localised one "
+      "(relative poses of a georeferenced drive are not exact)",
+      in(0, 10));
     v("rounds", rounds, "", "matching + solve rounds per keyframe", in(1, 50));
     v("match_radius", match_radius, "m", "matching radius of the first round", gt(0) & le(50));
     v("final_match_radius", final_match_radius, "m", "matching radius of the last round",
