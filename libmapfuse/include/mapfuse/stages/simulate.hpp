@@ -22,7 +22,7 @@ struct SimulateParams {
   uint64_t seed = 42;                     ///< every random draw derives from it
   std::string level = "lsm";              ///< lsm | frames | truth
   std::string format = "cbor";            ///< LSM encoding: cbor | json
-  std::string map;                        ///< Lanelet2 .osm file; empty = procedural world
+  std::string map;                        ///< Lanelet2 .osm / OpenDRIVE .xodr; empty = procedural
   std::string osm_origin = "first_node";  ///< first_node | config (origin_lat/lon/alt)
   double origin_lat = 49.0;               ///< deg
   double origin_lon = 8.4;                ///< deg
@@ -43,8 +43,9 @@ struct SimulateParams {
     v("seed", seed, "", "random seed (same seed, same bytes)");
     v("level", level, "", "output level: lsm | frames | truth");
     v("format", format, "", "LSM encoding: cbor | json");
-    v("map", map, "", "Lanelet2 OSM map; empty = the procedural world");
-    v("osm_origin", osm_origin, "", "ENU origin of a Lanelet2 map: first_node | config");
+    v("map", map, "", "Lanelet2 .osm or OpenDRIVE .xodr map; empty = the procedural world");
+    v("osm_origin", osm_origin, "",
+      "ENU origin of a map: first_node (.osm: first node, .xodr: georeference) | config");
     map_world.visit(v);
     v("origin_lat", origin_lat, "deg", "ENU origin latitude (procedural world, osm_origin=config)");
     v("origin_lon", origin_lon, "deg", "ENU origin longitude");
