@@ -2,8 +2,21 @@
 BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
+# The sanitizer build (clang, AddressSanitizer + UBSan, libFuzzer instrumentation; fuzz/README.md):
+# unit tests run there once, and the fuzz targets. `make fuzz` runs each target FUZZ_SECONDS,
+# FUZZ_JOBS at a time; `make test` adds a pass of CI_FUZZ_SECONDS per target.
+SANITIZE_BUILD ?= build-sanitize
+FUZZ_WORK ?= $(SANITIZE_BUILD)/fuzz-work
+FUZZ_SECONDS ?= 60
+FUZZ_JOBS ?= 1
+CI_FUZZ_SECONDS ?= 20
+SANITIZE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMAPFUSE_FUZZ=ON -DMAPFUSE_BUILD_BENCH=OFF \
+  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only" \
+  "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only"
 
-.PHONY: deps configure build demo test bench format clean
+.PHONY: deps configure build demo test bench format clean \
+        sanitize-configure sanitize-build test-sanitize test-sanitize-and-fuzz fuzz-corpus fuzz
 
 deps:
 	bash scripts/install-deps.sh
@@ -20,6 +33,34 @@ demo: build
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
+# The sanitizer pass (a second, clang build of everything): too long for CI on a cold 2-core
+# machine today (docs/reliability.md "CI time"); run it before a release or on a larger runner.
+test-sanitize-and-fuzz:
+	$(MAKE) --no-print-directory test-sanitize
+	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(CI_FUZZ_SECONDS) FUZZ_JOBS=$(JOBS)
+
+sanitize-configure: deps
+	@if [ ! -f $(SANITIZE_BUILD)/build.ninja ]; then \
+	  cmake -S . -B $(SANITIZE_BUILD) -G Ninja $(SANITIZE_FLAGS); fi
+
+# Everything: the tools too, since unit tests of the apps run them.
+sanitize-build: sanitize-configure
+	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
+
+# The unit tests (not the e2e scripts) under AddressSanitizer + UBSan: any report fails the test.
+test-sanitize: sanitize-build
+	cd $(SANITIZE_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/fuzz/lsan.supp:print_suppressions=0 \
+	  ctest --output-on-failure -j $(JOBS) -E '^e2e: '
+
+# Seeds from the samples and small outputs of the tools (release build), regenerated each time.
+fuzz-corpus: build
+	bash fuzz/make-corpus.sh $(BUILD)/bin $(FUZZ_WORK)/seeds
+
+fuzz: sanitize-build fuzz-corpus
+	bash fuzz/run.sh $(SANITIZE_BUILD)/fuzz $(FUZZ_WORK) $(FUZZ_SECONDS) $(FUZZ_JOBS)
+
 bench: build
 	bash scripts/bench/run-all.sh $(BUILD)/bin
 
@@ -27,4 +68,4 @@ format:
 	find apps libmapfuse tests scripts/bench -name '*.cpp' -o -name '*.hpp' | xargs clang-format -i
 
 clean:
-	rm -rf $(BUILD) out
+	rm -rf $(BUILD) $(SANITIZE_BUILD) out

@@ -14,6 +14,11 @@ PACKAGES=(
   gdal-bin snakemake
   osmium-tool python3-shapely
   slurmctld slurmd slurm-client munge
+  # the sanitizer build and the fuzz targets (fuzz/README.md): clang with libFuzzer and the
+  # sanitizer runtimes (libclang-rt-14-dev, only recommended by clang-14), OpenMP for clang,
+  # llvm-symbolizer for readable sanitizer reports
+  clang libclang-rt-14-dev libomp-dev llvm
+  gnuplot-nox
 )
 
 missing=()

@@ -8,8 +8,9 @@
 #
 # Per drive <d> (the folder name):
 #   $(WORK)/lidar/<d>/  lidar-semantic-map: map.ply, map.pcd, labels/, topdown.png, poses.txt
-#                       (OXTS poses when the drive has oxts/, else LiDAR odometry)
-#   $(WORK)/lsm/<d>/    lsm-build on image_02 with the LiDAR poses above (--poses-frame velo):
+#                       (KITTI T_world_cam0; OXTS poses when the drive has oxts/, else LiDAR
+#                       odometry), poses_velo.txt
+#   $(WORK)/lsm/<d>/    lsm-build on image_02 with the poses.txt above:
 #                       <d>.lsm.json, bird's-eye PNG, summary
 # Each rule's target is the summary its tool writes last (tools write atomically), so a batch
 # killed mid-way reruns only the unfinished drives.
@@ -51,7 +52,7 @@ $(WORK)/lidar/$(notdir $(1))/lidar-semantic-map.summary.json: $(wildcard $(1)/ve
 	$(BIN)/lidar-semantic-map $(Q) $(call cfg,lidar-semantic-map) $(model) --last-frame $(LAST_FRAME) -o $$(@D) $(1) >/dev/null
 
 $(WORK)/lsm/$(notdir $(1))/lsm-build.summary.json: $(WORK)/lidar/$(notdir $(1))/lidar-semantic-map.summary.json
-	$(BIN)/lsm-build $(Q) $(call cfg,lsm-build) $(model) --kitti-last-frame $(LAST_FRAME) --poses $(WORK)/lidar/$(notdir $(1))/poses.txt --poses-frame velo -o $$(@D) $(1) >/dev/null
+	$(BIN)/lsm-build $(Q) $(call cfg,lsm-build) $(model) --kitti-last-frame $(LAST_FRAME) --egomotion poses --poses $(WORK)/lidar/$(notdir $(1))/poses.txt -o $$(@D) $(1) >/dev/null
 endef
 $(foreach d,$(DRIVE_DIRS),$(eval $(call DRIVE_RULES,$(d))))
 

@@ -5,7 +5,6 @@
 
 #include "commands.hpp"
 #include "mapfuse/cli/app.hpp"
-#include "mapfuse/io/document.hpp"
 #include "mapfuse/stages/evaluate_map.hpp"
 
 namespace {
@@ -18,19 +17,6 @@ struct MapCommandState {
   std::vector<std::string> lsm_args;
   std::string out_dir;
 };
-
-// --config values become defaults: a field takes the file's value unless given on the command line.
-void applyConfig(CLI::App& sub, stages::EvaluateMapParams& params) {
-  const std::string file = sub.get_option("--config")->as<std::string>();
-  if (file.empty()) return;
-  stages::EvaluateMapParams from_file;
-  paramsFromJson(from_file, io::readDocument(file), file);
-  nlohmann::json merged = paramsToJson(params);
-  const nlohmann::json loaded = paramsToJson(from_file);
-  for (auto it = loaded.begin(); it != loaded.end(); ++it)
-    if (sub.get_option(cli::optionName(it.key().c_str()))->count() == 0) merged[it.key()] = *it;
-  paramsFromJson(params, merged, file);
-}
 
 apps::CommandAction setupMap(CLI::App& sub) {
   auto st = std::make_shared<MapCommandState>();
@@ -47,10 +33,10 @@ apps::CommandAction setupMap(CLI::App& sub) {
   sub.add_option("-o,--out", st->out_dir, "output folder")->required();
   cli::addParamOptions(sub, st->params);
   return [st, &sub] {
-    applyConfig(sub, st->params);
-    st->params.validate();
+    cli::applyCommandConfig(sub, st->params);
     st->inputs.lsms = cli::expandInputList(st->lsm_args);
-    const auto summary = stages::runEvaluateMap(st->inputs, st->out_dir, st->params);
+    const auto run = stages::runEvaluateMap(st->inputs, st->out_dir, st->params);
+    const nlohmann::json summary = stages::toJson(run);
     nlohmann::json brief = nlohmann::json::array();
     for (const auto& m : summary["maps"]) {
       nlohmann::json classes = nlohmann::json::object();

@@ -6,7 +6,6 @@
 
 #include "commands.hpp"
 #include "mapfuse/cli/app.hpp"
-#include "mapfuse/io/document.hpp"
 #include "mapfuse/stages/evaluate_voxels.hpp"
 
 namespace {
@@ -18,19 +17,6 @@ struct VoxelsCommandState {
   stages::EvaluateVoxelsInputs inputs;
   std::string out_dir;
 };
-
-// --config values become defaults: a field takes the file's value unless given on the command line.
-void applyConfig(CLI::App& sub, stages::EvaluateVoxelsParams& params) {
-  const std::string file = sub.get_option("--config")->as<std::string>();
-  if (file.empty()) return;
-  stages::EvaluateVoxelsParams from_file;
-  paramsFromJson(from_file, io::readDocument(file), file);
-  nlohmann::json merged = paramsToJson(params);
-  const nlohmann::json loaded = paramsToJson(from_file);
-  for (auto it = loaded.begin(); it != loaded.end(); ++it)
-    if (sub.get_option(cli::optionName(it.key().c_str()))->count() == 0) merged[it.key()] = *it;
-  paramsFromJson(params, merged, file);
-}
 
 apps::CommandAction setupVoxels(CLI::App& sub) {
   auto st = std::make_shared<VoxelsCommandState>();
@@ -44,8 +30,7 @@ apps::CommandAction setupVoxels(CLI::App& sub) {
   sub.add_option("-o,--out", st->out_dir, "output folder (voxels.json, voxels.md)")->required();
   cli::addParamOptions(sub, st->params);
   return [st, &sub] {
-    applyConfig(sub, st->params);
-    st->params.validate();
+    cli::applyCommandConfig(sub, st->params);
     const auto doc = stages::runEvaluateVoxels(st->inputs, st->out_dir, st->params);
     std::cout << doc["markdown"].get<std::string>();
   };

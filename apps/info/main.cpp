@@ -6,21 +6,22 @@
 #include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/info.hpp"
 
+static const char* const kAbout =
+    "Describe mapfuse files (LSM, vector map, tiles, summary) as JSON lines on stdout; with "
+    "--origin print the ENU origin \"lat,lon,alt\" of the first LSM (its origin, else its "
+    "first GPS fix), the value per-drive georef jobs of one batch share.";
+
 int main(int argc, char** argv) {
   using namespace mapfuse;
-  CLI::App app(
-      "Describe mapfuse files (LSM, vector map, tiles, summary) as JSON lines on stdout; with "
-      "--origin print the ENU origin \"lat,lon,alt\" of the first LSM (its origin, else its "
-      "first GPS fix), the value per-drive georef jobs of one batch share.",
-      "info");
+  cli::StageTool<stages::InfoParams> tool("info", kAbout);
   std::vector<std::string> files;
   bool origin = false;
-  cli::CommonOptions common;
-  app.add_option("files", files, "mapfuse files, @list.txt, or - for a list on stdin")->required();
-  app.add_flag("--origin", origin, "Print the shared ENU origin of the first LSM as lat,lon,alt");
-  cli::addCommonOptions(app, common);
-  return cli::run(app, argc, argv, [&] {
-    cli::applyCommonOptions(common);
+  tool.app()
+      .add_option("files", files, "mapfuse files, @list.txt, or - for a list on stdin")
+      ->required();
+  tool.app().add_flag("--origin", origin,
+                      "Print the shared ENU origin of the first LSM as lat,lon,alt");
+  return tool.run(argc, argv, [&](const stages::InfoParams&) {
     const auto paths = cli::expandInputList(files);
     if (origin) {
       const geo::GeoOrigin o = stages::originOfLsm(paths.at(0));
@@ -28,6 +29,6 @@ int main(int argc, char** argv) {
                 << o.alt << '\n';
       return;
     }
-    for (const auto& p : paths) std::cout << stages::describeFile(p).dump() << '\n';
+    for (const auto& p : paths) std::cout << stages::toJson(stages::describeFile(p)).dump() << '\n';
   });
 }

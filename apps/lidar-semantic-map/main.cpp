@@ -9,11 +9,14 @@
 int main(int argc, char** argv) {
   using namespace mapfuse;
   CLI::App app{
-      "Build a semantic voxel map from a KITTI raw drive: poses (OXTS, poses file or LiDAR\n"
-      "odometry), per-pixel semantics (ENet or precomputed semantics_02), projection onto\n"
-      "image_02, cluster error minimisation (optional forests), Bayesian voxel fusion, batch\n"
-      "refinement. Outputs below --out: map.ply, map.pcd, labels/<frame>.label, topdown.png,\n"
-      "poses.txt, lidar-semantic-map.{config,summary}.json.\n"
+      "Build a semantic voxel map from a KITTI raw drive or a KITTI odometry / SemanticKITTI\n"
+      "sequence folder: poses (OXTS, poses file or LiDAR odometry), per-pixel semantics (ENet or\n"
+      "precomputed semantics_02), projection onto image_02, cluster error minimisation (optional\n"
+      "forests), Bayesian voxel fusion, batch refinement. Outputs below --out: map.ply, map.pcd,\n"
+      "labels/<frame>.label, topdown.png, poses.txt (KITTI T_world_cam0), poses_velo.txt\n"
+      "(T_map_velo), lidar-semantic-map.{config,summary}.json. Untrusted odometry steps are\n"
+      "listed on stderr and in the summary; more than --odom-max-untrusted stop the run (exit 3).\n"
+      "A failed run leaves the previous outputs in the folder unchanged.\n"
       "`train DRIVE... -o DIR` fits rtrees_<label>.yml from drives with labels/<frame>.label.\n"
       "Exit codes: 0 ok, 2 usage/config, 3 bad input, 4 I/O.",
       "lidar-semantic-map"};
@@ -21,7 +24,8 @@ int main(int argc, char** argv) {
   cli::CommonOptions common;
   std::string drive, out, train_out;
   std::vector<std::string> train_drives;
-  app.add_option("drive", drive, "KITTI raw drive folder (<date>/<date>_drive_<name>_sync)");
+  app.add_option("drive", drive,
+                 "KITTI raw drive (<date>/<date>_drive_<name>_sync) or sequence (sequences/NN)");
   app.add_option("-o,--out", out, "Output folder");
   CLI::App* train = app.add_subcommand("train", "Fit the per-label cluster classifiers");
   train->add_option("drives", train_drives, "Labelled drives, @list.txt or -")->required();

@@ -8,19 +8,13 @@
 
 int main(int argc, char** argv) {
   using namespace mapfuse;
-  CLI::App app("Simulate a labelled KITTI raw drive (LiDAR + camera ground truth).",
-               "simulate-lidar");
-  stages::SimulateLidarParams params;
-  cli::CommonOptions common;
+  cli::StageTool<stages::SimulateLidarParams> tool(
+      "simulate-lidar", "Simulate a labelled KITTI raw drive (LiDAR + camera ground truth).");
   std::string out;
-  app.add_option("-o,--out", out, "Output root: <out>/<date>/<date>_drive_<drive>_sync")
+  tool.app()
+      .add_option("-o,--out", out, "Output root: <out>/<date>/<date>_drive_<drive>_sync")
       ->required();
-  cli::addCommonOptions(app, common);
-  cli::addParamOptions(app, params);
-  cli::preloadConfig(argc, argv, params);
-  return cli::runStage(app, argc, argv, params, [&] {
-    cli::applyCommonOptions(common);
-    const auto summary = stages::runSimulateLidar(out, params);
-    std::cout << summary["drive_dir"].get<std::string>() << '\n';
+  return tool.run(argc, argv, [&](const stages::SimulateLidarParams& params) {
+    std::cout << stages::runSimulateLidar(out, params).drive_dir.string() << '\n';
   });
 }

@@ -1,34 +1,25 @@
-// simulate: crowdsourced drives over the procedural world or a Lanelet2 map, with ground truth
-// (docs/simulate.md). Prints the summary JSON on stdout.
+// simulate: crowdsourced drives with ground truth (docs/simulate.md); prints the summary JSON.
 #include <iostream>
 
 #include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/simulate.hpp"
 
+static const char* const kAbout =
+    "Simulate crowdsourced drives (LSMs, raw frames) with ground truth.\n"
+    "Outputs below --out: truth/vector_map.json(.geojson), truth/<drive>.trajectory.json,\n"
+    "lsm/<drive>.lsm.cbor|json (--level lsm), frames/<drive>/ (--level frames),\n"
+    "simulate.config.json, simulate.summary.json. Exit codes: 0 ok, 2 usage/config,\n"
+    "3 bad input (malformed map), 4 I/O (missing map, unwritable output).";
+
 int main(int argc, char** argv) {
   using namespace mapfuse;
-  stages::SimulateParams params;
-  cli::CommonOptions common;
+  cli::StageTool<stages::SimulateParams> tool("simulate", kAbout);
   std::string out_dir;
-  CLI::App app{
-      "Simulate crowdsourced drives (LSMs, raw frames) with ground truth.\n"
-      "Outputs below --out: truth/vector_map.json(.geojson), truth/<drive>.trajectory.json,\n"
-      "lsm/<drive>.lsm.cbor|json (--level lsm), frames/<drive>/ (--level frames),\n"
-      "simulate.config.json, simulate.summary.json. Exit codes: 0 ok, 2 usage/config,\n"
-      "3 bad input (malformed map), 4 I/O (missing map, unwritable output).",
-      "simulate"};
-  app.add_option("-o,--out", out_dir, "output folder")->required();
-  cli::addCommonOptions(app, common);
-  try {
-    cli::preloadConfig(argc, argv, params);
-  } catch (const Error& e) {
-    std::cerr << "simulate: error: " << e.what() << "\n";
-    return static_cast<int>(e.exitCode());
-  }
-  cli::addParamOptions(app, params);
-  return cli::runStage(app, argc, argv, params, [&] {
-    cli::applyCommonOptions(common);
-    const auto result = stages::runSimulate(params, out_dir);
-    std::cout << result.summary.dump(2) << "\n";
+  tool.app().add_option("-o,--out", out_dir, "output folder")->required();
+  return tool.run(argc, argv, [&](const stages::SimulateParams& params) {
+    const auto run = stages::runSimulate(params, out_dir);
+    nlohmann::json summary = stages::toJson(run);
+    summary["seconds"] = run.seconds;
+    std::cout << summary.dump(2) << "\n";
   });
 }

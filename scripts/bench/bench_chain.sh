@@ -161,6 +161,10 @@ for untiled, tiled in [("karlsruhe-50", "karlsruhe-50-tiled"), ("procedural-2km"
                          f" {f(a[c], 'redundancy'):.3f} | {f(b[c], 'redundancy'):.3f} |"
                          f" {absmean(a[c]):.3f} | {absmean(b[c]):.3f} |"
                          f" {f(a[c], 'relative_precision_m'):.3f} | {f(b[c], 'relative_precision_m'):.3f} |")
-open(out, "w").write("\n".join(lines) + "\n")
+# bench_chain_scale.sh's section (issue 18 rows) is kept as it is
+import os
+old = open(out).read() if os.path.exists(out) else ""
+keep = old[old.index("<!-- chain-scale begin -->"):] if "<!-- chain-scale begin -->" in old else ""
+open(out, "w").write("\n".join(lines) + "\n" + ("\n" + keep if keep else ""))
 print(f"bench_chain: wrote {out}", file=sys.stderr)
 PY

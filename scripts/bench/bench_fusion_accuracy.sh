@@ -89,7 +89,7 @@ fi
   echo "Spread: per true element (lane lines in 20 m pieces) seen by >= 2 drives, RMS distance of"
   echo "the per-drive mean offsets to their mean, averaged; abs: mean horizontal distance of an"
   echo "element observation to its true element; ATE: mean over drives of the keyframe RMS"
-  echo "position error (fusion/truth_errors.hpp). Time: wall seconds of the stage, 2 threads."
+  echo "position error (eval/truth_errors.hpp). Time: wall seconds of the stage, 2 threads."
   echo
   echo "| world | method | spread mean [m] | spread median [m] | spread shrink vs georef | abs error [m] | keyframe ATE [m] | time [s] |"
   echo "|---|---|---|---|---|---|---|---|"

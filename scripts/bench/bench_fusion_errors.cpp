@@ -1,5 +1,5 @@
 // Element spread / absolute error and keyframe ATE of georef or align output against the
-// simulator's truth (fusion::elementTruthErrors, docs/fusion.md "Measuring alignment").
+// simulator's truth (eval::elementTruthErrors, docs/performance-fusion-accuracy.md).
 //
 //   bench_fusion_errors --sim out/sim LSM...      -> one JSON line on stdout
 #include <CLI/CLI.hpp>
@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mapfuse/cli/app.hpp"
-#include "mapfuse/fusion/truth_errors.hpp"
+#include "mapfuse/eval/truth_errors.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
@@ -35,8 +35,8 @@ int main(int argc, char** argv) {
       gps_bias += std::hypot(b.at(0).get<double>(), b.at(1).get<double>());
     }
     const VectorMap truth = io::readVectorMap(truth_dir / "vector_map.json");
-    const auto e = fusion::elementTruthErrors(lsms, truth);
-    const auto t = fusion::trajectoryTruthErrors(lsms, traj);
+    const auto e = eval::elementTruthErrors(lsms, truth);
+    const auto t = eval::trajectoryTruthErrors(lsms, traj);
     nlohmann::json j{{"drives", lsms.size()},
                      {"gps_bias_mean_m", gps_bias / double(lsms.size())},
                      {"observations", e.observations},

@@ -14,9 +14,10 @@
 
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/io/camera_calib.hpp"
-#include "mapfuse/stages/lsm_build_inputs.hpp"
-#include "mapfuse/stages/lsm_build_pipeline.hpp"
+#include "mapfuse/io/drive_frames.hpp"
+#include "mapfuse/vehicle/dead_reckoning.hpp"
 #include "mapfuse/vehicle/fallback_perception.hpp"
+#include "mapfuse/vehicle/lsm_build.hpp"
 
 using namespace mapfuse;
 using Clock = std::chrono::steady_clock;
@@ -34,8 +35,15 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   setLogLevel(LogLevel::kWarn);
 
-  stages::LsmBuildParams p;
-  stages::LoadedDrive d = stages::loadDrive({drive, {}, {}, {}}, p);
+  // The drive as lsm-build reads it by default: observations, dead-reckoned ego-motion.
+  const io::DriveFrames df = io::readDriveFrames(drive);
+  vehicle::DriveData d;
+  d.calib = df.calib;
+  d.frames = df.observations;
+  d.gps = df.gps;
+  for (const auto& f : df.frames) d.stamps.push_back(f.stamp);
+  d.T_odom_body = vehicle::deadReckon(df.imu, df.wheel, d.stamps, {});
+  const vehicle::LsmBuildSettings settings;
   std::cout << "| measurement | frames | threads | seconds | frames/s | frames/s per core |\n"
             << "|---|---|---|---|---|---|\n";
   for (int threads : {1, omp_get_max_threads()}) {
@@ -43,7 +51,7 @@ int main(int argc, char** argv) {
     double best = 1e300;
     for (int r = 0; r < repeats; ++r) {
       const auto t0 = Clock::now();
-      const auto out = stages::processDrive(d, p);
+      const auto out = vehicle::buildLsm(d, settings);
       best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
       if (out.lsm.elements.empty()) return 1;
     }

@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 #include <pugixml.hpp>
 
+#include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/lsm_io.hpp"
@@ -36,12 +37,12 @@ int runAggregateApp(const std::string& args) {
 
 TEST_CASE("configs/aggregate.json mirrors the defaults, which are valid", "[aggregate][config]") {
   const stages::AggregateParams defaults;
-  defaults.validate();
+  validateParams(defaults);
   const auto file = io::readDocument(fs::path(MAPFUSE_SOURCE_DIR) / "configs/aggregate.json");
   CHECK(file == paramsToJson(defaults));
   stages::AggregateParams bad;
-  bad.link_max_pts = 0;
-  CHECK_THROWS_AS(bad.validate(), ConfigError);
+  bad.aggregator.lanes.link_max_pts = 0;
+  CHECK_THROWS_AS(validateParams(bad), ConfigError);
 }
 
 TEST_CASE("the aggregate stage writes every output and a size summary", "[aggregate][stage]") {
@@ -51,7 +52,7 @@ TEST_CASE("the aggregate stage writes every output and a size summary", "[aggreg
   const auto w = test::makeSynthWorld(o);
   const auto files = writeLsms(w, dir);
   const auto out = dir / "out";
-  const auto summary = stages::runAggregate(files, out, stages::AggregateParams{});
+  const auto summary = stages::toJson(stages::runAggregate(files, out, stages::AggregateParams{}));
   for (const char* f : {"map.cbor", "map.json", "map.geojson", "map.osm", "map.png",
                         "aggregate.summary.json", "aggregate.config.json"})
     CHECK(fs::exists(out / f));
@@ -130,4 +131,25 @@ TEST_CASE("aggregate app: exit codes, lists and intact outputs after a failure",
                          quoted(test::appPath("aggregate")) + " -q -o " + quoted(dir / "out2") +
                          " - >/dev/null 2>&1") == 0);
   CHECK(fs::exists(dir / "out2" / "map.cbor"));
+}
+
+TEST_CASE("aggregate app: values that would exhaust memory or overflow are refused by name",
+          "[aggregate][app][config]") {
+  const auto dir = test::tempDir("agg-bounds");
+  // {option value, key the message names}: each refused before any input is read (exit 2)
+  const std::pair<const char*, const char*> cases[] = {
+      {"--coordinate-quantum 1e-300", "coordinate_quantum"},  // every coordinate INT64_MIN
+      {"--sample-step 1e-7", "sample_step"},                  // 1e7 points per metre of line
+      {"--station-step 1e-9", "station_step"},                // arc bridges of 1e9 points per m
+      {"--tile-size 1e-6", "tile_size"},                      // observations cut into µm pieces
+      {"--road-tolerance 1e-300", "road_tolerance"},          // grid keys overflow
+      {"--point-radius 1e6", "point_radius"}};                // every pole a neighbour of all
+  for (const auto& [option, key] : cases) {
+    INFO(option);
+    const auto err = dir / "err.txt";
+    CHECK(test::runCommand(quoted(test::appPath("aggregate")) + " " + option + " -o " +
+                           quoted(dir / "out") + " " + quoted(dir / "none.lsm.cbor") +
+                           " >/dev/null 2>" + quoted(err)) == 2);
+    CHECK_THAT(test::readText(err), Catch::Contains(key));
+  }
 }

@@ -1,7 +1,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <map>
 
 #include "mapfuse/aggregate/aggregator.hpp"
+#include "aggregate/discrete_merge.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
 #include "mapfuse/core/error.hpp"
 #include "synthetic_world.hpp"
@@ -196,4 +198,62 @@ TEST_CASE("collecting observations rejects odom LSMs and mixed origins", "[aggre
   w.lsms[0].frame = LsmFrame::kOdom;
   CHECK_THROWS_AS(collectObservations(w.lsms, {"a.cbor", "b.cbor"}), InputError);
   CHECK_THROWS_AS(collectObservations({}, {}), InputError);
+}
+
+TEST_CASE("stage-1 comparisons per lane piece do not grow with the drives", "[aggregate][lanes]") {
+  // With every piece compared with every other of its tile, the comparisons per piece grow as the
+  // drives (O(n^2) per place). Compared with pieces of at most partner_drives other drives they
+  // stay bounded, and the map keeps its three lines on the truth.
+  std::map<int, double> per_piece;
+  for (int drives : {6, 30}) {
+    test::SynthOptions o = lanesOnly();
+    o.drives = drives;
+    const auto [w, map, stats] = aggregateLanes(o);
+    per_piece[drives] = double(stats.lanes.comparisons) / double(stats.lanes.pieces);
+    WARN(drives << " drives: " << stats.lanes.comparisons << " comparisons for "
+                << stats.lanes.pieces << " pieces");
+    const auto lanes = ofClass(map, CrowdClass::kLaneLine);
+    CHECK(lanes.size() == 3);
+    for (const auto* l : lanes)
+      for (const auto& p : l->points)
+        CHECK(distanceToTruth(p, w.truth, CrowdClass::kLaneLine) < kLanePointTolerance);
+  }
+  // a piece tests the pieces of its own and partner_drives other drives whose boxes meet its own
+  // (the same line and, in tiles where lines run diagonally, its neighbours: 3 at most)
+  const int k = AggregatorParams{}.lanes.partner_drives;
+  CHECK(per_piece[30] <= 3.0 * (k + 1));
+  CHECK(per_piece[30] <= 1.3 * per_piece[6]);
+}
+
+TEST_CASE("a stop line seen whole by some drives and in part by others is one stop line",
+          "[aggregate][stop_line]") {
+  // A 7 m stop line along y at x = 50: 12 drives see it whole, 8 only its first 1.5 m (a camera
+  // sees the end of a crossing road's stop line while turning, simulate observes that part).
+  // Midpoint distance put the pieces (midpoints 2.75 m from the line's) in a cluster of their
+  // own, and averaging the ends shortened the line.
+  constexpr double kEndTolerance = 0.1;  // m, merged ends to the true ends (3 cm point noise)
+  std::mt19937 rng(9);
+  std::normal_distribution<double> noise(0.0, 0.03);
+  std::vector<Observation> items;
+  for (int d = 0; d < 20; ++d) {
+    Observation o;
+    o.drive = d;
+    o.cls = CrowdClass::kStopLine;
+    o.confidence = 0.8;
+    const double end = d < 12 ? 7.0 : 1.5;
+    o.points = {Vec3(50 + noise(rng), 0 + noise(rng), 0),
+                Vec3(50 + noise(rng), end + noise(rng), 0)};
+    items.push_back(o);
+  }
+  std::vector<std::size_t> idx(items.size());
+  for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+  const auto merged = mergeDiscrete(items, idx, CrowdClass::kStopLine, DiscreteMergeParams{}, 20,
+                                    AggregatorParams{}.lanes.partner_drives);
+  REQUIRE(merged.size() == 1);
+  CHECK(merged[0].support.drives == 20);
+  const Vec3 a = merged[0].points.front(), b = merged[0].points.back();
+  const double lo = std::min(a.y(), b.y()), hi = std::max(a.y(), b.y());
+  CHECK(lo == Approx(0.0).margin(kEndTolerance));
+  CHECK(hi == Approx(7.0).margin(kEndTolerance));
+  CHECK(a.x() == Approx(50.0).margin(kEndTolerance));
 }

@@ -2,9 +2,9 @@
 #include <cmath>
 #include <random>
 
-#include "mapfuse/aggregate/arc_link.hpp"
+#include "aggregate/arc_link.hpp"
+#include "aggregate/lane_instantiation.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
-#include "mapfuse/aggregate/lane_instantiation.hpp"
 #include "mapfuse/core/vector_map.hpp"
 
 using namespace mapfuse;

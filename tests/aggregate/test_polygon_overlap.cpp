@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "mapfuse/aggregate/polygon_overlap.hpp"
+#include "aggregate/polygon_overlap.hpp"
 
 using namespace mapfuse::aggregate;
 namespace bg = boost::geometry;

@@ -34,6 +34,14 @@ travel = sum((float(a) - float(b)) ** 2 for a, b in zip(poses[-1][3::4], poses[0
 assert 0.3 < travel < 10.0, travel               # a slow car (~2 m/s): not zero, not km
 assert lsm["egomotion"] == "poses" and lsm["frames"] == 5, lsm
 assert lsm["ranged_markings"] > 0, lsm           # lane markings seen on the real images
+# poses.txt is T_world_cam0: the camera drives along its own z axis, and the LSM built on it
+# (body x forward) moves forward too, not sideways (issue 24: it turned by 90 deg).
+dz = float(poses[-1][11]) - float(poses[0][11])
+assert dz > 0.9 * travel, (dz, travel)
+kf = json.load(open(f"{out}/lsm/{sfnd}/{sfnd}.lsm.json"))["keyframes"]
+t0, t1 = kf[0]["pose"]["t"], kf[-1]["pose"]["t"]
+if len(kf) > 1:
+    assert t1[0] - t0[0] > 0.9 * sum((a - b) ** 2 for a, b in zip(t1, t0)) ** 0.5, (t0, t1)
 print(f"sfnd: {travel:.2f} m odometry over 4 steps, {lsm['ranged_markings']} ranged markings")
 PY
 make -q -f "$SRC/scripts/kitti.mk" BIN="$BIN" KITTI="$KITTI" WORK="$TMP/out" LAST_FRAME=4 ||

@@ -7,7 +7,7 @@ BIN="${MAPFUSE_BIN_DIR:?}"
 SRC="${MAPFUSE_SOURCE_DIR:?}"
 TMP="$(mktemp -d)"
 trap 'rm -rf "$TMP"' EXIT
-sums() { (cd "$1" && find . -type f | sort | xargs sha256sum); }
+sums() { (cd "$1" && find . -type f ! -name .mapfuse.lock | sort | xargs sha256sum); }
 fail() { echo "FAIL: $*" >&2; exit 1; }
 for run in a b; do
   "$BIN/simulate" --config "$SRC/samples/simulate/scenario.json" --traversals 4 -o "$TMP/$run" -q > "$TMP/$run.stdout"

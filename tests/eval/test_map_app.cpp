@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include "mapfuse/cli/params.hpp"
+#include "mapfuse/core/error.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
 #include "mapfuse/stages/evaluate_map.hpp"
@@ -42,22 +44,22 @@ int runEvaluate(const std::string& args) {
 
 TEST_CASE("configs/evaluate.json mirrors the evaluate map defaults", "[eval][config]") {
   const stages::EvaluateMapParams defaults;
-  defaults.validate();
+  validateParams(defaults);
   CHECK(io::readDocument(fs::path(MAPFUSE_SOURCE_DIR) / "configs/evaluate.json") ==
         paramsToJson(defaults));
 }
 
 TEST_CASE("evaluate map refuses a coverage wedge that cannot see", "[eval][config]") {
   stages::EvaluateMapParams p;
-  p.coverage_half_fov_deg = 0.0;
-  CHECK_THROWS_AS(p.validate(), ConfigError);
-  p.coverage_half_fov_deg = 91.0;
-  CHECK_THROWS_AS(p.validate(), ConfigError);
+  p.coverage.half_fov_deg = 0.0;
+  CHECK_THROWS_AS(validateParams(p), ConfigError);
+  p.coverage.half_fov_deg = 91.0;
+  CHECK_THROWS_AS(validateParams(p), ConfigError);
   p = stages::EvaluateMapParams();
-  p.coverage_range = 0.0;
-  CHECK_THROWS_AS(p.validate(), ConfigError);
-  p.coverage_range = 22.0;
-  CHECK_NOTHROW(p.validate());
+  p.coverage.range = 0.0;
+  CHECK_THROWS_AS(validateParams(p), ConfigError);
+  p.coverage.range = 22.0;
+  CHECK_NOTHROW(validateParams(p));
 }
 
 TEST_CASE("evaluate map app: outputs, several maps and exit codes", "[eval][app]") {
@@ -103,4 +105,59 @@ TEST_CASE("evaluate map app: outputs, several maps and exit codes", "[eval][app]
   CHECK(runEvaluate("--map " + quoted(dir / "a.cbor") + " --traversals 1 2 --truth " +
                     quoted(dir / "truth.json") + " -o " + quoted(out)) == 3);
   CHECK(test::runCommand(quoted(test::appPath("evaluate")) + " >/dev/null 2>&1") == 2);
+}
+
+TEST_CASE("evaluate map app: values that would exhaust memory or time are refused by name",
+          "[eval][app][config]") {
+  const auto dir = test::tempDir("eval-bounds");
+  io::writeVectorMap(dir / "truth.json", simpleMap(0.0));
+  // {option value, key the message names}: refused before any map is read (exit 2)
+  const std::pair<const char*, const char*> cases[] = {
+      {"--sample-step 1e-7", "sample_step"},        // 1e7 samples per metre: out of memory
+      {"--line-tolerance 1e6", "line_tolerance"},   // every segment a candidate of every sample
+      {"--coverage-range 1e9", "coverage_range"},   // every pose in one grid cell
+      {"--lane-width-max 1.5", "lane_width_max"}};  // below lane_width_min: no lane at all
+  for (const auto& [option, key] : cases) {
+    INFO(option);
+    const auto err = dir / "err.txt";
+    CHECK(test::runCommand(quoted(test::appPath("evaluate")) + " map " + option + " --map " +
+                           quoted(dir / "none.json") + " --truth " + quoted(dir / "truth.json") +
+                           " -o " + quoted(dir / "out") + " >/dev/null 2>" + quoted(err)) == 2);
+    CHECK_THAT(test::readText(err), Catch::Contains(key));
+  }
+  // a value from --config is checked too, and the message names the file and the key
+  test::writeText(dir / "cfg.json", "{\"sample_step\": 1e-7}");
+  const auto err = dir / "err.txt";
+  CHECK(test::runCommand(quoted(test::appPath("evaluate")) + " map --config " +
+                         quoted(dir / "cfg.json") + " --map " + quoted(dir / "none.json") +
+                         " --truth " + quoted(dir / "truth.json") + " -o " + quoted(dir / "out") +
+                         " >/dev/null 2>" + quoted(err)) == 2);
+  CHECK_THAT(test::readText(err), Catch::Contains("cfg.json") && Catch::Contains("sample_step"));
+}
+
+TEST_CASE("evaluate map reads the traversals of aggregate.summary.json checked", "[eval][bounds]") {
+  // The count was narrowed to int unchecked (4294967301 drives read as 5) and a summary of
+  // another shape was ignored; now a ParseError names the summary and the field.
+  const fs::path dir = test::tempDir("eval_summary");
+  const fs::path map = dir / "map.cbor";
+  const VectorMap m = simpleMap(0.0);
+  CHECK(stages::traversalsOf(map, m) == 4);  // no summary: the largest instance support
+  auto summary = [&](const std::string& text) {
+    test::writeText(dir / "aggregate.summary.json", text);
+  };
+  summary(R"({"inputs": {"drives": 12, "lsms": 12}})");
+  CHECK(stages::traversalsOf(map, m) == 12);
+  summary(R"({"inputs": {"lsms": 12}})");
+  CHECK(stages::traversalsOf(map, m) == 4);
+  for (const char* bad : {R"({"inputs": {"drives": 4294967301}})", R"({"inputs": {"drives": -1}})",
+                          R"({"inputs": {"drives": 2.5}})", R"({"inputs": [1]})"}) {
+    summary(bad);
+    try {
+      stages::traversalsOf(map, m);
+      FAIL("accepted " << bad);
+    } catch (const ParseError& e) {
+      CHECK_THAT(std::string(e.what()),
+                 Catch::Contains("aggregate.summary.json") && Catch::Contains("inputs"));
+    }
+  }
 }

@@ -5,6 +5,7 @@
 #include "mapfuse/eval/error_stats.hpp"
 #include "mapfuse/eval/map_metrics.hpp"
 #include "mapfuse/geo/origin.hpp"
+#include "mapfuse/stages/evaluate_map.hpp"
 
 using namespace mapfuse;
 using namespace mapfuse::eval;
@@ -183,7 +184,7 @@ TEST_CASE("coverage keeps what is beside or ahead of a drive, not what lies behi
                  inst(3, CrowdClass::kStopLine, {{105, -2, 0}, {105, 2, 0}}),  // ahead of the end
                  inst(4, CrowdClass::kPole, {{50, 11, 0}}, 6),                 // beside, in range
                  inst(5, CrowdClass::kPole, {{50, 13, 0}}, 6)};                // beside, too far
-  const VectorMap c = clipToCoverage(t, poses, CoverageWedge{12.0, 12.0, M_PI / 2});
+  const VectorMap c = clipToCoverage(t, poses, CoverageWedge{12.0, 12.0, 90.0, 0.0});
   std::vector<int64_t> ids;
   double lane_length = 0;
   for (const auto& m : c.instances) {
@@ -204,7 +205,7 @@ TEST_CASE("coverage keeps what is beside or ahead of a drive, not what lies behi
 TEST_CASE("the coverage wedge follows the camera's field of view and reach", "[eval][map]") {
   // One pose at the origin heading north (body x = ENU y); wedge 22 m ahead, 12 m wide, 31 deg.
   const Pose3 pose(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
-  const CoverageWedge wedge{12.0, 22.0, 31.0 * M_PI / 180.0};  // tan 31 deg = 0.601
+  const CoverageWedge wedge{12.0, 22.0, 31.0, 0.0};  // tan 31 deg = 0.601, apex at the body
   auto seen = [&](double ahead, double left) {
     VectorMap t;
     t.instances = {inst(1, CrowdClass::kPole, {{-left, ahead, 0}}, 6)};
@@ -220,6 +221,25 @@ TEST_CASE("the coverage wedge follows the camera's field of view and reach", "[e
   CHECK_FALSE(seen(21, 12.5));  // wider than the lateral limit
 }
 
+TEST_CASE("the coverage wedge opens at the camera, not at the body origin", "[eval][map]") {
+  // The simulated camera sits 1.8 m ahead of the body origin (sim::CameraParams::x): its field of
+  // view at 10 m ahead of the body reaches (10 - 1.8) tan 31 deg = 4.9 m to the side, not 6.0 m.
+  // With the apex at the body origin the truth counted the ends of crossing roads' stop lines
+  // the camera never had in its image (0.3-0.5 m visible, 1.3-1.6 m scored) as missed.
+  const Pose3 pose = Pose3::Identity();
+  const CoverageWedge wedge{12.0, 22.0, 31.0, CoverageWedge{}.apex_x};  // the default apex
+  REQUIRE(wedge.apex_x == Approx(1.8));
+  auto seen = [&](double ahead, double left) {
+    VectorMap t;
+    t.instances = {inst(1, CrowdClass::kPole, {{ahead, left, 0}}, 6)};
+    return clipToCoverage(t, {pose}, wedge).instances.size() == 1;
+  };
+  CHECK(seen(10, 4.8));
+  CHECK_FALSE(seen(10, 5.0));
+  CHECK_FALSE(seen(1.5, 0));  // behind the camera
+  CHECK(seen(2.0, 0));
+}
+
 TEST_CASE("map elements of true elements outside the scored scope count neither way",
           "[eval][map]") {
   // A drive along +x from x = 0 to x = 100: the scored truth is what the clip keeps; the map
@@ -232,7 +252,7 @@ TEST_CASE("map elements of true elements outside the scored scope count neither 
                  inst(2, CrowdClass::kPole, {{50, -3, 0}}, 6),
                  inst(3, CrowdClass::kPole, {{-20, -3, 0}}, 6)};  // behind the start
   VectorMap outside;
-  const VectorMap scored = clipToCoverage(t, poses, CoverageWedge{12.0, 12.0, M_PI / 2}, &outside);
+  const VectorMap scored = clipToCoverage(t, poses, CoverageWedge{12.0, 12.0, 90.0, 0.0}, &outside);
   REQUIRE(scored.instances.size() == 2);
   double out_length = 0;
   int out_poles = 0;

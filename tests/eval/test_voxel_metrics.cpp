@@ -135,8 +135,8 @@ TEST_CASE("voxel metrics: a voxel map against truth voxels with moving and parke
 TEST_CASE("evaluate voxels: stage on a synthetic drive, scans and voxel map") {
   const auto dir = test::tempDir("eval_voxels_stage");
   stages::SimulateLidarParams sp;
-  sp.frames = 3;
-  sp.azimuth_steps = 400;
+  sp.lidar.frames = 3;
+  sp.lidar.sensor.azimuth_steps = 400;
   sp.seed = 4;
   stages::runSimulateLidar(dir / "sim", sp);
   const fs::path drive = io::kittiDriveDir(dir / "sim", sp.date, sp.drive);
@@ -180,19 +180,20 @@ TEST_CASE("evaluate voxels: stage on a synthetic drive, scans and voxel map") {
   const io::KittiRawDrive d = io::openKittiRawDrive(drive, io::FrameRange{});
   std::vector<Pose3> poses = lidar::oxtsVeloPoses(d, false);
   lidar::recenter(poses);
-  VoxelTruth truth(vp.voxel_size);
+  VoxelTruth truth(vp.truth.voxel_size);
   const Eigen::Matrix<double, 3, 4> P2 = d.calib.veloToImage2();
   for (std::size_t k = 0; k < d.frames.size(); ++k)
     addLabelledScan(truth, io::readVelodyneBin(d.frames[k].velodyne).points,
                     io::readSemanticKittiLabels(drive / "labels" / (d.frames[k].name + ".label")),
-                    poses[k], vp.min_range, vp.max_range, &P2, 1242, 375);
+                    poses[k], vp.truth.min_range, vp.truth.max_range, &P2, 1242, 375);
   LabeledCloud perfect;
   for (const auto& [key, label] : truth.all()) {
     if (label.moving || label.cls == LidarClass::kUnlabeled) continue;
     Eigen::Vector3f c;
     for (int a = 0; a < 3; ++a)
       c[a] = static_cast<float>(
-          ((static_cast<int64_t>((key >> (21 * a)) & 0x1FFFFF) - (1 << 20)) + 0.5) * vp.voxel_size);
+          ((static_cast<int64_t>((key >> (21 * a)) & 0x1FFFFF) - (1 << 20)) + 0.5) *
+          vp.truth.voxel_size);
     perfect.points.push_back(c);
     perfect.labels.push_back(static_cast<uint8_t>(label.cls));
     perfect.confidence.push_back(1.f);
@@ -228,5 +229,5 @@ TEST_CASE("evaluate voxels: configs/evaluate-voxels.json mirrors the defaults") 
   const auto j =
       io::readDocument(fs::path(MAPFUSE_SOURCE_DIR) / "configs" / "evaluate-voxels.json");
   CHECK(j == paramsToJson(stages::EvaluateVoxelsParams{}));
-  CHECK_NOTHROW(stages::EvaluateVoxelsParams{}.validate());
+  CHECK_NOTHROW(validateParams(stages::EvaluateVoxelsParams{}));
 }

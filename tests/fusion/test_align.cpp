@@ -88,7 +88,12 @@ TEST_CASE("align: gba_sgicp shrinks element spread and beats the baselines") {
   }
   CHECK(by["gba_sgicp"].spread * kSpreadShrink <= e0.spread);
   CHECK(by["gba_sgicp"].mean_abs < kGpsBias);
-  CHECK(by["icp"].spread >= by["sicp"].spread);
+  // Both baselines fail on this fixture (spread above georef's: the 2 m GPS biases exceed their
+  // basin between lines 3.5 m apart), so their order is within noise: with 2 registrations per
+  // submap (the default since issue 18) ICP came out 1 % better (1.92 vs 1.95 m), with 3 or 4
+  // SICP 0.5-7 % better. bench_fusion_accuracy shows the order on the simulated worlds.
+  constexpr double kFailedBaselinesNoise = 1.05;
+  CHECK(by["icp"].spread * kFailedBaselinesNoise >= by["sicp"].spread);
   CHECK(by["sicp"].spread >= by["sgicp"].spread);
   CHECK(by["sgicp"].spread >= by["gba_sgicp"].spread);
 }
@@ -197,7 +202,9 @@ TEST_CASE("align: GBA and pairing parameters out of range are refused by name") 
   };
   refused([](fusion::AlignSettings& p) { p.gba_dof = 5; }, "gba_dof");
   refused([](fusion::AlignSettings& p) { p.gba_line_stride = 0; }, "gba_line_stride");
-  refused([](fusion::AlignSettings& p) { p.gba_cg_iterations = -1; }, "gba_cg_iterations");
+  refused([](fusion::AlignSettings& p) { p.pcg_iterations = 0; }, "pcg_iterations");
+  refused([](fusion::AlignSettings& p) { p.pcg_tolerance = 1; }, "pcg_tolerance");
+  refused([](fusion::AlignSettings& p) { p.pcg_cell_size = -1; }, "pcg_cell_size");
   refused([](fusion::AlignSettings& p) { p.gba_early_round_tolerance = 0; },
           "gba_early_round_tolerance");
   refused([](fusion::AlignSettings& p) { p.gba_early_round_tolerance = 1; },

@@ -5,6 +5,7 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/geo/origin.hpp"
 #include "mapfuse/geo/oxts.hpp"
+#include "mapfuse/io/oxts_line.hpp"
 #include "support/test_support.hpp"
 
 using namespace mapfuse;
@@ -88,7 +89,7 @@ TEST_CASE("KITTI drive 0005 frame 0 OXTS is read and converted with the devkit c
   const auto file = test::requireShared(
       "data/kitti_raw/2011_09_26/2011_09_26_drive_0005_sync/oxts/data/0000000000.txt");
   const std::string line = test::readText(file);
-  const geo::OxtsRecord r = geo::parseOxtsLine(line, file.string());
+  const geo::OxtsRecord r = io::parseOxtsLine(line, file.string());
   CHECK(r.lat == 49.011212804408);
   CHECK(r.lon == 8.4228850417969);
   CHECK(r.alt == 112.83492279053);
@@ -113,14 +114,14 @@ TEST_CASE("KITTI drive 0005 frame 0 OXTS is read and converted with the devkit c
 
 TEST_CASE("malformed OXTS lines name the field", "[geo]") {
   try {
-    geo::parseOxtsLine("49.0 8.0 abc", "x.txt");
+    io::parseOxtsLine("49.0 8.0 abc", "x.txt");
     FAIL("no exception");
   } catch (const ParseError& e) {
     CHECK(e.file() == "x.txt");
     CHECK(e.field() == "alt");
   }
   try {
-    geo::parseOxtsLine("49.0 8.0 1.0", "y.txt");
+    io::parseOxtsLine("49.0 8.0 1.0", "y.txt");
     FAIL("no exception");
   } catch (const ParseError& e) {
     CHECK(e.field() == "roll");

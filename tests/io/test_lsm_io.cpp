@@ -80,17 +80,20 @@ TEST_CASE("element points move rigidly with their anchor keyframe", "[io][lsm]")
 TEST_CASE("malformed LSM files are refused with file, field and problem", "[io][lsm]") {
   const auto dir = test::tempDir("lsm-malformed");
   const auto good = io::lsmToJson(test::makeLsm());
+  // JSON, and CBOR (where the fast codec declines the file and the general reader judges it).
   auto expectParseError = [&](io::Json doc, const std::string& field, const std::string& problem) {
-    const auto path = dir / "bad.json";
-    io::writeDocument(path, doc);
-    try {
-      io::readLsm(path);
-      FAIL("accepted a malformed LSM, expected an error at " << field);
-    } catch (const ParseError& e) {
-      CHECK(e.file() == path.string());
-      CHECK(e.field() == field);
-      CHECK_THAT(e.problem(), Catch::Contains(problem));
-      CHECK(e.exitCode() == ExitCode::kBadInput);
+    for (const char* name : {"bad.json", "bad.cbor"}) {
+      const auto path = dir / name;
+      io::writeDocument(path, doc);
+      try {
+        io::readLsm(path);
+        FAIL("accepted a malformed LSM, expected an error at " << field);
+      } catch (const ParseError& e) {
+        CHECK(e.file() == path.string());
+        CHECK(e.field() == field);
+        CHECK_THAT(e.problem(), Catch::Contains(problem));
+        CHECK(e.exitCode() == ExitCode::kBadInput);
+      }
     }
   };
   SECTION("missing field") {

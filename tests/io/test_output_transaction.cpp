@@ -108,9 +108,16 @@ TEST_CASE("temporary files of dead runs are removed, a live run's are kept", "[i
   const auto dir = test::tempDir("tx-stale");
   const auto dead = dir / "sub" / ("map.json.tmp-" + std::to_string(deadPid()));
   const auto live = dir / ("map.json.tmp-" + std::to_string(::getppid()));
+  // a writer that picks its format by the extension (OpenCV's forests)
+  const auto dead_ext = dir / ("rtrees_3.yml.tmp-" + std::to_string(deadPid()) + ".yml");
+  const auto not_temp = dir / ("notes.tmp-" + std::to_string(deadPid()) + ".v2");  // not ours
   test::writeText(dead, "left by a killed run");
   test::writeText(live, "being written by a running process");
+  test::writeText(dead_ext, "left by a killed train run");
+  test::writeText(not_temp, "a user's file");
   { io::OutputTransaction tx(dir); }
   CHECK_FALSE(fs::exists(dead));
+  CHECK_FALSE(fs::exists(dead_ext));
   CHECK(fs::exists(live));
+  CHECK(fs::exists(not_temp));
 }

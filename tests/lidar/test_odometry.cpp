@@ -1,8 +1,8 @@
-// LiDAR odometry (scan-to-map GICP) on KITTI odometry sequence 00 scans 0-5.
+// LiDAR odometry (scan-to-local-map, point-to-plane) on KITTI odometry sequence 00 scans 0-5.
 //
-// What is verifiably true here (docs/lidar.md, "Odometry"): our scan-to-map GICP measures steps
-// of 0.69-0.74 m, in agreement with an independent pairwise registration (scan-to-scan GICP
-// at 0.10 m) and with PCL's GICP (data README), while poses/00.txt claims 0.86 m per step. The test
+// What is verifiably true here (docs/lidar.md, "Odometry"): the odometry measures steps of
+// 0.68-0.74 m, in agreement with an independent pairwise registration (scan-to-scan GICP at
+// 0.10 m) and with PCL's GICP (data README), while poses/00.txt claims 0.86 m per step. The test
 // therefore checks the distance against the independent registration with the issue's 2 %
 // tolerance, and checks the *direction* of travel (not the length) against poses/00.txt.
 #include <catch2/catch.hpp>
@@ -22,6 +22,7 @@ constexpr double kDistanceTolerance = 0.02;     // relative, the issue's 2 %
 constexpr double kDirectionToleranceDeg = 3.0;  // heading of travel vs poses/00.txt
 constexpr double kMinConvergedFraction = 0.8;   // registrations that must report convergence
 constexpr double kReferenceVoxel = 0.10;        // m, resolution of the reference registration
+constexpr double kScanPeriod = 0.1;             // s, KITTI Velodyne at 10 Hz
 
 std::vector<io::VelodyneScan> loadScans() {
   const auto dir = test::requireShared("data/kitti_odometry/sequences/00/velodyne");
@@ -63,7 +64,7 @@ TEST_CASE("odometry on KITTI 00 scans 0-5 agrees with an independent registratio
           "[lidar][odometry]") {
   const auto scans = loadScans();
   lidar::ScanOdometry odo(lidar::OdometrySettings{});
-  for (const auto& sc : scans) odo.add(sc.points);
+  for (const auto& sc : scans) odo.add(sc.points, kScanPeriod);
   const auto& P = odo.poses();
   double odo_total = 0, icp_total = 0;
   int converged = 0;

@@ -138,3 +138,35 @@ TEST_CASE("Lanelet2: malformed maps are ParseErrors naming file and element", "[
   // Missing file: IoError.
   CHECK_THROWS_AS(io::readLanelet2Osm("/nonexistent/map.osm"), IoError);
 }
+
+TEST_CASE("Lanelet2: ids near the int64 limits and 1000 km of lanes are refused",
+          "[sim][osm][bounds]") {
+  // Fuzz findings (fuzz_lanelet2_osm). Ids near INT64_MAX overflowed the simulator's id
+  // allocator (max id + 1), and std::abs(INT64_MIN); one node 2700 km from the rest made a lane
+  // of 5.4 million centreline samples and a 30 s run: now an InputError naming the file.
+  std::string huge_id = kSmallMap;  // 2^63 - 2^32 + 1
+  huge_id.replace(huge_id.find("id='-16'"), 8, "id='9223372032559808512'");
+  CHECK_THAT(parseErrorOf([&] { io::parseLanelet2Osm(huge_id, "h.osm"); }),
+             Catch::Contains("h.osm") && Catch::Contains("9223372032559808512") &&
+                 Catch::Contains("2^63"));
+  std::string min_id = kSmallMap;
+  min_id.replace(min_id.find("id='-16'"), 8, "id='-9223372036854775808'");
+  CHECK_THAT(parseErrorOf([&] { io::parseLanelet2Osm(min_id, "n.osm"); }),
+             Catch::Contains("-9223372036854775808"));
+  // The largest allowed id (the Karlsruhe map has ids up to 9.217e18) converts.
+  std::string edge_id = kSmallMap;
+  edge_id.replace(edge_id.find("id='-10'"), 8, "id='9223372032559808511'");
+  edge_id.replace(edge_id.find("ref='-10'"), 9, "ref='9223372032559808511'");
+  const io::Lanelet2Map edge = io::parseLanelet2Osm(edge_id, "e.osm");
+  CHECK(sim::worldFromLanelet2(edge, *edge.first_node).lanes.size() == 2);
+
+  std::string far = kSmallMap;
+  far.replace(far.find("lat='49.0002000' lon='8.4000000'"), 16, "lat='25.0002000'");
+  const io::Lanelet2Map map = io::parseLanelet2Osm(far, "far.osm");
+  try {
+    sim::worldFromLanelet2(map, *map.first_node);
+    FAIL("a 2700 km lane was sampled");
+  } catch (const InputError& e) {
+    CHECK_THAT(std::string(e.what()), Catch::Contains("far.osm") && Catch::Contains("km"));
+  }
+}

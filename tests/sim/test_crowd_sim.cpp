@@ -35,9 +35,9 @@ constexpr double kMinOppositeCoverage = 0.5;  // share of keyframes
 
 stages::SimulateParams smallParams() {
   stages::SimulateParams p;
-  p.traversals = 3;
-  p.routes = 2;
-  p.route_length = 300.0;
+  p.crowd.traversals = 3;
+  p.crowd.routes = 2;
+  p.crowd.route_length = 300.0;
   return p;
 }
 
@@ -68,20 +68,20 @@ std::vector<std::vector<double>> readCsv(const fs::path& path) {
 TEST_CASE("simulate: configs/simulate.json mirrors the defaults, defaults are valid", "[sim]") {
   const auto j = io::readDocument(fs::path(MAPFUSE_SOURCE_DIR) / "configs" / "simulate.json");
   CHECK(j == paramsToJson(stages::SimulateParams{}));
-  CHECK_NOTHROW(stages::SimulateParams{}.validate());
+  CHECK_NOTHROW(validateParams(stages::SimulateParams{}));
   stages::SimulateParams bad;
   bad.level = "pixels";
-  CHECK_THROWS_AS(bad.validate(), ConfigError);
+  CHECK_THROWS_AS(validateParams(bad), ConfigError);
 }
 
 TEST_CASE("simulate: measured GPS and odometry errors match the configured sigmas", "[sim]") {
   stages::SimulateParams p;
   p.level = "truth";
-  p.traversals = 120;
-  p.routes = 12;
-  p.route_length = 500.0;
+  p.crowd.traversals = 120;
+  p.crowd.routes = 12;
+  p.crowd.route_length = 500.0;
   const auto out = test::tempDir("sim_stats");
-  const auto s = stages::runSimulate(p, out).summary;
+  const auto s = stages::toJson(stages::runSimulate(p, out));
   const double gps = s.at("gps_error_rms_m"), gps_expected = s.at("gps_error_rms_expected_m");
   const double drift = s.at("odometry_drift_per_100m_rms_m");
   const double drift_expected = s.at("odometry_drift_per_100m_expected_m");
@@ -91,7 +91,7 @@ TEST_CASE("simulate: measured GPS and odometry errors match the configured sigma
   CHECK(std::abs(drift / drift_expected - 1.0) < kDriftTolerance);
   // Outliers are injected at the configured rate (binomial, 4 sigma).
   const double n = s.at("gps_fixes"), k = s.at("gps_outliers_injected");
-  const double q = p.drive.gps_outlier_probability;
+  const double q = p.crowd.drive.gps_outlier_probability;
   CHECK(std::abs(k - n * q) < 4.0 * std::sqrt(n * q * (1 - q)));
 }
 
@@ -104,7 +104,7 @@ TEST_CASE("simulate: one seed gives byte-identical outputs", "[sim]") {
   const auto ta = readTree(a), tb = readTree(b);
   CHECK(ta.size() > 5);
   CHECK(ta == tb);
-  p.seed = 7;
+  p.crowd.seed = 7;
   const auto c = test::tempDir("sim_det_c");
   stages::runSimulate(p, c);
   CHECK(readTree(c) != ta);
@@ -131,7 +131,7 @@ TEST_CASE("simulate: the default config drives most roads in both directions", "
     }
     ++traversals;
   }
-  REQUIRE(traversals == p.traversals);
+  REQUIRE(traversals == p.crowd.traversals);
   const double cos_opposite = std::cos(kOppositeHeading * kDegToRad);
   int covered = 0;
   for (const auto& a : kfs)
@@ -194,16 +194,16 @@ TEST_CASE("simulate: ground truth round-trips and LSMs are consistent with it", 
     CHECK(sum / n < kLsmTruthDistance);
     ++checked;
   }
-  CHECK(checked == p.traversals);
+  CHECK(checked == p.crowd.traversals);
 }
 
 TEST_CASE("simulate: frames pixels re-projected with the true pose land on their element",
           "[sim]") {
   auto p = smallParams();
   p.level = "frames";
-  p.traversals = 1;
-  p.route_length = 150.0;
-  p.frames.pixel_sigma = 0.0;
+  p.crowd.traversals = 1;
+  p.crowd.route_length = 150.0;
+  p.crowd.frames.pixel_sigma = 0.0;
   const auto out = test::tempDir("sim_frames");
   stages::runSimulate(p, out);
   const VectorMap truth = io::readVectorMap(out / "truth" / "vector_map.json");
@@ -273,4 +273,47 @@ TEST_CASE("simulate: app exit codes", "[sim][app]") {
   CHECK(test::runCommand(app + " -o " + (dir / "o5").string() +
                          " --traversals 2 --route-length 200 >/dev/null 2>&1") == 0);
   CHECK(fs::exists(dir / "o5" / "simulate.summary.json"));
+}
+
+TEST_CASE("simulate: a stop line whose centre a drive never sees is observed in part", "[sim]") {
+  // A crossing road's stop line while the vehicle turns: its centre stays outside the image, one
+  // end is in view. The visible run is observed once per drive, on the true line; with
+  // partial_stop_line_min_length 0 the drives are as before, every other observation unchanged.
+  constexpr double kOnLine = 0.3;  // m, observed points to their true stop line (noise ~5 cm)
+  auto p = smallParams();
+  p.level = "lsm";
+  p.crowd.traversals = 12;
+  p.crowd.routes = 1;
+  p.crowd.route_length = 2000.0;
+  const auto on = test::tempDir("sim_partial_on"), off = test::tempDir("sim_partial_off");
+  const auto s_on = stages::toJson(stages::runSimulate(p, on));
+  p.crowd.obs.partial_stop_line_min_length = 0.0;
+  const auto s_off = stages::toJson(stages::runSimulate(p, off));
+  CHECK(int(s_off.at("partial_stop_lines")) == 0);
+  REQUIRE(int(s_on.at("partial_stop_lines")) > 0);
+  const VectorMap truth = io::readVectorMap(on / "truth" / "vector_map.json");
+  std::map<int64_t, const MapInstance*> by_id;
+  for (const auto& m : truth.instances) by_id[m.id] = &m;
+  int partial = 0;
+  for (const auto& e : fs::directory_iterator(on / "lsm")) {
+    const Lsm a = io::readLsm(e.path()), b = io::readLsm(off / "lsm" / e.path().filename());
+    REQUIRE(a.elements.size() >= b.elements.size());
+    for (std::size_t i = 0; i < b.elements.size(); ++i)  // the others as they were
+      CHECK(a.elements[i].points_body == b.elements[i].points_body);
+    const auto traj = io::readDocument(on / "truth" / (a.drive_id + ".trajectory.json"));
+    for (std::size_t i = b.elements.size(); i < a.elements.size(); ++i) {
+      const Element& el = a.elements[i];
+      REQUIRE(el.cls == CrowdClass::kStopLine);
+      const Pose3 T = io::readPose(io::JsonView(traj.at("poses").at(el.anchor).at("pose"), "t"));
+      const MapInstance& t = *by_id.at(el.truth_id);
+      std::vector<Eigen::Vector3d> pts;
+      for (const auto& q : el.points_body) pts.push_back(T * q);
+      for (const auto& q : pts) CHECK(sim::distanceToPolyline(t.points, q) < kOnLine);
+      const double length = (pts.back() - pts.front()).head<2>().norm();
+      CHECK(length >= p.crowd.obs.partial_stop_line_min_length - kOnLine);
+      CHECK(length < polylineLength(t.points));
+      ++partial;
+    }
+  }
+  CHECK(partial == int(s_on.at("partial_stop_lines")));
 }

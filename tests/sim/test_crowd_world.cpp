@@ -15,7 +15,7 @@ using namespace mapfuse;
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-constexpr uint64_t kWorldSeedIndex = 1000001;  // stages/simulate.cpp: deriveSeed(seed, this)
+constexpr uint64_t kWorldSeedIndex = 1000001;  // sim/crowd.cpp: deriveSeed(seed, this)
 constexpr double kMidRoad = 30.0;              // m, a fork / merge this far from every stop line
 constexpr double kOnElement = 0.1;             // m, a point "on" a line, a pole "under" a sign
 constexpr double kSideBySideTolerance = 0.1;   // m, |centre distance - mean width| of neighbours
@@ -28,13 +28,13 @@ constexpr double kArrowBeforeStop = 12.0;      // m, docs/simulate.md
 constexpr double kArrowTolerance = 1.5;
 constexpr double kArrowOnLane = 0.3;  // m, arrow centre to its lane's centreline
 
-sim::World defaultWorld(uint64_t seed = stages::SimulateParams{}.seed) {
+sim::World defaultWorld(uint64_t seed = stages::SimulateParams{}.crowd.seed) {
   const stages::SimulateParams p;
   geo::GeoOrigin origin;
   origin.lat = p.origin_lat;
   origin.lon = p.origin_lon;
   origin.alt = p.origin_alt;
-  return sim::buildProceduralWorld(p.world, origin, sim::deriveSeed(seed, kWorldSeedIndex));
+  return sim::buildProceduralWorld(p.crowd.world, origin, sim::deriveSeed(seed, kWorldSeedIndex));
 }
 
 std::vector<const MapInstance*> instancesOf(const sim::World& w, CrowdClass cls) {

@@ -5,6 +5,8 @@
 #include <cstring>
 #include <fstream>
 
+#include "mapfuse/io/oxts_line.hpp"
+#include "mapfuse/cli/params.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/kitti_raw.hpp"
 #include "mapfuse/io/kitti_raw_writer.hpp"
@@ -26,8 +28,8 @@ constexpr double kTimeTol = 1e-9;  // s: timestamps are written to the nanosecon
 stages::SimulateLidarParams smallParams() {
   stages::SimulateLidarParams p;
   p.seed = 17;
-  p.frames = 3;
-  p.azimuth_steps = 256;
+  p.lidar.frames = 3;
+  p.lidar.sensor.azimuth_steps = 256;
   p.drive = "0042";
   return p;
 }
@@ -40,7 +42,7 @@ std::string fileBytes(const std::filesystem::path& p) {
 TEST_CASE("lidar drive io: write -> KITTI reader round trip is bit-exact") {
   const auto out = test::tempDir("lidarsim_roundtrip");
   const auto P = smallParams();
-  const auto summary = stages::runSimulateLidar(out, P);
+  const auto summary = stages::toJson(stages::runSimulateLidar(out, P));
   const auto drive_dir = io::kittiDriveDir(out, P.date, P.drive);
   REQUIRE(summary["drive_dir"].get<std::string>() == drive_dir.string());
 
@@ -50,17 +52,20 @@ TEST_CASE("lidar drive io: write -> KITTI reader round trip is bit-exact") {
   REQUIRE(drive.calib.has_imu);
 
   // Rebuild the truth in memory exactly as the stage does.
-  const sim::LidarScene scene = sim::generateStreet(P.street());
+  sim::StreetParams street = P.lidar.street;
+  street.seed = P.seed;
+  const sim::LidarScene scene = sim::generateStreet(street);
   const Pose3 T_imu_velo = drive.calib.T_velo_imu.inverse();
-  const sim::EgoDrive ego{P.ego_start, P.ego_speed, -0.5 * P.lane_width, P.velo_height};
+  const sim::EgoDrive ego{street.ego_start, street.ego_speed, -0.5 * street.profile.lane_width,
+                          P.lidar.velo_height};
   const std::vector<Pose3> read_poses = lidar::oxtsVeloPoses(drive, /*enu=*/false);
   const Pose3 T0 = sim::egoImuPose(scene.road(), ego, T_imu_velo, 0.0) * T_imu_velo;
   for (std::size_t k = 0; k < drive.frames.size(); ++k) {
     const auto& f = drive.frames[k];
-    const double t = k / P.frame_rate;
+    const double t = k / P.lidar.frame_rate;
     const Pose3 T_world_velo = sim::egoImuPose(scene.road(), ego, T_imu_velo, t) * T_imu_velo;
     const sim::LidarScan scan =
-        sim::scanLidar(scene, T_world_velo, t, P.sensor(), sim::hashKey(P.seed, k, 1));
+        sim::scanLidar(scene, T_world_velo, t, P.lidar.sensor, sim::hashKey(P.seed, k, 1));
     const io::VelodyneScan read = io::readVelodyneBin(f.velodyne);
     REQUIRE(read.size() == scan.points.size());
     for (std::size_t i = 0; i < read.size(); ++i) {
@@ -81,9 +86,9 @@ TEST_CASE("lidar drive io: write -> KITTI reader round trip is bit-exact") {
     CHECK(f.scan_end > f.timestamp);
     // Probabilities read back equal the model's output.
     const sim::CameraFrame cam =
-        sim::renderLabels(scene, drive.calib, T_world_velo, t, P.camera_max_range);
+        sim::renderLabels(scene, drive.calib, T_world_velo, t, P.lidar.camera_max_range);
     const io::SemanticImage probs =
-        sim::networkProbabilities(cam, P.network(), sim::hashKey(P.seed, k, 2));
+        sim::networkProbabilities(cam, P.lidar.network, sim::hashKey(P.seed, k, 2));
     const auto sem = io::findSemanticImage(drive_dir, f.name);
     REQUIRE(sem);
     CHECK(io::readSemanticImage(*sem).data == probs.data);
@@ -114,7 +119,7 @@ TEST_CASE("lidar drive io: OXTS lines and timestamps parse back exactly") {
   io::MercatorAnchor a;
   const Pose3 T = poseFromXyzRpy(123.25, -48.5, 2.0, 0.01, -0.02, 2.5);
   const geo::OxtsRecord r = io::oxtsFromPose(T, a);
-  const geo::OxtsRecord back = geo::parseOxtsLine(io::formatOxtsLine(r), "x.txt");
+  const geo::OxtsRecord back = io::parseOxtsLine(io::formatOxtsLine(r), "x.txt");
   CHECK(back.lat == r.lat);
   CHECK(back.lon == r.lon);
   CHECK(back.yaw == r.yaw);
@@ -132,7 +137,7 @@ TEST_CASE("lidar drive io: OXTS lines and timestamps parse back exactly") {
 
 TEST_CASE("lidar drive io: same seed gives the same bytes") {
   auto P = smallParams();
-  P.frames = 2;
+  P.lidar.frames = 2;
   const auto a = test::tempDir("lidarsim_det_a"), b = test::tempDir("lidarsim_det_b");
   stages::runSimulateLidar(a, P);
   stages::runSimulateLidar(b, P);
@@ -151,11 +156,11 @@ TEST_CASE("lidar drive io: configs/simulate-lidar.json mirrors the defaults, whi
   const auto j = io::readDocument(std::filesystem::path(MAPFUSE_SOURCE_DIR) / "configs" /
                                   "simulate-lidar.json");
   CHECK(j == paramsToJson(stages::SimulateLidarParams{}));
-  CHECK_NOTHROW(stages::SimulateLidarParams{}.validate());
+  CHECK_NOTHROW(validateParams(stages::SimulateLidarParams{}));
   stages::SimulateLidarParams bad;
-  bad.turn_radius_min = 4.0;
+  bad.lidar.street.turn_radius_min = 4.0;
   try {
-    bad.validate();
+    validateParams(bad);
     FAIL("expected ConfigError");
   } catch (const ConfigError& e) {
     CHECK(std::string(e.what()).find("turn_radius_min") != std::string::npos);

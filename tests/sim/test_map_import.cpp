@@ -86,7 +86,7 @@ TEST_CASE("Map import: a world without true markings is an InputError unless all
   CHECK(typed.stats.at("untyped_ways_as_virtual") == 2);
 }
 
-TEST_CASE("simulate: untyped ways warn once naming the count; no markings exit 3",
+TEST_CASE("simulate: untyped ways warn once naming the count and no markings exit 3",
           "[sim][osm][import][app]") {
   const fs::path dir = test::tempDir("map_import_app");
   test::writeText(dir / "typed.osm", commonRoadMap(true));

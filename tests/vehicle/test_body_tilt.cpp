@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "mapfuse/core/error.hpp"
-#include "mapfuse/vehicle/body_tilt.hpp"
+#include "vehicle/body_tilt.hpp"
 
 using namespace mapfuse;
 

@@ -6,7 +6,7 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/kitti_calib.hpp"
-#include "mapfuse/stages/lsm_build_inputs.hpp"
+#include "mapfuse/stages/lsm_build.hpp"
 #include "sim_fixture.hpp"
 #include "support/test_support.hpp"
 
@@ -44,7 +44,7 @@ TEST_CASE("lsm-build: a T_world_velo poses file (poses_frame velo) equals its T_
   writePoses(dir / "velo.txt", velo);
 
   stages::LsmBuildParams p;
-  p.model = model.string();
+  p.perception.model = model.string();
   p.kitti_last_frame = 1;
   p.egomotion = "poses";
   stages::LsmBuildInputs in;
@@ -74,4 +74,24 @@ TEST_CASE("lsm-build: poses_frame velo needs a KITTI raw drive", "[vehicle][kitt
   in.drive = test::simulatedDrive(false, false);
   in.poses = dir / "poses.txt";
   CHECK_THROWS_AS(stages::loadDrive(in, p), ConfigError);
+}
+
+TEST_CASE("lsm-build: a singular poses row is refused before any image or network work",
+          "[vehicle][kitti]") {
+  const fs::path drive = test::requireShared(kDrive);
+  const fs::path dir = test::tempDir("kitti_poses_singular");
+  test::writeText(dir / "poses.txt", "1 0 0 0 0 1 0 0 0 0 1 0\n0 0 0 0 0 0 0 0 0 0 0 0\n");
+  stages::LsmBuildParams p;
+  p.perception.model = (dir / "no-such-model.net").string();  // loading it would fail with an IoError
+  p.kitti_last_frame = 1;
+  p.egomotion = "poses";
+  stages::LsmBuildInputs in;
+  in.drive = drive;
+  in.poses = dir / "poses.txt";
+  CHECK_THROWS_WITH(stages::loadDrive(in, p),
+                    Catch::Contains("poses.txt") && Catch::Contains("line 2"));
+  // A row count that does not match the frames is refused before the network too.
+  writePoses(dir / "three.txt", {Pose3::Identity(), Pose3::Identity(), Pose3::Identity()});
+  in.poses = dir / "three.txt";
+  CHECK_THROWS_WITH(stages::loadDrive(in, p), Catch::Contains("has 3 poses"));
 }

@@ -7,9 +7,8 @@
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
 #include "mapfuse/stages/lsm_build.hpp"
-#include "mapfuse/stages/lsm_build_inputs.hpp"
-#include "mapfuse/stages/lsm_build_pipeline.hpp"
 #include "mapfuse/vehicle/ground_ranging.hpp"
+#include "mapfuse/vehicle/lsm_build.hpp"
 #include "sim_fixture.hpp"
 
 using namespace mapfuse;
@@ -37,7 +36,7 @@ Eigen::Vector3d closestOnPolyline(const std::vector<Eigen::Vector3d>& pts,
 /// Mean relative ranging error of lane-line pixels (5-30 m) against the true element, given a
 /// per-frame plane. The reference point is the true ray-road intersection snapped to the truth.
 double meanRangingError(const stages::LoadedDrive& d, const io::DriveFrames& df,
-                        const VectorMap& truth, const std::vector<vehicle::GroundPlane>& planes) {
+                        const VectorMap& truth, const std::vector<GroundPlane>& planes) {
   std::map<int64_t, const MapInstance*> by_id;
   for (const auto& m : truth.instances) by_id[m.id] = &m;
   const Eigen::Matrix3d K_inv = d.calib.K.inverse();
@@ -45,8 +44,8 @@ double meanRangingError(const stages::LoadedDrive& d, const io::DriveFrames& df,
   int n = 0;
   for (std::size_t i = 0; i < d.frames.size(); ++i) {
     const Pose3 T_enu_cam = df.truth_T_enu_body[i] * d.calib.T_body_cam;
-    const vehicle::GroundPlane true_plane{T_enu_cam.linear().transpose() * Eigen::Vector3d::UnitZ(),
-                                          T_enu_cam.translation().z()};
+    const GroundPlane true_plane{T_enu_cam.linear().transpose() * Eigen::Vector3d::UnitZ(),
+                                 T_enu_cam.translation().z()};
     for (const auto& g : d.frames[i].ground) {
       if (g.cls != CrowdClass::kLaneLine || !by_id.count(g.truth_id)) continue;
       for (const auto& px : g.pixels) {
@@ -64,9 +63,8 @@ double meanRangingError(const stages::LoadedDrive& d, const io::DriveFrames& df,
   return sum / n;
 }
 
-std::vector<vehicle::GroundPlane> truePlanes(const stages::LoadedDrive& d,
-                                             const io::DriveFrames& df) {
-  std::vector<vehicle::GroundPlane> out;
+std::vector<GroundPlane> truePlanes(const stages::LoadedDrive& d, const io::DriveFrames& df) {
+  std::vector<GroundPlane> out;
   for (std::size_t i = 0; i < d.frames.size(); ++i) {
     const Pose3 T_enu_cam = df.truth_T_enu_body[i] * d.calib.T_body_cam;
     out.push_back(
@@ -92,11 +90,11 @@ TEST_CASE(
 
   // Miscalibrate the nominal plane by 1 degree of pitch.
   d.calib.ground.normal_cam = vehicle::tiltNormal(d.calib.ground.normal_cam, 1.0 * kDeg, 0.0);
-  p.vp_calibration = false;
-  const auto raw = stages::processDrive(d, p);
-  p.vp_calibration = true;
-  p.vp_window = 31;
-  const auto calibrated = stages::processDrive(d, p);
+  p.build.vanishing.enabled = false;
+  const auto raw = vehicle::buildLsm(d, p.build);
+  p.build.vanishing.enabled = true;
+  p.build.vanishing.window = 31;
+  const auto calibrated = vehicle::buildLsm(d, p.build);
   const double err_raw = meanRangingError(d, df, truth, raw.planes);
   const double err_vp = meanRangingError(d, df, truth, calibrated.planes);
   INFO("true plane " << err_true << ", 1 deg off " << err_raw << ", VP-calibrated " << err_vp
@@ -113,15 +111,15 @@ TEST_CASE("simulated frames: the body's pitch and roll from the dead-reckoned eg
   const VectorMap truth =
       io::readVectorMap(drive.parent_path().parent_path() / "truth/vector_map.json");
   stages::LsmBuildParams p;
-  p.vp_calibration = false;
+  p.build.vanishing.enabled = false;
   stages::LsmBuildInputs in;
   in.drive = drive;
   const stages::LoadedDrive d = stages::loadDrive(in, p);
   const double err_true = meanRangingError(d, df, truth, truePlanes(d, df));
-  p.tilt_window = 0.0;
-  const double err_fixed = meanRangingError(d, df, truth, stages::processDrive(d, p).planes);
-  p.tilt_window = 2.0;
-  const double err_tilt = meanRangingError(d, df, truth, stages::processDrive(d, p).planes);
+  p.build.tilt_window = 0.0;
+  const double err_fixed = meanRangingError(d, df, truth, vehicle::buildLsm(d, p.build).planes);
+  p.build.tilt_window = 2.0;
+  const double err_tilt = meanRangingError(d, df, truth, vehicle::buildLsm(d, p.build).planes);
   INFO("true plane " << err_true << ", fixed plane " << err_fixed << ", tilted " << err_tilt);
   CHECK(err_tilt <= kRangeErrorFraction);
   CHECK(err_fixed >= kTiltImprovement * err_tilt);
@@ -130,9 +128,9 @@ TEST_CASE("simulated frames: the body's pitch and roll from the dead-reckoned eg
   // the default 601-frame window) find the constant mount error.
   stages::LoadedDrive off = d;
   off.calib.ground.normal_cam = vehicle::tiltNormal(d.calib.ground.normal_cam, 1.0 * kDeg, 0.0);
-  const double err_off = meanRangingError(off, df, truth, stages::processDrive(off, p).planes);
-  p.vp_calibration = true;
-  const auto both = stages::processDrive(off, p);
+  const double err_off = meanRangingError(off, df, truth, vehicle::buildLsm(off, p.build).planes);
+  p.build.vanishing.enabled = true;
+  const auto both = vehicle::buildLsm(off, p.build);
   const double err_both = meanRangingError(off, df, truth, both.planes);
   INFO("1 deg off, tilted " << err_off << ", tilted + VP " << err_both << " (" << both.vp_frames
                             << " VP frames)");
@@ -147,12 +145,12 @@ TEST_CASE(
   const VectorMap truth =
       io::readVectorMap(drive.parent_path().parent_path() / "truth/vector_map.json");
   stages::LsmBuildParams p;
-  p.min_observations = 1;
+  p.build.assembly.min_observations = 1;
   stages::LsmBuildInputs in;
   in.drive = drive;
   stages::LoadedDrive d = stages::loadDrive(in, p);
   d.T_odom_body = df.truth_T_enu_body;  // odom = enu: compare with the truth directly
-  const auto out = stages::processDrive(d, p);
+  const auto out = vehicle::buildLsm(d, p.build);
   std::map<int64_t, const MapInstance*> by_id;
   for (const auto& m : truth.instances) by_id[m.id] = &m;
   // Closest camera distance per truth id, from the observations.

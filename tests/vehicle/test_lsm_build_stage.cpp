@@ -3,11 +3,13 @@
 #include <catch2/catch.hpp>
 #include <fstream>
 
+#include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/drive_frames.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/stages/lsm_build.hpp"
+#include "mapfuse/vehicle/centerline.hpp"
 #include "sim_fixture.hpp"
 
 using namespace mapfuse;
@@ -32,21 +34,21 @@ int runApp(const fs::path& drive, const fs::path& out, const std::string& extra 
 TEST_CASE("configs/lsm-build.json mirrors the defaults, which are valid") {
   const auto j = io::readDocument(fs::path(MAPFUSE_SOURCE_DIR) / "configs/lsm-build.json");
   CHECK(j == paramsToJson(stages::LsmBuildParams{}));
-  CHECK_NOTHROW(stages::LsmBuildParams{}.validate());
+  CHECK_NOTHROW(validateParams(stages::LsmBuildParams{}));
   stages::LsmBuildParams bad;
-  bad.max_range = 1.0;
-  CHECK_THROWS_AS(bad.validate(), ConfigError);
+  bad.build.ranging.max_range = 1.0;
+  CHECK_THROWS_AS(validateParams(bad), ConfigError);
   bad = {};
   bad.semantics = "lidar";
-  CHECK_THROWS_WITH(bad.validate(), Catch::Contains("semantics"));
+  CHECK_THROWS_WITH(validateParams(bad), Catch::Contains("semantics"));
   bad = {};
-  bad.tilt_window = -1.0;
-  CHECK_THROWS_AS(bad.validate(), ConfigError);
-  CHECK_THROWS_WITH(bad.validate(), Catch::Contains("tilt_window"));
+  bad.build.tilt_window = -1.0;
+  CHECK_THROWS_AS(validateParams(bad), ConfigError);
+  CHECK_THROWS_WITH(validateParams(bad), Catch::Contains("tilt_window"));
   bad = {};
-  bad.max_track_range = 0.0;
-  CHECK_THROWS_AS(bad.validate(), ConfigError);
-  CHECK_THROWS_WITH(bad.validate(), Catch::Contains("max_track_range"));
+  bad.build.triangulation.max_range = 0.0;
+  CHECK_THROWS_AS(validateParams(bad), ConfigError);
+  CHECK_THROWS_WITH(validateParams(bad), Catch::Contains("max_track_range"));
 }
 
 TEST_CASE("lsm-build writes an LSM that reads back, validates and keeps the GPS fixes") {
@@ -76,9 +78,9 @@ TEST_CASE("lsm-build on masks (no ids) merges markings spatially") {
   p.render = false;
   const auto r = stages::runLsmBuild({drive, test::tempDir("lsm_build_masks"), {}, {}}, p);
   int lanes = 0;
-  for (const auto& e : r.lsm.elements) lanes += e.cls == CrowdClass::kLaneLine;
+  for (const auto& e : r.build.lsm.elements) lanes += e.cls == CrowdClass::kLaneLine;
   CHECK(lanes > 10);
-  CHECK(r.summary["ground_instances"].get<int>() < r.summary["ranged_markings"].get<int>() / 5);
+  CHECK(r.build.assembly.ground_instances < r.build.ranged_markings / 5);
 }
 
 TEST_CASE("lsm-build rejects bad inputs with clear errors and exit codes") {
@@ -117,7 +119,7 @@ TEST_CASE("lsm-build rejects bad inputs with clear errors and exit codes") {
   }
   SECTION("a mask without markings is valid and yields no ground observations") {
     cv::Mat empty(720, 1280, CV_8UC1, cv::Scalar(0));
-    CHECK(io::observationsFromMask(empty, 20).empty());
+    CHECK(vehicle::observationsFromMask(empty, 20).empty());
   }
   SECTION("not a drive folder -> exit 3; missing folder -> exit 4; poses count mismatch -> 3") {
     const auto d = test::tempDir("lsm_not_a_drive");

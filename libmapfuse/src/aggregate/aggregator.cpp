@@ -4,6 +4,9 @@
 #include <map>
 #include <set>
 
+#include "bezier_fit.hpp"
+#include "discrete_merge.hpp"
+#include "lane_instantiation.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
 
 namespace mapfuse::aggregate {
@@ -73,7 +76,8 @@ VectorMap aggregateObservations(const ObservationSet& set, const AggregatorParam
     const auto idx = indicesOfClass(set, cls);
     if (idx.empty()) continue;
     std::size_t noise = 0;
-    auto merged = mergeDiscrete(set.items, idx, cls, params.discrete, set.num_drives, &noise);
+    auto merged = mergeDiscrete(set.items, idx, cls, params.discrete, set.num_drives,
+                                params.lanes.partner_drives, &noise);  // declared once, in lanes
     stats.noise[std::size_t(c)] = noise;
     for (auto& inst : merged) map.instances.push_back(std::move(inst));
   }

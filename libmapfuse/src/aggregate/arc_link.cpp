@@ -1,4 +1,4 @@
-#include "mapfuse/aggregate/arc_link.hpp"
+#include "arc_link.hpp"
 
 #include <Eigen/Dense>
 #include <cmath>

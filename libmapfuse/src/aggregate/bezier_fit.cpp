@@ -1,4 +1,4 @@
-#include "mapfuse/aggregate/bezier_fit.hpp"
+#include "bezier_fit.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>

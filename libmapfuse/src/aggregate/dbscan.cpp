@@ -1,4 +1,4 @@
-#include "mapfuse/aggregate/dbscan.hpp"
+#include "dbscan.hpp"
 
 #include <deque>
 

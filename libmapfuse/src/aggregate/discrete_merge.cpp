@@ -1,4 +1,4 @@
-#include "mapfuse/aggregate/discrete_merge.hpp"
+#include "discrete_merge.hpp"
 
 // Boost.Geometry instantiations trigger GCC false positives.
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
@@ -12,9 +12,13 @@
 #include <map>
 #include <set>
 
-#include "mapfuse/aggregate/dbscan.hpp"
+#include "dbscan.hpp"
+#include "partner_drives.hpp"
+#include "stop_line_merge.hpp"
 
 namespace mapfuse::aggregate {
+using detail::partnerDrives;
+using detail::stopLineDistance;
 namespace {
 
 namespace bg = boost::geometry;
@@ -103,7 +107,7 @@ double polygonIou2d(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
 std::vector<MapInstance> mergeDiscrete(const std::vector<Observation>& items,
                                        const std::vector<std::size_t>& indices, CrowdClass cls,
                                        const DiscreteMergeParams& p, int num_drives,
-                                       std::size_t* noise) {
+                                       int partner_drives, std::size_t* noise) {
   const std::size_t n = indices.size();
   const GeometryKind kind = geometryKind(cls);
   const bool by_iou = cls == CrowdClass::kGroundArrow || cls == CrowdClass::kCrosswalk;
@@ -126,32 +130,60 @@ std::vector<MapInstance> mergeDiscrete(const std::vector<Observation>& items,
                                                           : p.point_radius;
   std::vector<BoxValue> boxes(n);
   for (std::size_t i = 0; i < n; ++i)
-    boxes[i] = {by_iou ? boxAround(geom[i], 0.0) : boxAround({centre[i]}, radius), i};
+    boxes[i] = {by_iou      ? boxAround(geom[i], 0.0)
+                : stop_line ? boxAround(geom[i], radius)  // a piece's midpoint on the segment
+                            : boxAround({centre[i]}, radius),
+                i};
   const bgi::rtree<BoxValue, bgi::rstar<16>> tree(boxes.begin(), boxes.end());
   const double cos_max = std::cos(p.stop_line_angle_deg * M_PI / 180.0);
-  std::vector<std::vector<std::size_t>> neighbours(n);
-#pragma omp parallel for schedule(dynamic, 32)
-  for (std::ptrdiff_t si = 0; si < std::ptrdiff_t(n); ++si) {
-    const std::size_t i = std::size_t(si);
+  // Neighbours among the candidates of at most `partner_drives` other drives
+  // (partner_drives.hpp), made symmetric for DBSCAN.
+  auto driveOf = [&](std::size_t i) { return items[indices[i]].drive; };
+  std::vector<std::vector<std::size_t>> tested(n);
+#pragma omp parallel
+  {
     std::vector<BoxValue> hits;
-    tree.query(bgi::intersects(boxes[i].first), std::back_inserter(hits));
-    for (const auto& h : hits) {
-      const std::size_t j = h.second;
-      if (j == i) continue;
-      bool near = false;
-      if (by_iou) {
-        near = polygonIou2d(geom[i], geom[j]) >= p.min_iou;
-      } else {
-        near = (centre[i] - centre[j]).norm() <= radius;
-        if (near && stop_line) {
-          const Vec3 di = (geom[i][1] - geom[i][0]).normalized();
-          const Vec3 dj = (geom[j][1] - geom[j][0]).normalized();
-          near = std::abs(di.dot(dj)) >= cos_max;
+    std::vector<int> present, partners;
+#pragma omp for schedule(dynamic, 32)
+    for (std::ptrdiff_t si = 0; si < std::ptrdiff_t(n); ++si) {
+      const std::size_t i = std::size_t(si);
+      hits.clear();
+      tree.query(bgi::intersects(boxes[i].first), std::back_inserter(hits));
+      present.clear();
+      for (const auto& h : hits) present.push_back(driveOf(h.second));
+      std::sort(present.begin(), present.end());
+      present.erase(std::unique(present.begin(), present.end()), present.end());
+      partnerDrives(present, driveOf(i), partner_drives,
+                    uint64_t(driveOf(i)) + uint64_t(i) * 40503ull, partners);
+      for (const auto& h : hits) {
+        const std::size_t j = h.second;
+        if (j == i || !std::binary_search(partners.begin(), partners.end(), driveOf(j))) continue;
+        bool near = false;
+        if (by_iou) {
+          near = polygonIou2d(geom[i], geom[j]) >= p.min_iou;
+        } else {
+          near = stop_line ? stopLineDistance({geom[i][0], geom[i][1]}, {geom[j][0], geom[j][1]}) <=
+                                 radius
+                           : (centre[i] - centre[j]).norm() <= radius;
+          if (near && stop_line) {
+            const Vec3 di = (geom[i][1] - geom[i][0]).normalized();
+            const Vec3 dj = (geom[j][1] - geom[j][0]).normalized();
+            near = std::abs(di.dot(dj)) >= cos_max;
+          }
         }
+        if (near) tested[i].push_back(j);
       }
-      if (near) neighbours[i].push_back(j);
     }
-    std::sort(neighbours[i].begin(), neighbours[i].end());
+  }
+  std::vector<std::vector<std::size_t>> neighbours(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j : tested[i]) {
+      neighbours[i].push_back(j);
+      neighbours[j].push_back(i);
+    }
+  for (auto& l : neighbours) {
+    std::sort(l.begin(), l.end());
+    l.erase(std::unique(l.begin(), l.end()), l.end());
   }
   const int min_pts = std::max(1, std::min(p.min_pts, num_drives));
   const DbscanResult clusters = dbscan(neighbours, min_pts);
@@ -189,6 +221,18 @@ std::vector<MapInstance> mergeDiscrete(const std::vector<Observation>& items,
     }
     for (auto& c : acc) c /= wsum;
     inst.points = acc;
+    if (stop_line) {  // whole and partial observations (stop_line_merge.hpp)
+      std::vector<detail::Segment> segs;
+      std::vector<double> ws;
+      std::size_t r = 0;
+      for (std::size_t i : mem) {
+        if (i == ref) r = segs.size();
+        segs.push_back({geom[i][0], geom[i][1]});
+        ws.push_back(std::max(items[indices[i]].confidence, 1e-3));
+      }
+      const detail::Segment m = detail::mergeStopLines(segs, ws, r);
+      inst.points = {m[0], m[1]};
+    }
     if (kind == GeometryKind::kPoint) inst.height = height / wsum;
     inst.support.drives = int(drives.size());
     inst.attributes.style = majority(styles, LineStyle::kNone);

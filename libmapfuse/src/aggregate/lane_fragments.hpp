@@ -6,7 +6,7 @@
 #include <set>
 #include <vector>
 
-#include "mapfuse/aggregate/lane_instantiation.hpp"
+#include "lane_instantiation.hpp"
 
 namespace mapfuse::aggregate {
 

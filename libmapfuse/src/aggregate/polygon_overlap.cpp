@@ -1,4 +1,4 @@
-#include "mapfuse/aggregate/polygon_overlap.hpp"
+#include "polygon_overlap.hpp"
 
 #include <algorithm>
 #include <numeric>

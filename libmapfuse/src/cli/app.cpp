@@ -79,6 +79,29 @@ int run(CLI::App& app, int argc, char** argv, const std::function<void()>& body)
   }
 }
 
+CommandTool::CommandTool(const char* name, const char* description) : app_(description, name) {
+  app_.require_subcommand(1);
+}
+
+void CommandTool::add(const std::string& name, const std::string& help, const Setup& setup) {
+  Command c;
+  c.sub = app_.add_subcommand(name, help);
+  c.common = std::make_unique<CommonOptions>();
+  addCommonOptions(*c.sub, *c.common);
+  c.action = setup(*c.sub);
+  commands_.push_back(std::move(c));
+}
+
+int CommandTool::run(int argc, char** argv) {
+  return cli::run(app_, argc, argv, [&] {
+    for (const auto& c : commands_)
+      if (c.sub->parsed()) {
+        applyCommonOptions(*c.common);
+        c.action();
+      }
+  });
+}
+
 std::vector<std::string> expandInputList(const std::vector<std::string>& args) {
   std::vector<std::string> out;
   auto readList = [&](std::istream& in) {
@@ -102,6 +125,18 @@ std::vector<std::string> expandInputList(const std::vector<std::string>& args) {
     }
   }
   return out;
+}
+
+std::string configArgument(int argc, char** argv) {
+  std::string file;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--config" && i + 1 < argc)
+      file = argv[i + 1];
+    else if (arg.rfind("--config=", 0) == 0)
+      file = arg.substr(9);
+  }
+  return file;
 }
 
 }  // namespace mapfuse::cli

@@ -14,7 +14,7 @@
 #include <unordered_map>
 
 #include "mapfuse/aggregate/geometry2d.hpp"
-#include "mapfuse/aggregate/observations.hpp"
+#include "mapfuse/geo/origin.hpp"
 
 namespace mapfuse::eval {
 namespace {
@@ -307,9 +307,12 @@ MapMetrics evaluateMap(const VectorMap& map_in, const VectorMap& truth, const Ma
 VectorMap clipToCoverage(const VectorMap& truth, const std::vector<Pose3>& poses,
                          const CoverageWedge& wedge, VectorMap* outside) {
   const double cell = std::hypot(wedge.range, wedge.lateral);  // farthest covered point
-  const double tan_fov = wedge.half_fov < M_PI / 2 ? std::tan(wedge.half_fov) : 1e18;
+  const double tan_fov =
+      wedge.half_fov_deg < 90 ? std::tan(wedge.half_fov_deg * M_PI / 180.0) : 1e18;
   auto key = [&](double x, double y) {
-    return (int64_t(std::floor(x / cell)) << 32) ^ (int64_t(std::floor(y / cell)) & 0xffffffffLL);
+    const auto ix = uint64_t(int64_t(std::floor(x / cell))),
+               iy = uint64_t(int64_t(std::floor(y / cell)));
+    return int64_t((ix << 32) ^ (iy & 0xffffffffULL));  // unsigned: a negative cell shifts too
   };
   std::unordered_multimap<int64_t, const Pose3*> grid;
   for (const auto& p : poses) grid.emplace(key(p.translation().x(), p.translation().y()), &p);
@@ -318,11 +321,12 @@ VectorMap clipToCoverage(const VectorMap& truth, const std::vector<Pose3>& poses
       for (int dy = -1; dy <= 1; ++dy) {
         auto r = grid.equal_range(key(q.x() + dx * cell, q.y() + dy * cell));
         for (auto it = r.first; it != r.second; ++it) {
-          const Eigen::Matrix3d R = it->second->rotation();
+          const Eigen::Matrix3d R = it->second->linear();
           const Vec3 d = q - it->second->translation();
           const double bx = R.col(0).head<2>().dot(d.head<2>()),
                        by = std::abs(R.col(1).head<2>().dot(d.head<2>()));
-          if (bx >= 0 && bx <= wedge.range && by <= wedge.lateral && by <= bx * tan_fov)
+          if (bx >= wedge.apex_x && bx <= wedge.range && by <= wedge.lateral &&
+              by <= (bx - wedge.apex_x) * tan_fov)
             return true;
         }
       }

@@ -12,6 +12,22 @@
 
 namespace mapfuse::eval {
 
+std::vector<std::pair<std::filesystem::path, TrueTrajectory>> readTrueTrajectories(
+    const std::filesystem::path& folder) {
+  if (!std::filesystem::is_directory(folder))
+    throw IoError(folder.string(), "not a folder of <drive>.trajectory.json files");
+  std::vector<std::filesystem::path> paths;
+  for (const auto& e : std::filesystem::directory_iterator(folder)) {
+    const std::string name = e.path().filename().string();
+    if (name.size() > 16 && name.rfind(".trajectory.json") == name.size() - 16)
+      paths.push_back(e.path());
+  }
+  std::sort(paths.begin(), paths.end());
+  std::vector<std::pair<std::filesystem::path, TrueTrajectory>> out;
+  for (const auto& f : paths) out.emplace_back(f, readTrueTrajectory(f));
+  return out;
+}
+
 TrueTrajectory readTrueTrajectory(const std::filesystem::path& path) {
   const auto doc = io::readDocument(path);
   const io::JsonView v(doc, path.string());

@@ -27,7 +27,9 @@ AlignResult alignLsms(std::vector<Lsm>& lsms, const AlignSettings& s) {
   auto since = [](Clock::time_point t) {
     return std::chrono::duration<double>(Clock::now() - t).count();
   };
-  const std::vector<Lsm> priors = lsms;  // georef poses: GPS priors and odometry
+  // The georeferenced keyframes (GPS priors and odometry of eq. (9)-(10)); elements not copied.
+  std::vector<Lsm> priors(lsms.size());
+  for (std::size_t i = 0; i < lsms.size(); ++i) priors[i].keyframes = lsms[i].keyframes;
   AlignResult r;
   r.method = s.method;
   auto t = Clock::now();
@@ -37,15 +39,22 @@ AlignResult alignLsms(std::vector<Lsm>& lsms, const AlignSettings& s) {
   r.constraints_pcm_kept = pcmSelect(lsms, r.constraints, s);
   r.seconds_pcm = since(t);
   t = Clock::now();
-  r.cost_pose_graph =  // eq. (8)-(11)
-      solveMultiPoseGraph(lsms, priors, r.constraints, s, &r.converged_pose_graph);
-  r.converged = r.converged_pose_graph;
+  const GraphSolve pg = solveMultiPoseGraph(lsms, priors, r.constraints, s);  // eq. (8)-(11)
+  r.cost_pose_graph = pg.cost;
+  r.converged = r.converged_pose_graph = pg.converged;
+  r.pose_graph_solves = pg.rounds;
+  r.pose_graph_iterations = pg.iterations;
+  r.pose_graph_pcg_iterations = pg.pcg_iterations;
   r.seconds_pose_graph = since(t);
   if (s.method == AlignMethod::kGbaSgicp) {
     t = Clock::now();
     r.ran_gba = true;  // eq. (12)-(14)
-    r.cost_gba = solveGba(lsms, priors, s, &r.gba_residuals, &r.converged_gba);
-    r.converged = r.converged_gba;
+    const GraphSolve g = solveGba(lsms, priors, s);
+    r.cost_gba = g.cost;
+    r.gba_residuals = g.residuals;
+    r.converged = r.converged_gba = g.converged;
+    r.gba_iterations = g.iterations;
+    r.gba_pcg_iterations = g.pcg_iterations;
     r.seconds_gba = since(t);
   }
   for (const auto& c : r.constraints) {

@@ -1,90 +1,82 @@
-// Multi-trajectory pose graph (eq. (8)-(11)) and GBA (eq. (12)-(14)), Song et al. 2023, in Ceres.
+// Multi-trajectory pose graph (eq. (8)-(11)) and GBA (eq. (12)-(14)), Song et al. 2023, solved
+// by Levenberg-Marquardt with PCG steps over the keyframe poses (pose_problem.hpp): every
+// iteration costs O(keyframes + residuals), whatever the number of traversals at a place.
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <unordered_map>
 
-#include "element_factor.hpp"
-#include "factors.hpp"
+#include "mapfuse/core/log.hpp"
 #include "mapfuse/fusion/align.hpp"
 #include "mapfuse/fusion/voxel_hash.hpp"
+#include "pose_problem.hpp"
 
 namespace mapfuse::fusion {
 
-using detail::PoseParams;
-
 namespace {
 
-using PoseSet = std::vector<std::vector<PoseParams>>;
+using detail::PoseProblem;
+using detail::PoseVar;
 
-PoseSet makePoses(const std::vector<Lsm>& lsms) {
-  PoseSet P(lsms.size());
-  for (std::size_t l = 0; l < lsms.size(); ++l) {
-    P[l].resize(lsms[l].keyframes.size());
-    for (std::size_t k = 0; k < P[l].size(); ++k) P[l][k].set(lsms[l].keyframes[k].T_frame_body);
-  }
-  return P;
+/// Square-root information (upper-triangular L^T with L L^T = info) of a covariance.
+Matrix6d sqrtInformation(const Matrix6d& cov) {
+  const Matrix6d info = cov.inverse();
+  return info.llt().matrixL().transpose();
+}
+
+std::vector<int> chainSizes(const std::vector<Lsm>& lsms) {
+  std::vector<int> n;
+  for (const auto& l : lsms) n.push_back(int(l.keyframes.size()));
+  return n;
+}
+
+std::vector<PoseVar> posesOf(const std::vector<Lsm>& lsms) {
+  std::vector<PoseVar> x;
+  for (const auto& l : lsms)
+    for (const auto& k : l.keyframes) x.push_back(PoseVar::from(k.T_frame_body));
+  return x;
+}
+
+template <int D>
+void writeBack(std::vector<Lsm>& lsms, const PoseProblem<D>& P) {
+  for (int l = 0; l < int(lsms.size()); ++l)
+    for (int k = 0; k < int(lsms[l].keyframes.size()); ++k)
+      lsms[l].keyframes[k].T_frame_body = P.poses()[P.poseIndex(l, k)].pose();
 }
 
 // eq. (9) priors and eq. (10) odometry, both from the georeferenced keyframes.
-void addPriorsAndOdometry(ceres::Problem& problem, PoseSet& P, const std::vector<Lsm>& priors,
-                          const AlignSettings& s, bool yaw_only = false) {
-  for (std::size_t l = 0; l < P.size(); ++l) {
+template <int D>
+void addPriorsAndOdometry(PoseProblem<D>& P, const std::vector<Lsm>& priors,
+                          const AlignSettings& s) {
+  for (int l = 0; l < int(priors.size()); ++l) {
     const auto& kfs = priors[l].keyframes;
-    for (std::size_t k = 0; k < P[l].size(); ++k) {
-      detail::addPose(problem, P[l][k], yaw_only);
+    for (int k = 0; k < int(kfs.size()); ++k) {
       Matrix6d cov = Matrix6d::Zero();
       cov.topLeftCorner<3, 3>() = kfs[k].covariance.topLeftCorner<3, 3>();
       cov.diagonal().tail<3>().setConstant(s.prior_rotation_sigma * s.prior_rotation_sigma);
       cov.topLeftCorner<3, 3>().diagonal().array() += 1e-6;
-      problem.AddResidualBlock(
-          detail::PosePriorFactor::create(kfs[k].T_frame_body, detail::sqrtInformation<6>(cov)),
-          nullptr, P[l][k].t, P[l][k].q);
+      P.addPrior(P.poseIndex(l, k), PoseVar::from(kfs[k].T_frame_body), sqrtInformation(cov));
       if (k == 0) continue;
       const Pose3 rel = kfs[k - 1].T_frame_body.inverse() * kfs[k].T_frame_body;
       const double d = rel.translation().norm();
       const Matrix6d oc =
           diagonalCovariance(std::max(s.odom_min_sigma, s.odom_sigma_per_m * d),
                              std::max(0.1 * s.odom_min_sigma, 0.1 * s.odom_sigma_per_m * d));
-      problem.AddResidualBlock(
-          detail::RelativePoseFactor::create(rel, detail::sqrtInformation<6>(oc)), nullptr,
-          P[l][k - 1].t, P[l][k - 1].q, P[l][k].t, P[l][k].q);
+      P.addRelative(P.poseIndex(l, k - 1), P.poseIndex(l, k), rel, sqrtInformation(oc));
     }
   }
 }
 
-// cg_iterations > 0: inexact Gauss-Newton steps by conjugate gradients on the normal equations
-// (CGNR, Jacobi preconditioner): GBA's normal equations hold a dense clique of every traversal's
-// keyframes at each place, which a sparse Cholesky factorizes at O((traversals * dof)^3) per
-// place; CG costs O(nonzeros of J) per iteration.
-double solve(ceres::Problem& problem, const AlignSettings& s, double function_tolerance,
-             int cg_iterations, bool* converged) {
-  ceres::Solver::Options opt;
-  opt.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-  opt.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  opt.max_num_iterations = s.solver_iterations;
-  opt.num_threads = s.threads;
-  opt.function_tolerance = function_tolerance;
-#if CERES_VERSION_MAJOR == 2 && CERES_VERSION_MINOR < 2
-  // CXSparse's simplicial Cholesky beats CHOLMOD's supernodal one (with Debian's ATLAS) on these
-  // graphs of small dense cliques (every traversal's keyframes at one place): GBA over 50
-  // Karlsruhe traversals 0.54 -> 0.41 s. Ceres 2.2 dropped CXSparse; the default serves there.
-  if (ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::CX_SPARSE))
-    opt.sparse_linear_algebra_library_type = ceres::CX_SPARSE;
-#endif
-  if (cg_iterations > 0) {
-    opt.linear_solver_type = ceres::CGNR;
-    opt.preconditioner_type = ceres::JACOBI;
-    opt.max_linear_solver_iterations = cg_iterations;
-  }
-  ceres::Solver::Summary summary;
-  ceres::Solve(opt, &problem, &summary);
-  if (converged) *converged = summary.termination_type == ceres::CONVERGENCE;
-  return summary.final_cost;
-}
-
-void writeBack(std::vector<Lsm>& lsms, const PoseSet& P) {
-  for (std::size_t l = 0; l < lsms.size(); ++l)
-    for (std::size_t k = 0; k < P[l].size(); ++k) lsms[l].keyframes[k].T_frame_body = P[l][k].get();
+detail::PoseProblemSettings problemSettings(const AlignSettings& s, double function_tolerance) {
+  detail::PoseProblemSettings p;
+  p.max_iterations = s.solver_iterations;
+  p.function_tolerance = function_tolerance;
+  p.pcg.max_iterations = s.pcg_iterations;
+  p.pcg.tolerance = s.pcg_tolerance;
+  p.pcg.threads = s.threads;
+  p.cell_size = s.pcg_cell_size;
+  return p;
 }
 
 struct ElementPoint {
@@ -135,25 +127,157 @@ std::vector<ElementPoint> elementPoints(const std::vector<Lsm>& lsms, CrowdClass
   return out;
 }
 
+// GBA association of one class (eq. (12)): each point is tied to the nearest point of at most
+// `gba_max_partners` other traversals within the association distance. The partner traversals
+// are chosen per keyframe, not per point: the traversals present at the place (a 16 m cell), in
+// a rotating order whose start depends on the keyframe, so that all points of one keyframe pair
+// with the same few keyframes (the normal equations stay O(partners) blocks per keyframe) and
+// consecutive keyframes pair with different traversals (every pair of traversals at a place
+// stays coupled). Each try is one lookup in one traversal's index: O(partners) per point,
+// whatever the number of traversals there.
+template <int D>
+void associate(PoseProblem<D>& P, const std::vector<ElementPoint>& pts, const std::vector<int>& ids,
+               int lsms, const AlignSettings& s) {
+  constexpr double kCell = 16.0;  // m, presence cells
+  constexpr int kProbes = 3;      // traversals tried per partner slot
+  const int n = int(pts.size());
+  std::vector<Eigen::Vector3d> world(n);
+  for (int i = 0; i < n; ++i) {
+    const PoseVar& x = P.poses()[P.poseIndex(pts[i].lsm, pts[i].kf)];
+    world[i] = x.q * pts[i].body + x.t;
+  }
+  // One index per traversal; presence lists per cell.
+  std::vector<std::vector<int>> members(lsms);
+  for (int i = 0; i < n; ++i) members[pts[i].lsm].push_back(i);
+  // Cells of twice the radius: a query then visits at most 2 x 2 x 2 cells (the ones nearer than
+  // the radius), not 27.
+  const double radius = 2.0 * std::max(0.1, s.gba_association_distance);
+  std::vector<VoxelIndex> index(lsms);
+  for (int l = 0; l < lsms; ++l) {
+    std::vector<Eigen::Vector3d> w;
+    w.reserve(members[l].size());
+    for (int i : members[l]) w.push_back(world[i]);
+    if (!w.empty()) index[l] = VoxelIndex(w, radius);
+  }
+  auto cellKey = [&](const Eigen::Vector3d& p) {
+    return (uint64_t(uint32_t(int32_t(std::floor(p.x() / kCell)))) << 32) |
+           uint32_t(int32_t(std::floor(p.y() / kCell)));
+  };
+  std::unordered_map<uint64_t, std::vector<int>> present;
+  for (int i = 0; i < n; ++i) {
+    auto& v = present[cellKey(world[i])];
+    if (v.empty() || v.back() != pts[i].lsm) v.push_back(pts[i].lsm);
+  }
+  for (auto& [key, v] : present) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+  }
+  const double r2 = s.gba_association_distance * s.gba_association_distance;
+  std::vector<std::pair<int, int>> found;  // (point a, point b)
+#pragma omp parallel num_threads(s.threads)
+  {
+    std::vector<std::pair<int, int>> local;
+    std::vector<int> others, chosen;
+#pragma omp for schedule(static, 1024)
+    for (int i = 0; i < n; ++i) {
+      const auto& here = present.at(cellKey(world[i]));
+      others.clear();
+      for (int l : here)
+        if (l != pts[i].lsm) others.push_back(l);
+      const int m = int(others.size());
+      if (m == 0) continue;
+      const int keep = s.gba_max_partners > 0 ? std::min(m, s.gba_max_partners) : m;
+      const int probes = s.gba_max_partners > 0 ? kProbes : 1;
+      const int offset = int((uint64_t(pts[i].kf) + 7919ull * uint64_t(pts[i].lsm)) % m);
+      chosen.clear();
+      for (int t = 0; t < keep; ++t) {
+        const int j0 = offset + t * m / keep;
+        for (int u = 0; u < probes && u < m; ++u) {
+          const int l = others[(j0 + u) % m];
+          if (std::find(chosen.begin(), chosen.end(), l) != chosen.end()) continue;
+          double d2 = 0;
+          const int j = index[l].size() ? index[l].nearest(world[i], r2, &d2) : -1;
+          if (j < 0) continue;
+          chosen.push_back(l);
+          local.emplace_back(ids[i], ids[members[l][j]]);
+          break;
+        }
+      }
+    }
+#pragma omp critical
+    found.insert(found.end(), local.begin(), local.end());
+  }
+  std::sort(found.begin(), found.end());  // deterministic order whatever the threads did
+  for (const auto& [a, b] : found) P.addElementPair(a, b);
+}
+
+template <int D>
+GraphSolve gba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const AlignSettings& s) {
+  PoseProblem<D> P(chainSizes(lsms), posesOf(lsms));
+  addPriorsAndOdometry(P, priors, s);
+  P.setElementHuber(s.gba_huber);
+  // Element points (anchor body frames) and their problem ids, per class.
+  std::vector<std::vector<ElementPoint>> pts(kNumCrowdClasses);
+  std::vector<std::vector<int>> ids(kNumCrowdClasses);
+  for (int c = 0; c < kNumCrowdClasses; ++c) {
+    pts[c] = elementPoints(lsms, CrowdClass(c), s.gba_line_stride);
+    for (const auto& p : pts[c])
+      ids[c].push_back(P.addElementPoint(P.poseIndex(p.lsm, p.kf), p.body, p.dir, p.plane,
+                                         p.weight / s.gba_point_sigma));
+  }
+  GraphSolve out;
+  for (int round = 0; round < std::max(1, s.gba_rounds); ++round) {
+    P.clearElementPairs();
+    for (int c = 0; c < kNumCrowdClasses; ++c)
+      if (!pts[c].empty()) associate(P, pts[c], ids[c], int(lsms.size()), s);
+    out.residuals = int(P.elementPairs());
+    // Rounds before the last only feed the next association: a looser stop suffices.
+    const bool last = round + 1 >= s.gba_rounds;
+    const auto r =
+        P.solve(problemSettings(s, last ? s.function_tolerance : s.gba_early_round_tolerance));
+    out.cost = r.final_cost;
+    out.converged = r.converged;
+    out.iterations += r.iterations;
+    out.pcg_iterations += r.pcg_iterations;
+    out.blocks = r.blocks;
+    out.keyframes = int(P.poses().size());
+    ++out.rounds;
+    MAPFUSE_DEBUG("align: GBA round "
+                  << round << ": " << P.elementPairs() << " residuals, " << r.blocks
+                  << " blocks over " << P.poses().size() << " keyframes, " << r.iterations
+                  << " LM / " << r.pcg_iterations << " PCG iterations, cost " << r.initial_cost
+                  << " -> " << r.final_cost);
+  }
+  writeBack(lsms, P);
+  return out;
+}
+
 }  // namespace
 
-double solveMultiPoseGraph(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors,
-                           std::vector<InterConstraint>& constraints, const AlignSettings& s,
-                           bool* converged) {
-  double cost = 0;
+GraphSolve solveMultiPoseGraph(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors,
+                               std::vector<InterConstraint>& constraints, const AlignSettings& s) {
+  GraphSolve out;
   for (int round = 0; round < std::max(1, s.graph_rejection_rounds); ++round) {
     // Later rounds start from the previous solution: only the dropped constraints changed.
-    PoseSet P = makePoses(lsms);
-    ceres::Problem problem;
-    addPriorsAndOdometry(problem, P, priors, s);
+    PoseProblem<6> P(chainSizes(lsms), posesOf(lsms));
+    addPriorsAndOdometry(P, priors, s);
     for (const auto& c : constraints) {  // eq. (11), Huber-robust
       if (!c.consistent || c.graph_outlier) continue;
-      problem.AddResidualBlock(
-          detail::RelativePoseFactor::create(c.T_a_b, detail::sqrtInformation<6>(c.covariance)),
-          new ceres::HuberLoss(s.inter_huber), P[c.lsm_a][c.kf_a].t, P[c.lsm_a][c.kf_a].q,
-          P[c.lsm_b][c.kf_b].t, P[c.lsm_b][c.kf_b].q);
+      P.addRelative(P.poseIndex(c.lsm_a, c.kf_a), P.poseIndex(c.lsm_b, c.kf_b), c.T_a_b,
+                    sqrtInformation(c.covariance), s.inter_huber);
     }
-    cost = solve(problem, s, s.function_tolerance, 0, converged);
+    const auto r = P.solve(problemSettings(s, s.function_tolerance));
+    out.cost = r.final_cost;
+    out.converged = r.converged;
+    out.iterations += r.iterations;
+    out.pcg_iterations += r.pcg_iterations;
+    out.blocks = r.blocks;
+    out.keyframes = int(P.poses().size());
+    ++out.rounds;
+    MAPFUSE_DEBUG("align: pose graph round " << round << ": " << r.blocks << " blocks, "
+                                             << r.iterations << " LM / " << r.pcg_iterations
+                                             << " PCG iterations, cost " << r.initial_cost << " -> "
+                                             << r.final_cost);
     writeBack(lsms, P);
     // Constraints far off the joint solution (lane / dash aliases that PCM could not see because
     // they were consistent within their LSM pair) are dropped and the graph re-solved.
@@ -171,74 +295,13 @@ double solveMultiPoseGraph(std::vector<Lsm>& lsms, const std::vector<Lsm>& prior
     }
     if (dropped == 0) break;
   }
-  return cost;
+  return out;
 }
 
-double solveGba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const AlignSettings& s,
-                int* residuals, bool* converged) {
-  double cost = 0;
-  for (int round = 0; round < std::max(1, s.gba_rounds); ++round) {
-    PoseSet P = makePoses(lsms);
-    ceres::Problem problem;
-    // 4 DOF: roll and pitch are held where georef's gravity prior put them; the normal equations
-    // (dense cliques of every traversal's keyframes at one place) shrink from 6 to 4 per pose.
-    addPriorsAndOdometry(problem, P, priors, s, s.gba_dof == 4);
-    int count = 0;
-    for (int c = 0; c < kNumCrowdClasses; ++c) {
-      const auto cls = CrowdClass(c);
-      const std::vector<ElementPoint> pts = elementPoints(lsms, cls, s.gba_line_stride);
-      if (pts.empty()) continue;
-      std::vector<Eigen::Vector3d> world(pts.size());
-      for (std::size_t i = 0; i < pts.size(); ++i)
-        world[i] = lsms[pts[i].lsm].keyframes[pts[i].kf].T_frame_body * pts[i].body;
-      // One index over the class; each point keeps its nearest partner in every other traversal.
-      const VoxelIndex index(world, std::max(0.1, s.gba_association_distance));
-      const double r2 = s.gba_association_distance * s.gba_association_distance;
-      struct Partner {
-        int lsm, point;
-        double d2;
-      };
-      std::vector<Partner> partners;
-      for (int i = 0; i < int(pts.size()); ++i) {
-        partners.clear();
-        index.forEachWithin(world[i], r2, [&](int j, double d2) {
-          const int l = pts[j].lsm;
-          if (l == pts[i].lsm) return;
-          for (Partner& p : partners)
-            if (p.lsm == l) {
-              if (d2 < p.d2) p = Partner{l, j, d2};
-              return;
-            }
-          partners.push_back(Partner{l, j, d2});
-        });
-        std::sort(partners.begin(), partners.end(),
-                  [](const Partner& a, const Partner& b) { return a.lsm < b.lsm; });
-        // With many traversals, every point is tied to an evenly spread subset of the others
-        // (offset rotating with the point), so that each pair of traversals stays coupled while
-        // the residual count grows linearly, not quadratically, with the traversals.
-        const int n = int(partners.size());
-        const int keep = s.gba_max_partners > 0 ? std::min(n, s.gba_max_partners) : n;
-        for (int k = 0; k < keep; ++k) {
-          const int j = partners[(i + k * n / keep) % n].point;
-          const ElementPoint& a = pts[i];
-          const ElementPoint& b = pts[j];
-          problem.AddResidualBlock(
-              new detail::ElementCost(detail::ElementResidual{a.body, b.body, b.dir, b.plane,
-                                                              a.weight / s.gba_point_sigma}),
-              new ceres::HuberLoss(s.gba_huber), P[a.lsm][a.kf].t, P[a.lsm][a.kf].q,
-              P[b.lsm][b.kf].t, P[b.lsm][b.kf].q);
-          ++count;
-        }
-      }
-    }
-    if (residuals) *residuals = count;
-    // Rounds before the last only feed the next association: a looser stop suffices.
-    const bool last = round + 1 >= s.gba_rounds;
-    cost = solve(problem, s, last ? s.function_tolerance : s.gba_early_round_tolerance,
-                 s.gba_cg_iterations, converged);
-    writeBack(lsms, P);
-  }
-  return cost;
+GraphSolve solveGba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors,
+                    const AlignSettings& s) {
+  // 4 DOF: roll and pitch are held where georef's gravity prior put them.
+  return s.gba_dof == 4 ? gba<4>(lsms, priors, s) : gba<6>(lsms, priors, s);
 }
 
 }  // namespace mapfuse::fusion

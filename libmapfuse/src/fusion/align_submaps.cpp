@@ -2,6 +2,8 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <map>
+#include <tuple>
+#include <unordered_map>
 
 #include "align_internal.hpp"
 #include "mapfuse/fusion/voxel_hash.hpp"
@@ -50,12 +52,15 @@ std::vector<double> labelWeights(const std::vector<double>& class_weights) {
 
 }  // namespace detail
 
-Cloud elementCloud(const Lsm& lsm, int kf_begin, int kf_end, double sigma) {
+namespace {
+
+// Element points of the listed elements in the LSM frame, with geometry covariances; of solid
+// lane lines only every `solid_stride`-th point.
+Cloud cloudOf(const Lsm& lsm, const std::vector<int>& elements, double sigma, int solid_stride) {
   Cloud c;
-  for (const Element& e : lsm.elements) {
-    const int k = int(lsm.keyframeIndex(e.anchor));
-    if (k < kf_begin || k >= kf_end) continue;
-    const Pose3& T = lsm.keyframes[k].T_frame_body;
+  for (int ei : elements) {
+    const Element& e = lsm.elements[ei];
+    const Pose3& T = lsm.keyframes[lsm.keyframeIndex(e.anchor)].T_frame_body;
     std::vector<Eigen::Vector3d> pts;
     for (const auto& p : e.points_body) pts.push_back(T * p);
     const GeometryKind kind = geometryKind(e.cls);
@@ -66,7 +71,8 @@ Cloud elementCloud(const Lsm& lsm, int kf_begin, int kf_end, double sigma) {
     const bool solid_line = kind == GeometryKind::kLine && e.cls == CrowdClass::kLaneLine &&
                             e.attributes.style != LineStyle::kDashed;
     const double along = solid_line ? kFreeSigma : kEndSigma;
-    for (std::size_t i = 0; i < pts.size(); ++i) {
+    const std::size_t stride = solid_line ? std::size_t(std::max(1, solid_stride)) : 1;
+    for (std::size_t i = 0; i < pts.size(); i += stride) {
       Eigen::Matrix3d C;
       if (kind == GeometryKind::kLine && pts.size() >= 2) {
         const std::size_t a = i == 0 ? 0 : i - 1, b = std::min(pts.size() - 1, i + 1);
@@ -84,12 +90,31 @@ Cloud elementCloud(const Lsm& lsm, int kf_begin, int kf_end, double sigma) {
   return c;
 }
 
+}  // namespace
+
+Cloud elementCloud(const Lsm& lsm, int kf_begin, int kf_end, double sigma) {
+  std::vector<int> elements;
+  for (int i = 0; i < int(lsm.elements.size()); ++i) {
+    const int k = int(lsm.keyframeIndex(lsm.elements[i].anchor));
+    if (k >= kf_begin && k < kf_end) elements.push_back(i);
+  }
+  return cloudOf(lsm, elements, sigma, 1);
+}
+
 namespace detail {
+
+Cloud submapCloud(const std::vector<Lsm>& lsms, const Submap& m, int solid_stride) {
+  return cloudOf(lsms[m.lsm], m.elements, 0.05, solid_stride);
+}
 
 std::vector<Submap> buildSubmaps(const std::vector<Lsm>& lsms, double length) {
   std::vector<Submap> out;
   for (int l = 0; l < int(lsms.size()); ++l) {
     const auto& kfs = lsms[l].keyframes;
+    // Elements by anchor keyframe (stable: file order within a keyframe).
+    std::vector<std::vector<int>> by_kf(kfs.size());
+    for (int i = 0; i < int(lsms[l].elements.size()); ++i)
+      by_kf[lsms[l].keyframeIndex(lsms[l].elements[i].anchor)].push_back(i);
     int begin = 0;
     double dist = 0;
     for (int k = 1; k <= int(kfs.size()); ++k) {
@@ -101,11 +126,14 @@ std::vector<Submap> buildSubmaps(const std::vector<Lsm>& lsms, double length) {
         s.kf_begin = begin;
         s.kf_end = k;
         s.anchor = (begin + k - 1) / 2;
-        s.cloud = elementCloud(lsms[l], begin, k);
-        if (s.cloud.size() >= 10) {
-          s.coarse = voxelDownsample(s.cloud, 1.0);
-          s.lo = s.hi = s.cloud.points[0].head<2>();
-          for (const auto& p : s.cloud.points) {
+        for (int kk = begin; kk < k; ++kk)
+          s.elements.insert(s.elements.end(), by_kf[kk].begin(), by_kf[kk].end());
+        Cloud cloud = submapCloud(lsms, s);
+        if (cloud.size() >= 10) {
+          cloud.covariances.clear();
+          s.coarse = voxelDownsample(cloud, 1.0);
+          s.lo = s.hi = cloud.points[0].head<2>();
+          for (const auto& p : cloud.points) {
             s.lo = s.lo.cwiseMin(p.head<2>());
             s.hi = s.hi.cwiseMax(p.head<2>());
           }
@@ -119,7 +147,8 @@ std::vector<Submap> buildSubmaps(const std::vector<Lsm>& lsms, double length) {
   return out;
 }
 
-std::vector<SubmapPair> selectPairs(const std::vector<Submap>& maps, const AlignSettings& s) {
+std::vector<SubmapPair> selectPairs(const std::vector<Submap>& maps, const AlignSettings& s,
+                                    long* overlaps) {
   const int n = int(maps.size());
   const double r = s.overlap_radius;
   // One coarse index per submap (label folded into the key by a large z offset).
@@ -134,62 +163,118 @@ std::vector<SubmapPair> selectPairs(const std::vector<Submap>& maps, const Align
       pts.push_back(lift(maps[i].coarse.points[k], maps[i].coarse.labels[k]));
     index[i] = VoxelIndex(pts, r);
   }
-  // Candidate pairs: boxes within the radius, different LSMs.
-  std::vector<std::pair<int, int>> cand;
-  for (int i = 0; i < n; ++i)
-    for (int j = i + 1; j < n; ++j) {
-      if (maps[i].lsm == maps[j].lsm) continue;
-      if (((maps[i].lo.array() - r) <= maps[j].hi.array()).all() &&
-          ((maps[j].lo.array() - r) <= maps[i].hi.array()).all())
-        cand.emplace_back(i, j);
-    }
-  // Overlap, symmetric: the smaller of the two directed shares.
-  std::vector<double> ov(cand.size(), 0.0);
+  // Overlap, symmetric: the smaller of the two directed shares, each over at most ~64 points.
   auto share = [&](int from, int to) {
     const Cloud& c = maps[from].coarse;
-    int near = 0;
-    for (std::size_t k = 0; k < c.size(); ++k)
+    const std::size_t step = std::max<std::size_t>(1, c.size() / 64);
+    int near = 0, tried = 0;
+    for (std::size_t k = 0; k < c.size(); k += step, ++tried)
       near += index[to].nearest(lift(c.points[k], c.labels[k]), r * r, nullptr) >= 0;
-    return double(near) / double(std::max<std::size_t>(1, c.size()));
+    return double(near) / double(std::max(1, tried));
   };
-#pragma omp parallel for schedule(dynamic, 16) num_threads(s.threads)
-  for (int p = 0; p < int(cand.size()); ++p)
-    ov[p] = std::min(share(cand[p].first, cand[p].second), share(cand[p].second, cand[p].first));
-  // Per submap, the best partner of each other LSM, then the max_partners best of those, or
-  // (spread_partners) max_partners of those evenly spread over the LSMs, the offset rotating with
-  // the submap: drives whose GPS biases agree overlap best in georef's ENU, so "best" ties like
-  // to like and can leave groups of drives joined only elsewhere.
-  std::vector<std::map<int, std::pair<double, int>>> best(n);  // submap -> lsm -> (overlap, pair)
-  for (int p = 0; p < int(cand.size()); ++p) {
-    if (ov[p] < s.min_overlap) continue;
-    const auto [i, j] = cand[p];
-    for (const auto& [self, other] : {std::pair{i, j}, std::pair{j, i}}) {
-      auto& slot = best[self][maps[other].lsm];
-      if (ov[p] > slot.first) slot = {ov[p], p};
-    }
-  }
-  std::vector<char> chosen(cand.size(), 0);
-  for (int i = 0; i < n; ++i) {
-    std::vector<std::pair<double, int>> v;
-    for (const auto& [lsm, e] : best[i]) v.push_back(e);  // in LSM order
-    const int m = int(v.size());
-    const int take = s.max_partners > 0 ? std::min(s.max_partners, m) : m;
-    if (s.spread_partners) {
-      for (int k = 0; k < take; ++k) chosen[v[(i + k * m / take) % m].second] = 1;
-      continue;
-    }
-    std::sort(v.begin(), v.end(), [](const auto& x, const auto& y) {
-      return x.first != y.first ? x.first > y.first : x.second < y.second;
-    });
-    for (int k = 0; k < take; ++k) chosen[v[k].second] = 1;
-  }
+  long computed = 0;
+  auto overlap = [&](int i, int j, long& count) {
+    ++count;
+    return std::min(share(i, j), share(j, i));
+  };
+  // Submaps by grid cell of their boxes, to find the candidates of a submap without a scan.
+  constexpr double kCell = 64.0;  // m
+  auto cellKey = [](int64_t x, int64_t y) { return (uint64_t(uint32_t(x)) << 32) | uint32_t(y); };
+  std::unordered_map<uint64_t, std::vector<int>> grid;
+  for (int i = 0; i < n; ++i)
+    for (int64_t x = int64_t(std::floor(maps[i].lo.x() / kCell));
+         x <= int64_t(std::floor(maps[i].hi.x() / kCell)); ++x)
+      for (int64_t y = int64_t(std::floor(maps[i].lo.y() / kCell));
+           y <= int64_t(std::floor(maps[i].hi.y() / kCell)); ++y)
+        grid[cellKey(x, y)].push_back(i);
+  constexpr int kProbes = 3;  // LSMs tried per partner slot (spread): the next when refused
   std::vector<SubmapPair> out;
-  for (int p = 0; p < int(cand.size()); ++p) {
-    if (!chosen[p]) continue;
-    auto [i, j] = cand[p];
-    if (maps[i].lsm > maps[j].lsm) std::swap(i, j);
-    out.push_back({i, j, ov[p]});
+#pragma omp parallel num_threads(s.threads) reduction(+ : computed)
+  {
+    std::vector<int> seen(n, -1), cand;
+    std::vector<SubmapPair> local;
+#pragma omp for schedule(dynamic, 16)
+    for (int i = 0; i < n; ++i) {
+      // Candidates: boxes within the radius, other LSMs, by LSM.
+      cand.clear();
+      const Submap& m = maps[i];
+      for (int64_t x = int64_t(std::floor((m.lo.x() - r) / kCell));
+           x <= int64_t(std::floor((m.hi.x() + r) / kCell)); ++x)
+        for (int64_t y = int64_t(std::floor((m.lo.y() - r) / kCell));
+             y <= int64_t(std::floor((m.hi.y() + r) / kCell)); ++y) {
+          const auto it = grid.find(cellKey(x, y));
+          if (it == grid.end()) continue;
+          for (int j : it->second) {
+            if (seen[j] == i || maps[j].lsm == m.lsm) continue;
+            seen[j] = i;
+            if (((m.lo.array() - r) <= maps[j].hi.array()).all() &&
+                ((maps[j].lo.array() - r) <= m.hi.array()).all())
+              cand.push_back(j);
+          }
+        }
+      std::sort(cand.begin(), cand.end(), [&](int a, int b) {
+        return maps[a].lsm != maps[b].lsm ? maps[a].lsm < maps[b].lsm : a < b;
+      });
+      std::vector<std::pair<int, int>> groups;  // [begin, end) in cand, one per other LSM
+      for (int k = 0; k < int(cand.size()); ++k)
+        if (k == 0 || maps[cand[k]].lsm != maps[cand[k - 1]].lsm)
+          groups.emplace_back(k, k + 1);
+        else
+          groups.back().second = k + 1;
+      // The best-overlapping submap of group g, if it overlaps enough.
+      auto best = [&](int g) {
+        std::pair<double, int> b{-1.0, -1};
+        for (int k = groups[g].first; k < groups[g].second; ++k) {
+          const double ov = overlap(i, cand[k], computed);
+          if (ov > b.first) b = {ov, cand[k]};
+        }
+        return b;
+      };
+      const int mm = int(groups.size());
+      if (mm == 0) continue;
+      const int take = s.max_partners > 0 ? std::min(s.max_partners, mm) : mm;
+      if (s.spread_partners) {
+        std::vector<char> tried(mm, 0);
+        for (int t = 0; t < take; ++t) {
+          const int g0 = (i + t * mm / take) % mm;
+          for (int u = 0; u < kProbes && u < mm; ++u) {
+            const int g = (g0 + u) % mm;
+            if (tried[g]) continue;
+            tried[g] = 1;
+            const auto [ov, j] = best(g);
+            if (ov >= s.min_overlap) {
+              local.push_back({std::min(i, j), std::max(i, j), ov});
+              break;
+            }
+          }
+        }
+        continue;
+      }
+      std::vector<std::pair<double, int>> v;  // every LSM's best
+      for (int g = 0; g < mm; ++g) {
+        const auto b = best(g);
+        if (b.first >= s.min_overlap) v.push_back(b);
+      }
+      std::sort(v.begin(), v.end(), [](const auto& x, const auto& y) {
+        return x.first != y.first ? x.first > y.first : x.second < y.second;
+      });
+      for (int k = 0; k < std::min(take, int(v.size())); ++k)
+        local.push_back({std::min(i, v[k].second), std::max(i, v[k].second), v[k].first});
+    }
+#pragma omp critical
+    out.insert(out.end(), local.begin(), local.end());
   }
+  if (overlaps) *overlaps = computed;
+  // Union over submaps, LSM order within a pair, sorted.
+  for (auto& p : out)
+    if (maps[p.a].lsm > maps[p.b].lsm) std::swap(p.a, p.b);
+  std::sort(out.begin(), out.end(), [](const SubmapPair& x, const SubmapPair& y) {
+    return std::tie(x.a, x.b) < std::tie(y.a, y.b);
+  });
+  out.erase(std::unique(
+                out.begin(), out.end(),
+                [](const SubmapPair& x, const SubmapPair& y) { return x.a == y.a && x.b == y.b; }),
+            out.end());
   return out;
 }
 

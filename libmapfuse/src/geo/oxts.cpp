@@ -1,48 +1,9 @@
 #include "mapfuse/geo/oxts.hpp"
 
 #include <cmath>
-#include <sstream>
-#include <vector>
 
-#include "mapfuse/core/error.hpp"
 
 namespace mapfuse::geo {
-namespace {
-const char* const kFieldNames[30] = {
-    "lat",          "lon",     "alt",     "roll",    "pitch",   "yaw",    "vn", "ve",
-    "vf",           "vl",      "vu",      "ax",      "ay",      "az",     "af", "al",
-    "au",           "wx",      "wy",      "wz",      "wf",      "wl",     "wu", "pos_accuracy",
-    "vel_accuracy", "navstat", "numsats", "posmode", "velmode", "orimode"};
-}  // namespace
-
-OxtsRecord parseOxtsLine(const std::string& line, const std::string& file) {
-  std::istringstream ss(line);
-  std::vector<double> v;
-  std::string token;
-  while (ss >> token) {
-    if (v.size() == 30) throw ParseError(file, "", "more than 30 OXTS fields");
-    try {
-      std::size_t used = 0;
-      const double x = std::stod(token, &used);
-      if (used != token.size()) throw std::invalid_argument(token);
-      v.push_back(x);
-    } catch (const std::exception&) {
-      throw ParseError(file, kFieldNames[v.size()], "not a number: '" + token + "'");
-    }
-    if (!std::isfinite(v.back())) throw ParseError(file, kFieldNames[v.size() - 1], "not finite");
-  }
-  if (v.size() < 30)
-    throw ParseError(file, kFieldNames[v.size()],
-                     "missing (found " + std::to_string(v.size()) + " of 30 OXTS fields)");
-  auto i = [&](int k) { return static_cast<int>(v[k]); };
-  const OxtsRecord r{v[0],  v[1],  v[2],  v[3],  v[4],  v[5],  v[6],  v[7],  v[8],  v[9],
-                     v[10], v[11], v[12], v[13], v[14], v[15], v[16], v[17], v[18], v[19],
-                     v[20], v[21], v[22], v[23], v[24], i(25), i(26), i(27), i(28), i(29)};
-  if (std::abs(r.lat) > 90.0 || std::abs(r.lon) > 180.0)
-    throw ParseError(file, std::abs(r.lat) > 90.0 ? "lat" : "lon", "out of range");
-  return r;
-}
-
 double mercatorScale(double lat0_deg) {
   return std::cos(lat0_deg * M_PI / 180.0);
 }

@@ -1,36 +1,51 @@
 #include "mapfuse/io/camera_calib.hpp"
 
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/io/bounds.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
 #include "mapfuse/io/json_view.hpp"
 #include "mapfuse/io/kitti_calib.hpp"
 
 namespace mapfuse::io {
+namespace {
+/// Focal lengths and principal point (px).
+constexpr double kMaxIntrinsic = 1e7;
+}  // namespace
 
-vehicle::CameraCalib readCameraCalib(const std::filesystem::path& path) {
-  const Json doc = readDocument(path);
-  const JsonView v(doc, path.string());
+CameraCalib readCameraCalib(const std::filesystem::path& path) {
+  return cameraCalibFromJson(readDocument(path), path.string());
+}
+
+CameraCalib cameraCalibFromJson(const Json& doc, const std::string& file) {
+  const JsonView v(doc, file);
   v.checkFormat(kCameraCalibFormat, 1);
   v.onlyKeys({"format", "version", "K", "width", "height", "distortion", "T_body_cam",
               "camera_height", "ground_normal_cam"});
-  vehicle::CameraCalib c;
+  CameraCalib c;
   const Eigen::VectorXd k = v.at("K").vector(9);
+  if (k.cwiseAbs().maxCoeff() > kMaxIntrinsic)
+    v.at("K").fail("entries must be within " + bounds::rangeText(-kMaxIntrinsic, kMaxIntrinsic));
   c.K = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(k.data());
   if (!(c.K(0, 0) > 0.0 && c.K(1, 1) > 0.0)) v.at("K").fail("focal lengths must be positive");
   if (c.K(2, 0) != 0.0 || c.K(2, 1) != 0.0 || c.K(2, 2) != 1.0 || c.K(1, 0) != 0.0)
     v.at("K").fail("must be an upper-triangular pinhole matrix with last row [0, 0, 1]");
-  c.width = int(v.at("width").integer());
-  c.height = int(v.at("height").integer());
-  if (c.width <= 0) v.at("width").fail("must be positive");
-  if (c.height <= 0) v.at("height").fail("must be positive");
+  c.width = int(v.at("width").integer(1, bounds::kMaxImageSide));
+  c.height = int(v.at("height").integer(1, bounds::kMaxImageSide));
+  if (int64_t(c.width) * c.height > bounds::kMaxImagePixels)
+    v.at("height").fail("image has more than " + std::to_string(bounds::kMaxImagePixels) +
+                        " pixels");
   if (auto d = v.find("distortion")) {
     const Eigen::VectorXd dist = d->vector(0);
     if (dist.size() > 0 && dist.cwiseAbs().maxCoeff() > 0.0)
       d->fail("lens distortion is not supported: rectify the images first");
   }
   c.T_body_cam = readPose(v.at("T_body_cam"));
-  c.ground.height = v.at("camera_height").number();
+  if (c.T_body_cam.translation().cwiseAbs().maxCoeff() > bounds::kMaxExtrinsic)
+    v.at("T_body_cam")
+        .at("t")
+        .fail("outside " + bounds::rangeText(-bounds::kMaxExtrinsic, bounds::kMaxExtrinsic) + " m");
+  c.ground.height = v.at("camera_height").number(0.0, bounds::kMaxExtrinsic);
   if (!(c.ground.height > 0.0)) v.at("camera_height").fail("must be positive");
   const Eigen::Vector3d n = v.at("ground_normal_cam").vec3();
   if (std::abs(n.norm() - 1.0) > 1e-3) v.at("ground_normal_cam").fail("must be a unit vector");
@@ -40,13 +55,12 @@ vehicle::CameraCalib readCameraCalib(const std::filesystem::path& path) {
   return c;
 }
 
-vehicle::CameraCalib readKittiCameraCalib(const std::filesystem::path& date_dir,
-                                          double camera_height) {
+CameraCalib readKittiCameraCalib(const std::filesystem::path& date_dir, double camera_height) {
   if (!(camera_height > 0.0))
     throw InputError("KITTI camera height must be positive (got " + std::to_string(camera_height) +
                      ")");
   const KittiCalibration kc = readKittiCalibration(date_dir);
-  vehicle::CameraCalib c;
+  CameraCalib c;
   c.K = kc.P_rect_02.leftCols<3>();
   c.width = kc.image_width;
   c.height = kc.image_height;
@@ -60,7 +74,7 @@ vehicle::CameraCalib readKittiCameraCalib(const std::filesystem::path& date_dir,
     const Pose3 T_cam_imu = T_rect2_rect0 * c.T_posecam_velo * kc.T_velo_imu;
     c.T_body_cam = T_cam_imu.inverse();
   } else {
-    c.T_body_cam.linear() = vehicle::levelCameraToBodyRotation();
+    c.T_body_cam.linear() = levelCameraToBodyRotation();
   }
   c.ground.height = camera_height;
   c.ground.normal_cam = (c.T_body_cam.linear().transpose() * Eigen::Vector3d::UnitZ()).normalized();

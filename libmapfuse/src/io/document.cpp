@@ -2,8 +2,60 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/bounds.hpp"
 
 namespace mapfuse::io {
+namespace {
+
+using Json = nlohmann::json;
+
+// nlohmann's DOM builder behind a nesting limit. The CBOR reader recurses once per nested array
+// or object (a 500 KB file of nested arrays overflowed the stack); refusing the level past
+// bounds::kMaxNesting in start_array / start_object stops it before the recursion goes deeper.
+class DepthLimitedSax {
+ public:
+  explicit DepthLimitedSax(Json& root) : dom_(root, /*allow_exceptions=*/true) {}
+
+  bool null() { return dom_.null(); }
+  bool boolean(bool v) { return dom_.boolean(v); }
+  bool number_integer(Json::number_integer_t v) { return dom_.number_integer(v); }
+  bool number_unsigned(Json::number_unsigned_t v) { return dom_.number_unsigned(v); }
+  bool number_float(Json::number_float_t v, const std::string& s) {
+    return dom_.number_float(v, s);
+  }
+  bool string(std::string& s) { return dom_.string(s); }
+  bool binary(Json::binary_t& b) { return dom_.binary(b); }
+  bool start_object(std::size_t n) { return enter() && dom_.start_object(n); }
+  bool key(std::string& k) { return dom_.key(k); }
+  bool end_object() {
+    --depth_;
+    return dom_.end_object();
+  }
+  bool start_array(std::size_t n) { return enter() && dom_.start_array(n); }
+  bool end_array() {
+    --depth_;
+    return dom_.end_array();
+  }
+  bool parse_error(std::size_t /*position*/, const std::string& /*token*/,
+                   const nlohmann::detail::exception& e) {
+    error_ = e.what();
+    return false;
+  }
+
+  const std::string& error() const { return error_; }
+
+ private:
+  bool enter() {
+    if (++depth_ <= bounds::kMaxNesting) return true;
+    error_ = "nested deeper than " + std::to_string(bounds::kMaxNesting) + " arrays or objects";
+    return false;
+  }
+  nlohmann::detail::json_sax_dom_parser<Json> dom_;
+  int depth_ = 0;
+  std::string error_;
+};
+
+}  // namespace
 
 Encoding encodingOf(const std::filesystem::path& path) {
   const std::string ext = path.extension().string();
@@ -12,24 +64,32 @@ Encoding encodingOf(const std::filesystem::path& path) {
   throw IoError(path.string(), "unknown extension '" + ext + "' (expected .json or .cbor)");
 }
 
-nlohmann::json readDocument(const std::filesystem::path& path) {
-  const Encoding enc = encodingOf(path);
-  const std::string bytes = readBytes(path);
-  if (bytes.empty()) throw ParseError(path.string(), "", "file is empty");
+Json parseDocument(const std::string& bytes, Encoding encoding, const std::string& file) {
+  const char* what = encoding == Encoding::kCbor ? "invalid CBOR: " : "invalid JSON: ";
+  if (bytes.empty()) throw ParseError(file, "", "file is empty");
+  Json doc;
+  DepthLimitedSax sax(doc);
+  bool ok = false;
   try {
-    if (enc == Encoding::kCbor) return nlohmann::json::from_cbor(bytes.begin(), bytes.end());
-    return nlohmann::json::parse(bytes);
-  } catch (const nlohmann::json::exception& e) {
-    throw ParseError(
-        path.string(), "",
-        std::string(enc == Encoding::kCbor ? "invalid CBOR: " : "invalid JSON: ") + e.what());
+    ok = encoding == Encoding::kCbor
+             ? Json::sax_parse(bytes.begin(), bytes.end(), &sax, Json::input_format_t::cbor)
+             : Json::sax_parse(bytes.begin(), bytes.end(), &sax, Json::input_format_t::json);
+  } catch (const Json::exception& e) {
+    throw ParseError(file, "", what + std::string(e.what()));
   }
+  if (!ok) throw ParseError(file, "", what + (sax.error().empty() ? "malformed" : sax.error()));
+  return doc;
 }
 
-void writeDocument(const std::filesystem::path& path, const nlohmann::json& doc, int indent) {
+Json readDocument(const std::filesystem::path& path) {
+  const Encoding enc = encodingOf(path);
+  return parseDocument(readBytes(path), enc, path.string());
+}
+
+void writeDocument(const std::filesystem::path& path, const Json& doc, int indent) {
   const Encoding enc = encodingOf(path);
   if (enc == Encoding::kCbor) {
-    const std::vector<uint8_t> bytes = nlohmann::json::to_cbor(doc);
+    const std::vector<uint8_t> bytes = Json::to_cbor(doc);
     writeBytesAtomic(path, std::string(bytes.begin(), bytes.end()));
   } else {
     writeBytesAtomic(path, doc.dump(indent) + "\n");

@@ -8,10 +8,12 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/bounds.hpp"
 #include "mapfuse/io/camera_calib.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
-#include "mapfuse/vehicle/centerline.hpp"
+#include "mapfuse/io/kitti_poses.hpp"
+#include "mapfuse/io/png_decode.hpp"
 
 namespace mapfuse::io {
 namespace fs = std::filesystem;
@@ -35,6 +37,18 @@ struct Csv {
     } catch (const std::exception&) {
       throw ParseError(file, field, "'" + s + "' is not a finite number");
     }
+  }
+
+  /// A number within [lo, hi] (docs/formats.md "Value bounds").
+  double number(std::size_t row, std::size_t col, double lo, double hi) const {
+    const double v = number(row, col);
+    if (!bounds::within(v, lo, hi))
+      throw ParseError(file, "line " + std::to_string(line_numbers[row]) + " " + header[col],
+                       "'" + rows[row][col] + "' is outside " + bounds::rangeText(lo, hi));
+    return v;
+  }
+  double stamp(std::size_t row, std::size_t col) const {
+    return number(row, col, -bounds::kMaxStamp, bounds::kMaxStamp);
   }
 };
 
@@ -100,22 +114,24 @@ void requireSorted(const Csv& csv, const std::vector<double>& stamps) {
 std::vector<Eigen::Vector2d> readPixels(const JsonView& v) {
   std::vector<Eigen::Vector2d> out;
   for (std::size_t i = 0; i < v.size(); ++i) {
-    const Eigen::VectorXd p = v.at(i).vector(2);
-    out.emplace_back(p(0), p(1));
+    const JsonView px = v.at(i);
+    px.vector(2);  // checks the count
+    out.emplace_back(px.at(std::size_t(0)).number(-bounds::kMaxPixel, bounds::kMaxPixel),
+                     px.at(std::size_t(1)).number(-bounds::kMaxPixel, bounds::kMaxPixel));
   }
   return out;
 }
 
-vehicle::FrameObservations parseObservation(const JsonView& v) {
+FrameObservations parseObservation(const JsonView& v) {
   v.onlyKeys({"frame", "stamp", "ground", "aerial"});
-  vehicle::FrameObservations f;
-  f.index = int(v.at("frame").integer());
-  f.stamp = v.at("stamp").number();
+  FrameObservations f;
+  f.index = v.at("frame").integerInt(0);
+  f.stamp = v.at("stamp").number(-bounds::kMaxStamp, bounds::kMaxStamp);
   if (auto g = v.find("ground"))
     for (std::size_t i = 0; i < g->size(); ++i) {
       const JsonView e = g->at(i);
       e.onlyKeys({"instance", "track_id", "truth_id", "class", "style", "color", "pixels"});
-      vehicle::GroundObservation o;
+      GroundObservation o;
       readClassAndAttributes(e, o.cls, o.attributes);
       if (geometryKind(o.cls) == GeometryKind::kPoint || o.cls == CrowdClass::kTrafficSign)
         e.at("class").fail("is not a ground marking class");
@@ -128,7 +144,7 @@ vehicle::FrameObservations parseObservation(const JsonView& v) {
     for (std::size_t i = 0; i < a->size(); ++i) {
       const JsonView e = a->at(i);
       e.onlyKeys({"track_id", "truth_id", "class", "box", "points"});
-      vehicle::AerialObservation o;
+      AerialObservation o;
       Attributes unused;
       readClassAndAttributes(e, o.cls, unused);
       if (o.cls != CrowdClass::kTrafficSign && o.cls != CrowdClass::kTrafficLight &&
@@ -137,6 +153,9 @@ vehicle::FrameObservations parseObservation(const JsonView& v) {
       if (auto t = e.find("track_id")) o.track_id = t->integer();
       if (auto t = e.find("truth_id")) o.truth_id = t->integer();
       o.box = e.at("box").vector(4);
+      if (o.box.cwiseAbs().maxCoeff() > bounds::kMaxPixel)
+        e.at("box").fail("outside " + bounds::rangeText(-bounds::kMaxPixel, bounds::kMaxPixel) +
+                         " px");
       if (o.box(2) < o.box(0) || o.box(3) < o.box(1)) e.at("box").fail("max is below min");
       if (auto p = e.find("points")) o.points = readPixels(*p);
       f.aerial.push_back(std::move(o));
@@ -144,14 +163,14 @@ vehicle::FrameObservations parseObservation(const JsonView& v) {
   return f;
 }
 
-std::vector<vehicle::FrameObservations> readObservations(const fs::path& path) {
-  std::vector<vehicle::FrameObservations> out;
+std::vector<FrameObservations> readObservations(const fs::path& path) {
+  std::vector<FrameObservations> out;
   forEachLine(path, [&](const std::string& line, int n) {
     Json j;
     try {
-      j = Json::parse(line);
-    } catch (const std::exception& e) {
-      throw ParseError(path.string(), "line " + std::to_string(n), "invalid JSON");
+      j = parseDocument(line, Encoding::kJson, path.string());
+    } catch (const ParseError& e) {
+      throw ParseError(path.string(), "line " + std::to_string(n), e.problem());
     }
     out.push_back(parseObservation(JsonView(j, path.string(), "line " + std::to_string(n))));
   });
@@ -186,10 +205,12 @@ DriveFrames readDriveFrames(const fs::path& dir) {
                           {"stamp", "gyro_x", "gyro_y", "gyro_z", "accel_x", "accel_y", "accel_z"});
     std::vector<double> stamps;
     for (std::size_t r = 0; r < c.rows.size(); ++r) {
-      vehicle::ImuSample s;
-      s.stamp = c.number(r, 0);
-      s.gyro = {c.number(r, 1), c.number(r, 2), c.number(r, 3)};
-      s.accel = {c.number(r, 4), c.number(r, 5), c.number(r, 6)};
+      ImuSample s;
+      s.stamp = c.stamp(r, 0);
+      for (int k = 0; k < 3; ++k) {
+        s.gyro[k] = c.number(r, 1 + k, -bounds::kMaxAngularRate, bounds::kMaxAngularRate);
+        s.accel[k] = c.number(r, 4 + k, -bounds::kMaxAcceleration, bounds::kMaxAcceleration);
+      }
       d.imu.push_back(s);
       stamps.push_back(s.stamp);
     }
@@ -199,7 +220,7 @@ DriveFrames readDriveFrames(const fs::path& dir) {
     const Csv c = readCsv(file("wheel"), {"stamp", "speed"});
     std::vector<double> stamps;
     for (std::size_t r = 0; r < c.rows.size(); ++r) {
-      d.wheel.push_back({c.number(r, 0), c.number(r, 1)});
+      d.wheel.push_back({c.stamp(r, 0), c.number(r, 1, -bounds::kMaxSpeed, bounds::kMaxSpeed)});
       stamps.push_back(c.number(r, 0));
     }
     requireSorted(c, stamps);
@@ -208,13 +229,14 @@ DriveFrames readDriveFrames(const fs::path& dir) {
     const Csv c = readCsv(file("gps"), {"stamp", "lat", "lon", "alt", "sigma_h", "sigma_v"});
     for (std::size_t r = 0; r < c.rows.size(); ++r) {
       GpsFix g;
-      g.stamp = c.number(r, 0);
-      g.position = {c.number(r, 1), c.number(r, 2), c.number(r, 3)};
-      g.sigma_h = c.number(r, 4);
-      g.sigma_v = c.number(r, 5);
-      if (!geo::isValid(g.position) || g.sigma_h <= 0.0 || g.sigma_v <= 0.0)
+      g.stamp = c.stamp(r, 0);
+      g.position = {c.number(r, 1, -90.0, 90.0), c.number(r, 2, -180.0, 180.0),
+                    c.number(r, 3, bounds::kMinAltitude, bounds::kMaxAltitude)};
+      g.sigma_h = c.number(r, 4, 0.0, bounds::kMaxSigma);
+      g.sigma_v = c.number(r, 5, 0.0, bounds::kMaxSigma);
+      if (g.sigma_h <= 0.0 || g.sigma_v <= 0.0)
         throw ParseError(c.file, "line " + std::to_string(c.line_numbers[r]),
-                         "invalid fix (lat/lon out of range or sigma not positive)");
+                         "invalid fix (sigma not positive)");
       d.gps.push_back(g);
     }
   }
@@ -222,11 +244,12 @@ DriveFrames readDriveFrames(const fs::path& dir) {
     const Csv c = readCsv(file("frames"), {"index", "stamp", "mask"});
     for (std::size_t r = 0; r < c.rows.size(); ++r) {
       FrameEntry f;
-      f.index = int(c.number(r, 0));
-      f.stamp = c.number(r, 1);
-      if (f.index != int(r))
+      const double index = c.number(r, 0);
+      f.stamp = c.stamp(r, 1);
+      if (index != double(r))
         throw ParseError(c.file, "line " + std::to_string(c.line_numbers[r]) + " index",
                          "expected frame " + std::to_string(r));
+      f.index = int(r);
       if (!c.rows[r][2].empty()) f.mask = dir / c.rows[r][2];
       d.frames.push_back(f);
     }
@@ -253,11 +276,13 @@ DriveFrames readDriveFrames(const fs::path& dir) {
         readCsv(file("truth_poses"), {"index", "stamp", "tx", "ty", "tz", "qw", "qx", "qy", "qz"});
     for (std::size_t r = 0; r < c.rows.size(); ++r) {
       Pose3 T = Pose3::Identity();
-      T.translation() = Eigen::Vector3d(c.number(r, 2), c.number(r, 3), c.number(r, 4));
-      T.linear() =
-          Eigen::Quaterniond(c.number(r, 5), c.number(r, 6), c.number(r, 7), c.number(r, 8))
-              .normalized()
-              .toRotationMatrix();
+      for (int k = 0; k < 3; ++k)
+        T.translation()[k] = c.number(r, 2 + k, -bounds::kMaxCoordinate, bounds::kMaxCoordinate);
+      const Eigen::Quaterniond q(c.number(r, 5), c.number(r, 6), c.number(r, 7), c.number(r, 8));
+      if (std::abs(q.norm() - 1.0) > 1e-3)
+        throw ParseError(c.file, "line " + std::to_string(c.line_numbers[r]) + " qw",
+                         "quaternion norm is " + std::to_string(q.norm()) + ", expected 1");
+      T.linear() = q.normalized().toRotationMatrix();
       d.truth_T_enu_body.push_back(T);
     }
   }
@@ -266,15 +291,7 @@ DriveFrames readDriveFrames(const fs::path& dir) {
 
 cv::Mat readMask(const fs::path& path, int width, int height) {
   if (!fs::exists(path)) throw IoError(path.string(), "mask image missing");
-  const std::string bytes = readBytes(path);
-  cv::Mat img;
-  try {
-    img = cv::imdecode(cv::Mat(1, int(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data())),
-                       cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception&) {
-    img = cv::Mat();
-  }
-  if (img.empty()) throw ParseError(path.string(), "", "not a decodable image (corrupt PNG?)");
+  const cv::Mat img = decodePng(readBytes(path), path.string(), cv::IMREAD_UNCHANGED);
   if (img.type() != CV_8UC1)
     throw ParseError(path.string(), "", "mask must be an 8-bit single-channel image");
   if (img.cols != width || img.rows != height)
@@ -285,64 +302,12 @@ cv::Mat readMask(const fs::path& path, int width, int height) {
   return img;
 }
 
-std::vector<vehicle::GroundObservation> observationsFromMask(const cv::Mat& mask, int min_area) {
-  std::vector<vehicle::GroundObservation> out;
-  for (int id = 1; id <= 4; ++id) {
-    const CrowdClass cls = CrowdClass(id - 1);
-    const vehicle::ThinMode mode = cls == CrowdClass::kLaneLine   ? vehicle::ThinMode::kRows
-                                   : cls == CrowdClass::kStopLine ? vehicle::ThinMode::kColumns
-                                                                  : vehicle::ThinMode::kHull;
-    for (auto& comp : vehicle::extractComponents(mask, id, mode, min_area)) {
-      vehicle::GroundObservation o;
-      o.cls = cls;
-      o.pixels = std::move(comp.pixels);
-      out.push_back(std::move(o));
-    }
-  }
-  return out;
+std::vector<Pose3> readKittiPoses(const fs::path& path) {
+  return readKittiOdometryPoses(path);  // one reader for every poses file (io/kitti_poses.hpp)
 }
 
-std::vector<Pose3> readKittiPoses(const fs::path& path) {
-  const std::string text = readBytes(path);
-  std::stringstream ss(text);
-  std::string line;
-  std::vector<Pose3> out;
-  int n = 0;
-  while (std::getline(ss, line)) {
-    ++n;
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    std::stringstream ls(line);
-    double m[12];
-    int k = 0;
-    std::string tok;
-    while (ls >> tok) {
-      if (k >= 12)
-        throw ParseError(path.string(), "line " + std::to_string(n), "more than 12 numbers");
-      try {
-        std::size_t used = 0;
-        m[k] = std::stod(tok, &used);
-        if (used != tok.size() || !std::isfinite(m[k])) throw std::invalid_argument("x");
-      } catch (const std::exception&) {
-        throw ParseError(path.string(), "line " + std::to_string(n),
-                         "'" + tok + "' is not a finite number");
-      }
-      ++k;
-    }
-    if (k != 12)
-      throw ParseError(path.string(), "line " + std::to_string(n),
-                       "expected 12 numbers, got " + std::to_string(k));
-    Pose3 T = Pose3::Identity();
-    Eigen::Matrix3d R;
-    R << m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10];
-    if ((R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-3)
-      throw ParseError(path.string(), "line " + std::to_string(n), "R is not a rotation");
-    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    T.linear() = svd.matrixU() * svd.matrixV().transpose();
-    T.translation() = Eigen::Vector3d(m[3], m[7], m[11]);
-    out.push_back(T);
-  }
-  if (out.empty()) throw ParseError(path.string(), "", "no poses");
-  return out;
+std::vector<Pose3> parseKittiPoses(const std::string& text, const std::string& file) {
+  return parseKittiOdometryPoses(text, file);
 }
 
 }  // namespace mapfuse::io

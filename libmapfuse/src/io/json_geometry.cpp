@@ -53,7 +53,7 @@ void readClassAndAttributes(const JsonView& v, CrowdClass& cls, Attributes& attr
 
 std::vector<Eigen::Vector3d> readPoints(const JsonView& v) {
   std::vector<Eigen::Vector3d> points(v.size());
-  for (std::size_t i = 0; i < points.size(); ++i) points[i] = v.at(i).vec3();
+  for (std::size_t i = 0; i < points.size(); ++i) points[i] = v.at(i).coordinate();
   return points;
 }
 
@@ -64,20 +64,23 @@ Pose3 readPose(const JsonView& v) {
     v.at("q").fail("quaternion norm is " + std::to_string(q.norm()) + ", expected 1");
   Pose3 T = Pose3::Identity();
   T.linear() = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
-  T.translation() = v.at("t").vec3();
+  T.translation() = v.at("t").coordinate();
   return T;
 }
 
 geo::GeoOrigin readOrigin(const JsonView& v) {
   v.onlyKeys({"lat", "lon", "alt"});
-  geo::GeoOrigin o{v.at("lat").number(), v.at("lon").number(), v.at("alt").number()};
-  if (std::abs(o.lat) > 90.0) v.at("lat").fail("latitude outside [-90, 90]");
-  if (std::abs(o.lon) > 180.0) v.at("lon").fail("longitude outside [-180, 180]");
-  return o;
+  return geo::GeoOrigin{v.at("lat").number(-90.0, 90.0), v.at("lon").number(-180.0, 180.0),
+                        v.at("alt").number(bounds::kMinAltitude, bounds::kMaxAltitude)};
 }
 
 Eigen::Matrix3d readCov3(const JsonView& v) {
   const Eigen::VectorXd c = v.vector(6);
+  for (int i = 0; i < 6; ++i)
+    if (std::abs(c[i]) > bounds::kMaxVariance)
+      v.at(std::size_t(i))
+          .fail("covariance entry outside " +
+                bounds::rangeText(-bounds::kMaxVariance, bounds::kMaxVariance));
   Eigen::Matrix3d C;
   C << c[0], c[1], c[2], c[1], c[3], c[4], c[2], c[4], c[5];
   const double min_eig = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(C).eigenvalues().minCoeff();

@@ -1,6 +1,7 @@
 #include "mapfuse/io/json_view.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "mapfuse/core/error.hpp"
 
@@ -65,12 +66,36 @@ double JsonView::number() const {
 }
 
 int64_t JsonView::integer() const {
+  if (node_->is_number_unsigned()) {
+    if (node_->get<uint64_t>() > uint64_t(std::numeric_limits<int64_t>::max()))
+      fail("integer " + std::to_string(node_->get<uint64_t>()) + " is too large");
+    return int64_t(node_->get<uint64_t>());
+  }
   if (node_->is_number_integer()) return node_->get<int64_t>();
   if (node_->is_number_float()) {
     const double v = node_->get<double>();
     if (std::isfinite(v) && v == std::floor(v) && std::abs(v) < 9e15) return int64_t(v);
   }
   fail("expected an integer, found " + typeName(*node_));
+}
+
+double JsonView::number(double lo, double hi) const {
+  const double v = number();
+  if (!bounds::within(v, lo, hi))
+    fail("value " + nlohmann::json(v).dump() + " is outside " + bounds::rangeText(lo, hi));
+  return v;
+}
+
+int64_t JsonView::integer(int64_t lo, int64_t hi) const {
+  const int64_t v = integer();
+  if (v < lo || v > hi)
+    fail("value " + std::to_string(v) + " is outside [" + std::to_string(lo) + ", " +
+         std::to_string(hi) + "]");
+  return v;
+}
+
+int JsonView::integerInt(int lo) const {
+  return int(integer(lo, std::numeric_limits<int>::max()));
 }
 
 std::string JsonView::string() const {
@@ -86,6 +111,16 @@ bool JsonView::boolean() const {
 Eigen::Vector3d JsonView::vec3() const {
   const Eigen::VectorXd v = vector(3);
   return v.head<3>();
+}
+
+Eigen::Vector3d JsonView::coordinate(double limit) const {
+  const Eigen::Vector3d v = vec3();
+  for (int k = 0; k < 3; ++k)
+    if (std::abs(v[k]) > limit)
+      at(std::size_t(k))
+          .fail("coordinate " + nlohmann::json(v[k]).dump() + " m is outside " +
+                bounds::rangeText(-limit, limit));
+  return v;
 }
 
 Eigen::VectorXd JsonView::vector(std::size_t expected_size) const {

@@ -5,9 +5,16 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/bounds.hpp"
 
 namespace mapfuse::io {
 namespace fs = std::filesystem;
+
+namespace {
+/// Any number of a calibration file (focal lengths and principal points in px, P_rect_02's
+/// baseline term in px m, rotations, translations in m).
+constexpr double kMaxCalibNumber = 1e7;
+}  // namespace
 
 KittiCalibFile KittiCalibFile::read(const fs::path& path) {
   if (!fs::exists(path)) throw IoError(path.string(), "calibration file not found");
@@ -52,6 +59,10 @@ std::vector<double> KittiCalibFile::numbers(const std::string& key, std::size_t 
       throw ParseError(file_, key, "not a number: '" + tok + "'");
     }
     if (!std::isfinite(x)) throw ParseError(file_, key, "not finite: '" + tok + "'");
+    if (std::abs(x) > kMaxCalibNumber)
+      throw ParseError(
+          file_, key,
+          "'" + tok + "' is outside " + bounds::rangeText(-kMaxCalibNumber, kMaxCalibNumber));
     out.push_back(x);
   }
   return out;
@@ -67,7 +78,11 @@ Eigen::MatrixXd KittiCalibFile::matrix(const std::string& key, int rows, int col
 
 namespace {
 Pose3 makeRigid(const Eigen::Matrix3d& R, const Eigen::Vector3d& t, const std::string& file,
-                const std::string& key) {
+                const std::string& key, const std::string& t_key) {
+  if (t.cwiseAbs().maxCoeff() > bounds::kMaxExtrinsic)
+    throw ParseError(file, t_key,
+                     "translation outside " +
+                         bounds::rangeText(-bounds::kMaxExtrinsic, bounds::kMaxExtrinsic) + " m");
   if ((R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-3 ||
       R.determinant() < 0)
     throw ParseError(file, key, "is not a rotation matrix");
@@ -83,12 +98,12 @@ Pose3 makeRigid(const Eigen::Matrix3d& R, const Eigen::Vector3d& t, const std::s
 Pose3 KittiCalibFile::rigid(const std::string& r_key, const std::string& t_key) const {
   const Eigen::Matrix3d R = matrix(r_key, 3, 3);
   const Eigen::Vector3d t = matrix(t_key, 3, 1);
-  return makeRigid(R, t, file_, r_key);
+  return makeRigid(R, t, file_, r_key, t_key);
 }
 
 Pose3 KittiCalibFile::rigid34(const std::string& key) const {
   const Eigen::MatrixXd m = matrix(key, 3, 4);
-  return makeRigid(m.block<3, 3>(0, 0), m.col(3), file_, key);
+  return makeRigid(m.block<3, 3>(0, 0), m.col(3), file_, key, key);
 }
 
 Eigen::Matrix<double, 3, 4> KittiCalibration::veloToImage2() const {
@@ -101,25 +116,49 @@ Pose3 KittiCalibration::T_rect0_velo() const {
   return R * T_cam0_velo;
 }
 
-KittiCalibration readKittiCalibration(const fs::path& date_dir) {
+KittiCalibration kittiCalibrationFromFiles(const KittiCalibFile& cam, const KittiCalibFile& velo,
+                                           const KittiCalibFile* imu) {
   KittiCalibration c;
-  const KittiCalibFile cam = KittiCalibFile::read(date_dir / "calib_cam_to_cam.txt");
   c.P_rect_02 = cam.matrix("P_rect_02", 3, 4);
   c.R_rect_00 = cam.matrix("R_rect_00", 3, 3);
   const auto size = cam.numbers("S_rect_02", 2);
-  if (size[0] < 1 || size[1] < 1) throw ParseError(cam.file(), "S_rect_02", "must be positive");
+  for (double side : size)
+    if (!(side >= 1 && side <= double(bounds::kMaxImageSide)))
+      throw ParseError(cam.file(), "S_rect_02",
+                       "image side " + bounds::numberText(side) + " px is outside [1, " +
+                           std::to_string(bounds::kMaxImageSide) + "]");
   c.image_width = static_cast<int>(std::lround(size[0]));
   c.image_height = static_cast<int>(std::lround(size[1]));
-  const KittiCalibFile velo = KittiCalibFile::read(date_dir / "calib_velo_to_cam.txt");
+  if (*bounds::checkedMultiply(c.image_width, c.image_height) > bounds::kMaxImagePixels)
+    throw ParseError(cam.file(), "S_rect_02",
+                     "image of " + std::to_string(c.image_width) + "x" +
+                         std::to_string(c.image_height) + " px has more than " +
+                         std::to_string(bounds::kMaxImagePixels) + " pixels");
+  if (!(c.P_rect_02(0, 0) > 0 && c.P_rect_02(1, 1) > 0 && c.P_rect_02(2, 2) == 1.0 &&
+        c.P_rect_02(2, 0) == 0 && c.P_rect_02(2, 1) == 0 && c.P_rect_02(1, 0) == 0))
+    throw ParseError(cam.file(), "P_rect_02",
+                     "not a rectified projection (positive focal lengths, last row 0 0 1 t)");
+  const Eigen::Matrix3d& R = c.R_rect_00;
+  if ((R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-3 ||
+      R.determinant() < 0)
+    throw ParseError(cam.file(), "R_rect_00", "is not a rotation matrix");
   c.T_cam0_velo = velo.rigid("R", "T");
-  const fs::path imu_path = date_dir / "calib_imu_to_velo.txt";
-  if (fs::exists(imu_path)) {
-    c.T_velo_imu = KittiCalibFile::read(imu_path).rigid("R", "T");
+  if (imu) {
+    c.T_velo_imu = imu->rigid("R", "T");
     c.has_imu = true;
   } else {
     c.T_velo_imu = Pose3::Identity();
   }
   return c;
+}
+
+KittiCalibration readKittiCalibration(const fs::path& date_dir) {
+  const KittiCalibFile cam = KittiCalibFile::read(date_dir / "calib_cam_to_cam.txt");
+  const KittiCalibFile velo = KittiCalibFile::read(date_dir / "calib_velo_to_cam.txt");
+  const fs::path imu_path = date_dir / "calib_imu_to_velo.txt";
+  if (!fs::exists(imu_path)) return kittiCalibrationFromFiles(cam, velo, nullptr);
+  const KittiCalibFile imu = KittiCalibFile::read(imu_path);
+  return kittiCalibrationFromFiles(cam, velo, &imu);
 }
 
 }  // namespace mapfuse::io

@@ -106,6 +106,13 @@ void writeKittiCalibration(const std::filesystem::path& date_dir) {
   writeBytesAtomic(date_dir / "calib_imu_to_velo.txt", kImuToVelo);
 }
 
+KittiCalibration writtenKittiCalibration() {
+  const KittiCalibFile imu = KittiCalibFile::parse(kImuToVelo, "calib_imu_to_velo.txt");
+  return kittiCalibrationFromFiles(KittiCalibFile::parse(kCamToCam, "calib_cam_to_cam.txt"),
+                                   KittiCalibFile::parse(kVeloToCam, "calib_velo_to_cam.txt"),
+                                   &imu);
+}
+
 std::string formatOxtsLine(const geo::OxtsRecord& r) {
   const double d[25] = {r.lat, r.lon, r.alt,          r.roll,        r.pitch, r.yaw, r.vn,
                         r.ve,  r.vf,  r.vl,           r.vu,          r.ax,    r.ay,  r.az,

@@ -3,11 +3,13 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <pugixml.hpp>
 #include <unordered_map>
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/bounds.hpp"
 
 namespace mapfuse::io {
 
@@ -46,6 +48,10 @@ bool isDashMarker(const std::string& type) {
   return type == "begin" || type == "end" || type == "start" || type == "dot";
 }
 
+/// Ids within +-(2^63 - 2^32): the simulator numbers the elements it adds (fewer than 2^32)
+/// after the largest id. The Karlsruhe example map has ids up to 9.217e18, so int64 range it is.
+constexpr long long kMaxId = std::numeric_limits<long long>::max() - (1LL << 32);
+
 std::string elementName(const char* kind, int64_t id) {
   return std::string(kind) + " " + std::to_string(id);
 }
@@ -61,6 +67,10 @@ int64_t parseId(const pugi::xml_node& n, const char* attr, const std::string& fi
   if (errno != 0 || end == s || *end != '\0')
     throw ParseError(file, where,
                      std::string("attribute '") + attr + "' = '" + s + "' is not an integer id");
+  if (v < -kMaxId || v > kMaxId)
+    throw ParseError(
+        file, where,
+        std::string("attribute '") + attr + "' = '" + s + "' is beyond +-(2^63 - 2^32)");
   return v;
 }
 
@@ -142,6 +152,10 @@ Lanelet2Map parseLanelet2Osm(const std::string& xml, const std::string& file) {
       p.alt = std::strtod(ele->second.c_str(), &end);
       if (end == ele->second.c_str() || *end != '\0' || !std::isfinite(p.alt))
         throw ParseError(file, where + " ele", "'" + ele->second + "' is not a number");
+      if (!bounds::within(p.alt, bounds::kMinAltitude, bounds::kMaxAltitude))
+        throw ParseError(file, where + " ele",
+                         "'" + ele->second + "' m is outside " +
+                             bounds::rangeText(bounds::kMinAltitude, bounds::kMaxAltitude));
     }
     if (!nodes.emplace(id, p).second) throw ParseError(file, where, "duplicate node id");
     if (!map.first_node) map.first_node = p;

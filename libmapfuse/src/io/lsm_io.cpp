@@ -1,6 +1,11 @@
 #include "mapfuse/io/lsm_io.hpp"
 
+#include "lsm_cbor.hpp"
 #include "mapfuse/core/error.hpp"
+#include <algorithm>
+#include <cmath>
+
+#include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
 
@@ -30,22 +35,37 @@ Keyframe keyframeFromJson(const JsonView& v) {
   v.onlyKeys({"id", "stamp", "pose", "sigma", "cov"});
   Keyframe k;
   k.id = v.at("id").integer();
-  k.stamp = v.at("stamp").number();
+  k.stamp = v.at("stamp").number(-bounds::kMaxStamp, bounds::kMaxStamp);
   k.T_frame_body = readPose(v.at("pose"));
   if (auto s = v.find("sigma")) {
-    const Eigen::VectorXd sig = s->vector(6);
-    if (sig.minCoeff() < 0.0) s->fail("sigmas must not be negative");
-    k.covariance = sig.cwiseAbs2().asDiagonal();
+    s->vector(6);  // checks the count
+    for (int i = 0; i < 6; ++i)
+      k.covariance(i, i) = std::pow(s->at(std::size_t(i)).number(0.0, bounds::kMaxSigma), 2);
   } else if (auto c = v.find("cov")) {
-    const Eigen::VectorXd u = c->vector(21);
+    c->vector(21);  // checks the count
     int idx = 0;
     for (int r = 0; r < 6; ++r)
-      for (int col = r; col < 6; ++col) k.covariance(r, col) = k.covariance(col, r) = u[idx++];
+      for (int col = r; col < 6; ++col)
+        k.covariance(r, col) = k.covariance(col, r) =
+            c->at(std::size_t(idx++)).number(-bounds::kMaxVariance, bounds::kMaxVariance);
     if (k.covariance.diagonal().minCoeff() < 0.0) c->fail("negative variance on the diagonal");
   } else {
     v.at("sigma");  // throws "missing required field"
   }
   return k;
+}
+
+// A drive moves at most bounds::kMaxSpeed (plus kMaxKeyframeGap for lost data) between two
+// keyframes: a keyframe farther from its predecessor is refused (a keyframe at 1e7 m in an
+// otherwise 400 m drive went through georef with exit 0).
+void checkStep(const Keyframe& prev, const Keyframe& k, const JsonView& v) {
+  const double step = (k.T_frame_body.translation() - prev.T_frame_body.translation()).norm();
+  const double dt = std::max(0.0, k.stamp - prev.stamp);
+  if (step > bounds::kMaxKeyframeGap + bounds::kMaxSpeed * dt)
+    v.at("pose").fail("keyframe is " + bounds::numberText(step) +
+                      " m from the previous one after " + bounds::numberText(dt) +
+                      " s (more than " + bounds::numberText(bounds::kMaxKeyframeGap) + " m + " +
+                      bounds::numberText(bounds::kMaxSpeed) + " m/s)");
 }
 
 Json gpsToJson(const GpsFix& g) {
@@ -56,12 +76,11 @@ Json gpsToJson(const GpsFix& g) {
 GpsFix gpsFromJson(const JsonView& v) {
   v.onlyKeys({"stamp", "lat", "lon", "alt", "sigma_h", "sigma_v"});
   GpsFix g;
-  g.stamp = v.at("stamp").number();
-  g.position = readOrigin(JsonView(
-      Json{{"lat", v.at("lat").raw()}, {"lon", v.at("lon").raw()}, {"alt", v.at("alt").raw()}},
-      v.file(), v.path()));
-  g.sigma_h = v.at("sigma_h").number();
-  g.sigma_v = v.at("sigma_v").number();
+  g.stamp = v.at("stamp").number(-bounds::kMaxStamp, bounds::kMaxStamp);
+  g.position = {v.at("lat").number(-90.0, 90.0), v.at("lon").number(-180.0, 180.0),
+                v.at("alt").number(bounds::kMinAltitude, bounds::kMaxAltitude)};
+  g.sigma_h = v.at("sigma_h").number(0.0, bounds::kMaxSigma);
+  g.sigma_v = v.at("sigma_v").number(0.0, bounds::kMaxSigma);
   if (g.sigma_h <= 0.0) v.at("sigma_h").fail("must be positive");
   if (g.sigma_v <= 0.0) v.at("sigma_v").fail("must be positive");
   return g;
@@ -89,8 +108,16 @@ Element elementFromJson(const JsonView& v) {
   e.id = v.at("id").integer();
   readClassAndAttributes(v, e.cls, e.attributes);
   e.anchor = v.at("anchor").integer();
-  e.points_body = readPoints(v.at("points"));
-  if (e.points_body.empty()) v.at("points").fail("an element needs at least one point");
+  const JsonView points = v.at("points");
+  for (std::size_t i = 0; i < points.size(); ++i)
+    e.points_body.push_back(points.at(i).coordinate(bounds::kMaxElementRange));
+  if (e.points_body.empty()) points.fail("an element needs at least one point");
+  double length = 0.0;
+  for (std::size_t i = 1; i < e.points_body.size(); ++i)
+    length += (e.points_body[i] - e.points_body[i - 1]).norm();
+  if (length > bounds::kMaxElementLength)
+    points.fail("the element's polyline is " + bounds::numberText(length) + " m long, more than " +
+                bounds::numberText(bounds::kMaxElementLength) + " m");
   if (auto cov = v.find("cov")) {
     if (cov->size() != e.points_body.size())
       cov->fail("expected one covariance per point (" + std::to_string(e.points_body.size()) +
@@ -99,8 +126,7 @@ Element elementFromJson(const JsonView& v) {
   } else if (auto sig = v.find("sigma")) {
     if (sig->size() != e.points_body.size()) sig->fail("expected one sigma per point");
     for (std::size_t i = 0; i < sig->size(); ++i) {
-      const double s = sig->at(i).number();
-      if (s < 0.0) sig->at(i).fail("sigma must not be negative");
+      const double s = sig->at(i).number(0.0, bounds::kMaxSigma);
       e.covariances.push_back(Eigen::Matrix3d::Identity() * s * s);
     }
   } else {
@@ -108,9 +134,8 @@ Element elementFromJson(const JsonView& v) {
   }
   e.confidence = v.at("confidence").number();
   if (e.confidence < 0.0 || e.confidence > 1.0) v.at("confidence").fail("must be within [0, 1]");
-  e.observations = int(v.at("observations").integer());
-  if (e.observations < 1) v.at("observations").fail("must be at least 1");
-  if (auto h = v.find("height")) e.height = h->number();
+  e.observations = v.at("observations").integerInt(1);
+  if (auto h = v.find("height")) e.height = h->number(0.0, bounds::kMaxElementHeight);
   if (auto t = v.find("truth_id")) e.truth_id = t->integer();
   return e;
 }
@@ -152,7 +177,10 @@ Lsm lsmFromJson(const Json& doc, const std::string& file) {
   else if (lsm.frame == LsmFrame::kEnu)
     v.at("origin");  // throws: enu requires an origin
   const JsonView kfs = v.at("keyframes");
-  for (std::size_t i = 0; i < kfs.size(); ++i) lsm.keyframes.push_back(keyframeFromJson(kfs.at(i)));
+  for (std::size_t i = 0; i < kfs.size(); ++i) {
+    lsm.keyframes.push_back(keyframeFromJson(kfs.at(i)));
+    if (i > 0) checkStep(lsm.keyframes[i - 1], lsm.keyframes[i], kfs.at(i));
+  }
   if (auto gps = v.find("gps"))
     for (std::size_t i = 0; i < gps->size(); ++i) lsm.gps.push_back(gpsFromJson(gps->at(i)));
   const JsonView els = v.at("elements");
@@ -161,7 +189,59 @@ Lsm lsmFromJson(const Json& doc, const std::string& file) {
   return lsm;
 }
 
+namespace {
+
+bool within(double x, double lo, double hi) { return x >= lo && x <= hi; }
+
+// The value bounds the general reader checks (docs/formats.md "Value bounds"), on an LSM the
+// fast CBOR codec decoded: when one fails, the general reader reads the file again and refuses
+// it naming the field, so both paths accept exactly the same files.
+bool withinReaderBounds(const Lsm& lsm) {
+  using namespace bounds;
+  for (std::size_t i = 0; i < lsm.keyframes.size(); ++i) {
+    const Keyframe& k = lsm.keyframes[i];
+    if (!within(k.stamp, -kMaxStamp, kMaxStamp)) return false;
+    if (!(k.covariance.cwiseAbs().maxCoeff() <= kMaxVariance)) return false;
+    if (i > 0) {
+      const Keyframe& prev = lsm.keyframes[i - 1];
+      const double step = (k.T_frame_body.translation() - prev.T_frame_body.translation()).norm();
+      if (!(step <= kMaxKeyframeGap + kMaxSpeed * std::max(0.0, k.stamp - prev.stamp)))
+        return false;
+    }
+  }
+  for (const GpsFix& g : lsm.gps)
+    if (!within(g.stamp, -kMaxStamp, kMaxStamp) ||
+        !within(g.position.alt, kMinAltitude, kMaxAltitude) || !within(g.sigma_h, 0, kMaxSigma) ||
+        !within(g.sigma_v, 0, kMaxSigma) || g.sigma_h <= 0 || g.sigma_v <= 0)
+      return false;
+  for (const Element& e : lsm.elements) {
+    double length = 0.0;
+    for (std::size_t i = 0; i < e.points_body.size(); ++i) {
+      if (!(e.points_body[i].cwiseAbs().maxCoeff() <= kMaxElementRange)) return false;
+      if (i > 0) length += (e.points_body[i] - e.points_body[i - 1]).norm();
+    }
+    if (!(length <= kMaxElementLength) || !within(e.confidence, 0, 1) ||
+        !within(e.height, 0, kMaxElementHeight))
+      return false;
+    for (const auto& c : e.covariances)
+      if (!(c.cwiseAbs().maxCoeff() <= kMaxVariance)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 Lsm readLsm(const std::filesystem::path& path) {
+  // CBOR: the fast codec (lsm_cbor.hpp); whatever it declines, or whatever lies outside the
+  // readers' bounds, the general path judges.
+  if (encodingOf(path) == Encoding::kCbor) {
+    const std::string bytes = readBytes(path);
+    std::optional<Lsm> lsm = detail::decodeLsmCbor(bytes);
+    if (lsm && withinReaderBounds(*lsm)) {
+      validateLsm(*lsm, path.string());
+      return std::move(*lsm);
+    }
+  }
   return lsmFromJson(readDocument(path), path.string());
 }
 
@@ -187,7 +267,10 @@ std::vector<Lsm> readLsmInputs(const std::vector<std::string>& files) {
 }
 
 void writeLsm(const std::filesystem::path& path, const Lsm& lsm) {
-  writeDocument(path, lsmToJson(lsm));
+  if (encodingOf(path) == Encoding::kCbor)
+    writeBytesAtomic(path, detail::encodeLsmCbor(lsm));  // the bytes of to_cbor(lsmToJson(lsm))
+  else
+    writeDocument(path, lsmToJson(lsm));
 }
 
 }  // namespace mapfuse::io

@@ -1,5 +1,7 @@
 #include "mapfuse/io/output_transaction.hpp"
 
+#include <cctype>
+
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/file.h>
@@ -25,10 +27,19 @@ long tempOwner(const fs::path& p) {
   const std::string name = p.filename().string();
   const auto at = name.rfind(".tmp-");
   if (at == std::string::npos || at + 5 >= name.size()) return 0;
+  // "<name>.tmp-<pid>", or "<name>.tmp-<pid>.<ext>" for writers that pick their format by the
+  // extension (OpenCV's forests: "rtrees_<class>.yml.tmp-<pid>.yml")
   long pid = 0;
-  for (std::size_t i = at + 5; i < name.size(); ++i) {
+  std::size_t i = at + 5;
+  for (; i < name.size() && name[i] != '.'; ++i) {
     if (name[i] < '0' || name[i] > '9' || pid > 100000000) return 0;
     pid = pid * 10 + (name[i] - '0');
+  }
+  if (i == at + 5) return 0;
+  if (i < name.size()) {  // an extension: letters only
+    if (i + 1 == name.size()) return 0;
+    for (std::size_t j = i + 1; j < name.size(); ++j)
+      if (!std::isalpha(static_cast<unsigned char>(name[j]))) return 0;
   }
   return pid;
 }
@@ -101,16 +112,32 @@ OutputTransaction* OutputTransaction::active() {
 
 void OutputTransaction::stage(const fs::path& tmp, const fs::path& target) {
   std::lock_guard<std::mutex> guard(mutex_);
-  for (auto& f : files_)
-    if (f.second == target) {  // written again: the newer content counts
-      if (f.first != tmp) {
-        std::error_code ec;
-        fs::remove(f.first, ec);
-        f.first = tmp;
-      }
-      return;
+  const auto [at, fresh] = index_.emplace(target.lexically_normal().string(), files_.size());
+  if (!fresh) {  // written again: the newer content counts
+    auto& f = files_[at->second];
+    if (f.first != tmp) {
+      std::error_code ec;
+      fs::remove(f.first, ec);
+      f.first = tmp;
     }
+    return;
+  }
   files_.emplace_back(tmp, target);
+}
+
+fs::path OutputTransaction::stagedPath(const fs::path& target) {
+  std::lock_guard<std::mutex> guard(mutex_);
+  for (const auto& f : files_)
+    if (f.second == target) return f.first;
+  return {};
+}
+
+fs::path contentPath(const fs::path& target) {
+  if (OutputTransaction* t = OutputTransaction::active()) {
+    fs::path staged = t->stagedPath(target);
+    if (!staged.empty()) return staged;
+  }
+  return target;
 }
 
 void OutputTransaction::commit() {
@@ -136,6 +163,7 @@ void OutputTransaction::commit() {
     }
   }
   files_.clear();
+  index_.clear();
   done_ = true;
   g_active.store(nullptr);
 }
@@ -146,6 +174,7 @@ void OutputTransaction::rollback() noexcept {
     fs::remove(f.first, ec);
   }
   files_.clear();
+  index_.clear();
   done_ = true;
 }
 

@@ -1,11 +1,13 @@
 #include "mapfuse/io/ply.hpp"
 
+#include <cmath>
 #include <cstring>
 #include <sstream>
 
 #include "mapfuse/core/classes.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/bounds.hpp"
 
 namespace mapfuse::io {
 namespace {
@@ -92,21 +94,23 @@ void writePly(const std::filesystem::path& path, const LabeledCloud& cloud) {
 }
 
 LabeledCloud readPly(const std::filesystem::path& path) {
-  const std::string bytes = readBytes(path);
-  const std::string file = path.string();
+  return parsePly(readBytes(path), path.string());
+}
+
+LabeledCloud parsePly(const std::string& bytes, const std::string& file) {
   const auto end = bytes.find("end_header\n");
   if (bytes.rfind("ply\n", 0) != 0 || end == std::string::npos)
     throw ParseError(file, "header", "not a PLY file (missing 'ply' or 'end_header')");
   std::istringstream hs(bytes.substr(0, end));
   std::string line;
   long long n = -1;
-  bool in_vertex = false;
+  bool in_vertex = false, has_format = false;
   struct Prop {
     std::string type, name;
-    int offset;
+    int64_t offset;
   };
   std::vector<Prop> props;
-  int stride = 0;
+  int64_t stride = 0;
   while (std::getline(hs, line)) {
     std::istringstream ls(line);
     std::string kw;
@@ -116,10 +120,13 @@ LabeledCloud readPly(const std::filesystem::path& path) {
       ls >> fmt;
       if (fmt != "binary_little_endian")
         throw ParseError(file, "format", "'" + fmt + "' unsupported (binary_little_endian only)");
+      has_format = true;
     } else if (kw == "element") {
       std::string name;
       ls >> name;
-      in_vertex = name == "vertex";
+      const bool vertex = name == "vertex";
+      if (vertex && n >= 0) throw ParseError(file, "element vertex", "given twice");
+      in_vertex = vertex;
       if (in_vertex && !(ls >> n && n >= 0))
         throw ParseError(file, "element vertex", "bad vertex count");
       if (!in_vertex && n < 0)
@@ -131,10 +138,11 @@ LabeledCloud readPly(const std::filesystem::path& path) {
       const int sz = typeSize(p.type);
       if (sz == 0) throw ParseError(file, "property " + p.name, "unknown type '" + p.type + "'");
       p.offset = stride;
-      stride += sz;
+      stride += sz;  // at most 8 a property of a header shorter than the file: no overflow
       props.push_back(p);
     }
   }
+  if (!has_format) throw ParseError(file, "format", "missing");
   if (n < 0) throw ParseError(file, "element vertex", "missing");
   auto findProp = [&](const std::string& name) -> const Prop* {
     for (const auto& p : props)
@@ -146,21 +154,41 @@ LabeledCloud readPly(const std::filesystem::path& path) {
   const Prop* pl = findProp("label");
   const Prop* pc = findProp("confidence");
   const std::size_t body = end + std::strlen("end_header\n");
-  if (bytes.size() - body < static_cast<std::size_t>(n) * stride)
+  const auto need = bounds::checkedMultiply(n, stride);
+  if (!need || uint64_t(*need) > bytes.size() - body)
     throw ParseError(file, "vertex",
                      "body truncated: " + std::to_string(bytes.size() - body) + " bytes for " +
-                         std::to_string(n) + " vertices of " + std::to_string(stride));
+                         std::to_string(n) + " vertices of " + std::to_string(stride) + " bytes");
   LabeledCloud c;
   c.points.resize(static_cast<std::size_t>(n));
   c.labels.assign(static_cast<std::size_t>(n), 0);
   c.confidence.assign(static_cast<std::size_t>(n), 1.0f);
-  for (long long i = 0; i < n; ++i) {
-    const char* p = bytes.data() + body + static_cast<std::size_t>(i) * stride;
-    c.points[i] = Eigen::Vector3f(static_cast<float>(readValue(p + px->offset, px->type)),
-                                  static_cast<float>(readValue(p + py->offset, py->type)),
-                                  static_cast<float>(readValue(p + pz->offset, pz->type)));
-    if (pl) c.labels[i] = static_cast<uint8_t>(readValue(p + pl->offset, pl->type));
-    if (pc) c.confidence[i] = static_cast<float>(readValue(p + pc->offset, pc->type));
+  for (std::size_t i = 0; i < c.points.size(); ++i) {
+    const char* p = bytes.data() + body + i * static_cast<std::size_t>(stride);
+    const std::string where = "vertex " + std::to_string(i);
+    for (const Prop* axis : {px, py, pz}) {
+      const double v = readValue(p + axis->offset, axis->type);
+      if (!(std::abs(v) <= bounds::kMaxCoordinate))  // also NaN
+        throw ParseError(file, where + " " + axis->name,
+                         bounds::numberText(v) + " m is not within " +
+                             bounds::rangeText(-bounds::kMaxCoordinate, bounds::kMaxCoordinate));
+      c.points[i][axis == px ? 0 : axis == py ? 1 : 2] = static_cast<float>(v);
+    }
+    if (pl) {
+      const double label = readValue(p + pl->offset, pl->type);
+      if (!(label >= 0 && label < kNumLidarClasses && label == std::floor(label)))
+        throw ParseError(file, where + " label",
+                         bounds::numberText(label) + " is no LiDAR class id (0.." +
+                             std::to_string(kNumLidarClasses - 1) + ")");
+      c.labels[i] = static_cast<uint8_t>(label);
+    }
+    if (pc) {
+      const double conf = readValue(p + pc->offset, pc->type);
+      if (!(conf >= 0 && conf <= 1))
+        throw ParseError(file, where + " confidence",
+                         bounds::numberText(conf) + " is not within [0, 1]");
+      c.confidence[i] = static_cast<float>(conf);
+    }
   }
   return c;
 }

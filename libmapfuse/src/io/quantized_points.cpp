@@ -3,10 +3,18 @@
 #include <cmath>
 #include <string>
 
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/io/bounds.hpp"
+
 namespace mapfuse::io {
 namespace {
 Eigen::Matrix<int64_t, 3, 1> toUnits(const Eigen::Vector3d& p, double q) {
-  return (p / q).array().round().cast<int64_t>().matrix();
+  const Eigen::Vector3d units = (p / q).array().round().matrix();
+  // 2^62 units: a cast beyond int64 would be undefined, and deltas of two such values still fit.
+  if (!(units.cwiseAbs().maxCoeff() < 4.6e18))
+    throw InputError("coordinate " + bounds::numberText(p.cwiseAbs().maxCoeff()) +
+                     " m has no integer in units of the quantum " + bounds::numberText(q) + " m");
+  return units.cast<int64_t>();
 }
 }  // namespace
 
@@ -25,10 +33,20 @@ std::vector<Eigen::Vector3d> quantizedPointsFromJson(const JsonView& v, double q
   if (v.size() == 0 || v.size() % 3 != 0)
     v.fail("needs whole 3D points (a non-empty multiple of 3 integers), got " +
            std::to_string(v.size()) + " numbers");
+  // Every running sum stays within the coordinate bound, so no sum can overflow: each delta
+  // is checked against the room left before it is added.
+  const auto limit = int64_t(std::floor(bounds::kMaxCoordinate / q));
   std::vector<Eigen::Vector3d> points;
   Eigen::Matrix<int64_t, 3, 1> u = Eigen::Matrix<int64_t, 3, 1>::Zero();
   for (std::size_t i = 0; i < v.size(); i += 3) {
-    for (int k = 0; k < 3; ++k) u[k] += v.at(i + std::size_t(k)).integer();
+    for (int k = 0; k < 3; ++k) {
+      const JsonView d = v.at(i + std::size_t(k));
+      const int64_t delta = d.integer();
+      if (delta < -limit - u[k] || delta > limit - u[k])
+        d.fail("delta-coded coordinate leaves " +
+               bounds::rangeText(-bounds::kMaxCoordinate, bounds::kMaxCoordinate) + " m");
+      u[k] += delta;
+    }
     points.push_back(u.cast<double>() * q);
   }
   return points;

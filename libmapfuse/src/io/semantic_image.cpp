@@ -6,6 +6,8 @@
 #include "mapfuse/core/classes.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/bounds.hpp"
+#include "mapfuse/io/png_decode.hpp"
 #include "mapfuse/io/png_frames.hpp"
 
 namespace mapfuse::io {
@@ -20,9 +22,7 @@ void checkSizes(const SemanticImage& img, const std::string& what) {
     throw InputError(what + ": semantic image data size does not match width*height*channels");
 }
 
-SemanticImage readProb(const fs::path& path) {
-  const std::string bytes = readBytes(path);
-  const std::string file = path.string();
+SemanticImage parseProb(const std::string& bytes, const std::string& file) {
   const auto eol = bytes.find('\n');
   if (eol == std::string::npos || eol > 200)
     throw ParseError(file, "header", "missing 'mapfuse-prob 1 <width> <height> <channels>' line");
@@ -32,8 +32,15 @@ SemanticImage readProb(const fs::path& path) {
   if (!(ss >> magic) || magic != kProbMagic)
     throw ParseError(file, "header", "does not start with 'mapfuse-prob'");
   if (!(ss >> version) || version != 1) throw ParseError(file, "version", "unsupported (want 1)");
-  if (!(ss >> w) || w <= 0 || w > 100000) throw ParseError(file, "width", "missing or invalid");
-  if (!(ss >> h) || h <= 0 || h > 100000) throw ParseError(file, "height", "missing or invalid");
+  const std::string side = " (1.." + std::to_string(bounds::kMaxImageSide) + " px)";
+  if (!(ss >> w) || w <= 0 || w > bounds::kMaxImageSide)
+    throw ParseError(file, "width", "missing or invalid" + side);
+  if (!(ss >> h) || h <= 0 || h > bounds::kMaxImageSide)
+    throw ParseError(file, "height", "missing or invalid" + side);
+  if (int64_t(w) * h > bounds::kMaxImagePixels)
+    throw ParseError(file, "height",
+                     std::to_string(w) + "x" + std::to_string(h) + " px is more than " +
+                         std::to_string(bounds::kMaxImagePixels) + " pixels");
   if (!(ss >> c)) throw ParseError(file, "channels", "missing or invalid");
   if (c != kNumLidarClasses)
     throw ParseError(file, "channels",
@@ -53,12 +60,8 @@ SemanticImage readProb(const fs::path& path) {
   return img;
 }
 
-SemanticImage readLabelPng(const fs::path& path) {
-  const std::string bytes = readBytes(path);
-  const std::string file = path.string();
-  const cv::Mat raw(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data()));
-  const cv::Mat m = cv::imdecode(raw, cv::IMREAD_UNCHANGED);
-  if (m.empty()) throw ParseError(file, "png", "not a decodable image");
+SemanticImage parseLabelPng(const std::string& bytes, const std::string& file) {
+  const cv::Mat m = decodePng(bytes, file, cv::IMREAD_UNCHANGED);
   if (m.type() != CV_8UC1)
     throw ParseError(file, "png", "must be single-channel 8-bit (label ids 0..7)");
   SemanticImage img;
@@ -114,9 +117,16 @@ std::optional<fs::path> findSemanticImage(const fs::path& drive_dir, const std::
 
 SemanticImage readSemanticImage(const fs::path& path) {
   const std::string ext = path.extension().string();
-  if (ext == ".prob") return readProb(path);
-  if (ext == ".png") return readLabelPng(path);
-  throw IoError(path.string(), "unknown semantics extension (want .png or .prob)");
+  if (ext != ".prob" && ext != ".png")
+    throw IoError(path.string(), "unknown semantics extension (want .png or .prob)");
+  return parseSemanticImage(readBytes(path), path.string());
+}
+
+SemanticImage parseSemanticImage(const std::string& bytes, const std::string& file) {
+  const std::string ext = fs::path(file).extension().string();
+  if (ext == ".prob") return parseProb(bytes, file);
+  if (ext == ".png") return parseLabelPng(bytes, file);
+  throw IoError(file, "unknown semantics extension (want .png or .prob)");
 }
 
 void writeSemanticImage(const fs::path& path, const SemanticImage& image) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <optional>
 
+#include "mapfuse/core/error.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
 #include "quantized_points.hpp"
@@ -53,7 +54,29 @@ double quantumFor(const JsonView& field, std::optional<double> quantum) {
   return *quantum;
 }
 
-MapInstance instanceFromJson(const JsonView& v, std::optional<double> quantum) {
+/// Sum of the control-polygon lengths of a chain (>= its arc length), m.
+double chainLength(const std::vector<BezierSegment>& chain) {
+  double length = 0.0;
+  for (const auto& seg : chain)
+    length += (seg[1] - seg[0]).norm() + (seg[2] - seg[1]).norm() + (seg[3] - seg[2]).norm();
+  return length;
+}
+
+/// Bounds the points a reader samples from Bezier chains: per chain and per document.
+void checkChainLength(const JsonView& field, const std::vector<BezierSegment>& chain,
+                      double& document_total) {
+  const double length = chainLength(chain);
+  if (length > bounds::kMaxChainLength)
+    field.fail("Bezier chain is " + bounds::numberText(length) + " m long, more than " +
+               bounds::numberText(bounds::kMaxChainLength) + " m");
+  document_total += length;
+  if (document_total > bounds::kMaxChainLengthPerDocument)
+    field.fail("the document's Bezier chains exceed " +
+               bounds::numberText(bounds::kMaxChainLengthPerDocument) + " m in total");
+}
+
+MapInstance instanceFromJson(const JsonView& v, std::optional<double> quantum,
+                             double& chain_total) {
   v.onlyKeys({"id", "class", "style", "color", "points", "points_q", "bezier", "bezier_q", "height",
               "support", "source_ids", "note"});
   MapInstance inst;
@@ -62,15 +85,20 @@ MapInstance instanceFromJson(const JsonView& v, std::optional<double> quantum) {
   if (auto b = v.find("bezier_q")) {
     const double q = quantumFor(*b, quantum);
     inst.bezier = chainFromControlPoints(quantizedPointsFromJson(*b, q), *b);
+    checkChainLength(*b, inst.bezier, chain_total);
   } else if (auto b = v.find("bezier")) {
     for (std::size_t i = 0; i < b->size(); ++i) {
       const JsonView seg = b->at(i);
       if (seg.size() != 4) seg.fail("a cubic Bezier segment needs 4 control points");
       BezierSegment s;
-      for (int k = 0; k < 4; ++k) s[k] = seg.at(k).vec3();
+      for (int k = 0; k < 4; ++k) s[k] = seg.at(k).coordinate();
       inst.bezier.push_back(s);
     }
+    checkChainLength(*b, inst.bezier, chain_total);
   }
+  if (!inst.bezier.empty() && geometryKind(inst.cls) != GeometryKind::kLine)
+    v.at("class").fail("a Bezier chain belongs to a line class, not '" +
+                       std::string(crowdClassName(inst.cls)) + "'");
   if (auto p = v.find("points_q"))
     inst.points = quantizedPointsFromJson(*p, quantumFor(*p, quantum));
   else if (auto p = v.find("points"))
@@ -79,11 +107,11 @@ MapInstance instanceFromJson(const JsonView& v, std::optional<double> quantum) {
     inst.points = sampleBezierChain(inst.bezier, kBezierSampleStep);
   else
     v.at("points");  // throws: geometry missing
-  if (auto h = v.find("height")) inst.height = h->number();
+  if (auto h = v.find("height")) inst.height = h->number(0.0, bounds::kMaxElementHeight);
   if (auto s = v.find("support")) {
     s->onlyKeys({"drives", "observations"});
-    inst.support.drives = int(s->at("drives").integer());
-    inst.support.observations = int(s->at("observations").integer());
+    inst.support.drives = s->at("drives").integerInt(0);
+    inst.support.observations = s->at("observations").integerInt(0);
   }
   if (auto ids = v.find("source_ids"))
     for (std::size_t i = 0; i < ids->size(); ++i) inst.source_ids.push_back(ids->at(i).integer());
@@ -104,7 +132,12 @@ std::vector<Eigen::Vector3d> sampleBezierChain(const std::vector<BezierSegment>&
   for (const auto& seg : chain) {
     const double chord =
         (seg[1] - seg[0]).norm() + (seg[2] - seg[1]).norm() + (seg[3] - seg[2]).norm();
-    const int n = std::max(1, int(std::ceil(chord / step)));
+    // Readers bound chains to bounds::kMaxChainLength; the guard keeps the count exact.
+    const double count = std::ceil(chord / step);
+    if (!(count <= 1e9))
+      throw InputError("Bezier segment too long to sample every " + bounds::numberText(step) +
+                       " m");
+    const int n = std::max(1, int(count));
     for (int i = out.empty() ? 0 : 1; i <= n; ++i) out.push_back(bezierPoint(seg, double(i) / n));
   }
   return out;
@@ -131,13 +164,11 @@ VectorMap vectorMapFromJson(const Json& doc, const std::string& file) {
   if (auto s = v.find("source")) map.source = s->string();
   map.origin = readOrigin(v.at("origin"));
   std::optional<double> quantum;
-  if (auto q = v.find("quantum")) {
-    quantum = q->number();
-    if (!(*quantum > 0) || !std::isfinite(*quantum)) q->fail("must be a positive number of metres");
-  }
+  if (auto q = v.find("quantum")) quantum = q->number(bounds::kMinQuantum, bounds::kMaxQuantum);
   const JsonView inst = v.at("instances");
+  double chain_total = 0.0;
   for (std::size_t i = 0; i < inst.size(); ++i)
-    map.instances.push_back(instanceFromJson(inst.at(i), quantum));
+    map.instances.push_back(instanceFromJson(inst.at(i), quantum, chain_total));
   validateVectorMap(map, file);
   return map;
 }

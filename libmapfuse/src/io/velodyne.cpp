@@ -5,13 +5,13 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/bounds.hpp"
 
 namespace mapfuse::io {
 
-VelodyneScan readVelodyneBin(const std::filesystem::path& path) {
-  const std::string bytes = readBytes(path);
+VelodyneScan parseVelodyneBin(const std::string& bytes, const std::string& file) {
   if (bytes.size() % 16 != 0)
-    throw ParseError(path.string(), "size",
+    throw ParseError(file, "size",
                      std::to_string(bytes.size()) +
                          " bytes is not a multiple of 16 (float32 x, y, z, reflectance)");
   const std::size_t n = bytes.size() / 16;
@@ -21,12 +21,21 @@ VelodyneScan readVelodyneBin(const std::filesystem::path& path) {
   for (std::size_t i = 0; i < n; ++i) {
     float v[4];
     std::memcpy(v, bytes.data() + i * 16, 16);
-    if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
-      throw ParseError(path.string(), "point " + std::to_string(i), "non-finite coordinate");
+    for (int k = 0; k < 3; ++k)
+      if (!(std::abs(v[k]) <= bounds::kMaxLidarRange))  // also NaN
+        throw ParseError(file, "point " + std::to_string(i),
+                         "coordinate " + bounds::numberText(v[k]) + " m is not within " +
+                             bounds::rangeText(-bounds::kMaxLidarRange, bounds::kMaxLidarRange));
+    if (!std::isfinite(v[3]))
+      throw ParseError(file, "point " + std::to_string(i), "reflectance is not finite");
     scan.points[i] = Eigen::Vector3f(v[0], v[1], v[2]);
     scan.reflectance[i] = v[3];
   }
   return scan;
+}
+
+VelodyneScan readVelodyneBin(const std::filesystem::path& path) {
+  return parseVelodyneBin(readBytes(path), path.string());
 }
 
 void writeVelodyneBin(const std::filesystem::path& path, const VelodyneScan& scan) {

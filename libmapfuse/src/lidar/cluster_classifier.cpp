@@ -6,6 +6,7 @@
 #include <opencv2/ml.hpp>
 
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 
 namespace mapfuse::lidar {
 namespace fs = std::filesystem;
@@ -97,6 +98,10 @@ void ClusterClassifier::save(const fs::path& dir) const {
     } catch (const cv::Exception& e) {
       fs::remove(tmp, ec);
       throw IoError(tmp.string(), std::string("cannot write forest: ") + e.what());
+    }
+    if (auto* outputs = io::OutputTransaction::active()) {  // replaced with the run's set
+      outputs->stage(tmp, target);
+      continue;
     }
     fs::rename(tmp, target, ec);
     if (ec) throw IoError(target.string(), "cannot rename temporary file: " + ec.message());

@@ -3,6 +3,8 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/geo/origin.hpp"
 #include "mapfuse/geo/oxts.hpp"
+#include "mapfuse/io/kitti_poses.hpp"
+#include "mapfuse/lidar/scan_odometry.hpp"
 
 namespace mapfuse::lidar {
 
@@ -31,6 +33,40 @@ std::vector<Pose3> veloPosesFromCameraPoses(const std::vector<Pose3>& T_cam0_cam
   out.reserve(T_cam0_cam.size());
   const Pose3 T_velo_cam = T_cam_velo.inverse();
   for (const Pose3& T : T_cam0_cam) out.push_back(T_velo_cam * T * T_cam_velo);
+  return out;
+}
+
+std::vector<Pose3> veloPosesFromFile(const io::KittiRawDrive& drive,
+                                     const std::filesystem::path& poses_file) {
+  const std::vector<Pose3> cam = io::readKittiOdometryPoses(poses_file);
+  const std::size_t last = static_cast<std::size_t>(drive.frames.back().index);
+  std::vector<Pose3> sel;
+  if (cam.size() > last) {
+    for (const auto& f : drive.frames) sel.push_back(cam[static_cast<std::size_t>(f.index)]);
+  } else if (cam.size() == drive.frames.size()) {
+    sel = cam;
+  } else {
+    throw InputError(poses_file.string() + " has " + std::to_string(cam.size()) +
+                     " poses: neither one per frame index up to the last selected frame " +
+                     std::to_string(last) + " nor one per selected frame (" +
+                     std::to_string(drive.frames.size()) + ")");
+  }
+  // R_rect_00 carries ~7 digits: its product with Tr is projected back onto SE(3), in both
+  // directions (cameraPosesForFile), so that a file written and read again is the same.
+  std::vector<Pose3> poses =
+      veloPosesFromCameraPoses(sel, orthonormalized(drive.calib.T_rect0_velo()));
+  const Pose3 T0inv = poses.front().inverse();
+  for (Pose3& T : poses) T = T0inv * T;
+  return poses;
+}
+
+std::vector<Pose3> cameraPosesForFile(const std::vector<Pose3>& T_map_velo,
+                                      const Pose3& T_cam_velo) {
+  std::vector<Pose3> out;
+  if (T_map_velo.empty()) return out;
+  const Pose3 T_cv = orthonormalized(T_cam_velo);
+  const Pose3 T0inv = T_map_velo.front().inverse(), T_velo_cam = T_cv.inverse();
+  for (const Pose3& T : T_map_velo) out.push_back(orthonormalized(T_cv * (T0inv * T) * T_velo_cam));
   return out;
 }
 

@@ -15,6 +15,11 @@ constexpr int kSmoothPasses = 3;
 constexpr int kRouteAttempts = 20;
 }  // namespace
 
+bool DriveParams::dividesImuRate(double rate) const {
+  const double ratio = imu_rate / rate;
+  return rate > 0.0 && rate <= imu_rate && std::abs(ratio - std::round(ratio)) < 1e-9;
+}
+
 uint64_t deriveSeed(uint64_t base, uint64_t index) {
   uint64_t z = base + 0x9E3779B97F4A7C15ull * (index + 1);
   z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;

@@ -6,7 +6,9 @@
 #include <optional>
 #include <set>
 
+#include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
+#include "mapfuse/io/bounds.hpp"
 #include "mapfuse/sim/line_chains.hpp"
 
 namespace mapfuse::sim {
@@ -19,15 +21,23 @@ constexpr double kArrowStopDistance = 1.0;   // m, centreline vertex to stop lin
 constexpr double kMinArrowLaneRoom = 2.5;    // m, the arrow must fit into the lane
 constexpr double kJoinTolerance = 1e-3;      // m, line pieces sharing a node are one marking
 
-/// The `height` tag of a way or node in metres; nullopt when absent or not a positive number.
+/// The `height` tag of a way or node in metres; nullopt when absent or not a number in
+/// (0, io::bounds::kMaxElementHeight].
 std::optional<double> heightTag(const std::map<std::string, std::string>& tags) {
   const auto it = tags.find("height");
   if (it == tags.end()) return std::nullopt;
   char* end = nullptr;
   const double h = std::strtod(it->second.c_str(), &end);
-  if (end == it->second.c_str() || !std::isfinite(h) || h <= 0.0) return std::nullopt;
+  if (end == it->second.c_str() || !std::isfinite(h) || h <= 0.0 ||
+      h > io::bounds::kMaxElementHeight)
+    return std::nullopt;
   return h;
 }
+
+// Drivable lanelets are sampled every kCenterlineStep: at most 1000 km of them (2e6 samples;
+// the Karlsruhe example map has about 30 km). One node 2700 km from the others made a single
+// lanelet take 30 s.
+constexpr double kMaxDrivableLength = 1e6;  // m
 
 bool isDrivable(const std::string& subtype) {
   return subtype.empty() || subtype == "road" || subtype == "highway" || subtype == "exit" ||
@@ -75,6 +85,7 @@ World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin
 
   IdAllocator ids;
   int64_t max_id = 0;
+  // The reader keeps |id| <= 2^63 - 2^32: abs and the fresh ids after max_id cannot overflow.
   for (const auto& w : map.linestrings) max_id = std::max(max_id, std::abs(w.id));
   for (const auto& l : map.lanelets) max_id = std::max(max_id, std::abs(l.id));
   ids.next = max_id + 1;  // ids of placed elements follow every map id
@@ -90,7 +101,18 @@ World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin
     return world.truth.instances.back();
   };
 
-  // Lanes and crosswalks from lanelets.
+  // Lanes and crosswalks from lanelets, their sampling bounded first.
+  double drivable_length = 0.0;
+  for (const auto& ll : map.lanelets)
+    if (ll.subtype != "crosswalk" && isDrivable(ll.subtype))
+      drivable_length +=
+          std::max(polylineLength(wayLine(ll.left)), polylineLength(wayLine(ll.right)));
+  if (drivable_length > kMaxDrivableLength)
+    throw InputError(
+        map.file + ": drivable lanelets are " +
+        std::to_string(std::lround(drivable_length / 1000)) + " km long in all, more than " +
+        std::to_string(std::lround(kMaxDrivableLength / 1000)) +
+        " km (the simulator samples them every " + io::bounds::numberText(kCenterlineStep) + " m)");
   int drivable = 0;
   for (const auto& ll : map.lanelets) {
     Polyline left = wayLine(ll.left), right = wayLine(ll.right);
@@ -208,12 +230,30 @@ World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin
                               (side_b == 0 ? eb->second.first : eb->second.second);
                      });
   // Arrows before stop lines, one per lane ending at a stop line, unless the map has arrows.
+  // Lanes whose bounding box is farther than kArrowStopDistance from the stop line cannot cross
+  // it: skipped unread.
   int arrows = 0;
+  struct Box {
+    Eigen::Vector2d lo, hi;
+  };
+  auto boxOf = [](const Polyline& line) {
+    Box b{line.front().head<2>(), line.front().head<2>()};
+    for (const auto& p : line) b.lo = b.lo.cwiseMin(p.head<2>()), b.hi = b.hi.cwiseMax(p.head<2>());
+    return b;
+  };
+  std::vector<Box> lane_boxes;
+  for (const auto& lane : world.lanes) lane_boxes.push_back(boxOf(lane.centerline));
   const std::size_t n_instances = map_arrows > 0 ? 0 : world.truth.instances.size();
   for (std::size_t i = 0; i < n_instances; ++i) {
     if (world.truth.instances[i].cls != CrowdClass::kStopLine) continue;
     const Polyline stop = world.truth.instances[i].points;
-    for (const auto& lane : world.lanes) {
+    const Box sb = boxOf(stop);
+    for (std::size_t li = 0; li < world.lanes.size(); ++li) {
+      const Lane& lane = world.lanes[li];
+      const Box& lb = lane_boxes[li];
+      if ((lb.lo - sb.hi).maxCoeff() > kArrowStopDistance ||
+          (sb.lo - lb.hi).maxCoeff() > kArrowStopDistance)
+        continue;
       // Where the lane centreline crosses the stop line (closest vertex within tolerance).
       const auto cum = arcLengths(lane.centerline);
       double s_stop = -1.0, best = kArrowStopDistance;

@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <cmath>
+#include <map>
 #include <random>
 #include <set>
 
@@ -109,7 +110,8 @@ ObservedDrive observeLsm(const World& world, const PieceIndex& index, const Driv
     lsm.elements.push_back(std::move(e));
   };
   // Noisy copy of body-frame points: a common error per element plus per-point white noise.
-  auto noisy = [&](Element& e, const std::vector<Eigen::Vector3d>& pts, bool aerial) {
+  auto noisyFrom = [&](std::mt19937_64& g, Element& e, const std::vector<Eigen::Vector3d>& pts,
+                       bool aerial) {
     std::vector<Eigen::Matrix3d> covs;
     for (const auto& p : pts) {
       const double r = (p - cam).head<2>().norm();
@@ -120,12 +122,12 @@ ObservedDrive observeLsm(const World& world, const PieceIndex& index, const Driv
     }
     Eigen::Matrix3d mean_cov = Eigen::Matrix3d::Zero();
     for (const auto& c : covs) mean_cov += c / static_cast<double>(covs.size());
-    const Eigen::Vector3d z0(N01(rng), N01(rng), N01(rng));
+    const Eigen::Vector3d z0(N01(g), N01(g), N01(g));
     const Eigen::Vector3d common =
         std::sqrt(P.correlated_fraction) *
         Eigen::Vector3d(Eigen::Matrix3d(Eigen::LLT<Eigen::Matrix3d>(mean_cov).matrixL()) * z0);
     for (std::size_t i = 0; i < pts.size(); ++i) {
-      const Eigen::Vector3d zi(N01(rng), N01(rng), N01(rng));
+      const Eigen::Vector3d zi(N01(g), N01(g), N01(g));
       e.points_body.push_back(
           pts[i] + common +
           std::sqrt(1.0 - P.correlated_fraction) *
@@ -134,6 +136,19 @@ ObservedDrive observeLsm(const World& world, const PieceIndex& index, const Driv
       e.covariances.push_back(covs[i]);
     }
   };
+  auto noisy = [&](Element& e, const std::vector<Eigen::Vector3d>& pts, bool aerial) {
+    noisyFrom(rng, e, pts, aerial);
+  };
+  // Stop lines whose centre never enters this drive's view (a crossing road's stop line while
+  // the vehicle turns) are still seen in part: the longest visible run, by the solid-line rule
+  // per point, kept per piece and observed once after the drive when the whole line never was.
+  struct PartialRun {
+    std::size_t keyframe = 0;
+    std::vector<Eigen::Vector3d> body;
+    double length = 0.0;
+  };
+  std::map<int, PartialRun> partial;
+  std::set<int> whole;
 
   for (std::size_t j = 0; j < kfs.size(); ++j) {
     const std::size_t k = kfs[j];
@@ -184,11 +199,34 @@ ObservedDrive observeLsm(const World& world, const PieceIndex& index, const Driv
         const Eigen::Vector3d c = Tinv * piece.centroid;
         const bool aerial = kind == GeometryKind::kPoint || m.cls == CrowdClass::kTrafficSign;
         const double lo = aerial ? a0 : groundStart(c.y()), hi = lo + win;
-        if (c.x() < lo || c.x() >= hi || std::abs(c.y()) > P.lateral_range) continue;
         std::vector<Eigen::Vector3d> pts;
         for (const auto& q : piece.points) pts.push_back(Tinv * q);
         const Eigen::Vector3d key_point = kind == GeometryKind::kPoint ? pts[0] : c;
-        if (!camera.sees(key_point, 1.0)) continue;
+        const bool centre_seen = c.x() >= lo && c.x() < hi && std::abs(c.y()) <= P.lateral_range &&
+                                 camera.sees(key_point, 1.0);
+        if (m.cls == CrowdClass::kStopLine && !centre_seen && P.partial_stop_line_min_length > 0) {
+          std::vector<Eigen::Vector3d> run, best;
+          double best_length = 0;
+          auto close = [&] {
+            const double l = run.size() >= 2 ? (run.back() - run.front()).head<2>().norm() : 0.0;
+            if (l > best_length) best_length = l, best = run;
+            run.clear();
+          };
+          for (const auto& b : pts) {
+            const double g0 = groundStart(b.y());
+            if (b.x() >= g0 && b.x() < g0 + win && std::abs(b.y()) <= P.lateral_range &&
+                camera.sees(b, 1.0))
+              run.push_back(b);
+            else
+              close();
+          }
+          close();
+          PartialRun& pr = partial[pi];
+          if (best_length >= P.partial_stop_line_min_length && best_length > pr.length)
+            pr = PartialRun{j, best, best_length};
+        }
+        if (!centre_seen) continue;
+        if (m.cls == CrowdClass::kStopLine) whole.insert(pi);
         runs.push_back(pts);
       }
       for (const auto& run : runs) {
@@ -233,6 +271,32 @@ ObservedDrive observeLsm(const World& world, const PieceIndex& index, const Driv
       addElement(std::move(f));
       ++out.stats.false_positives;
     }
+  }
+  // The partly seen stop lines, from their own random stream (the observations above, and so
+  // every LSM of a simulation without such stop lines, stay as they were).
+  std::mt19937_64 prng(seed ^ 0x5a17c0de5a17c0deull);
+  for (const auto& [pi, pr] : partial) {
+    if (whole.count(pi) || pr.body.empty()) continue;
+    const MapInstance& m = inst[index.pieces()[pi].instance];
+    if (std::uniform_real_distribution<double>(0, 1)(prng) < P.miss_probability) {
+      ++out.stats.missed;
+      continue;
+    }
+    Element e;
+    e.cls = m.cls;
+    e.attributes = m.attributes;
+    e.anchor = lsm.keyframes[pr.keyframe].id;
+    e.truth_id = m.id;
+    e.confidence = std::uniform_real_distribution<double>(0.7, 1.0)(prng);
+    noisyFrom(prng, e, pr.body, false);
+    const double r = (pr.body.front() - cam).head<2>().norm();
+    e.observations =
+        std::clamp(static_cast<int>((camera.params().max_range - r + P.keyframe_spacing) /
+                                    std::max(0.1, frame_step)),
+                   1, 1000);
+    addElement(std::move(e));
+    ++out.stats.elements;
+    ++out.stats.partial_stop_lines;
   }
   return out;
 }

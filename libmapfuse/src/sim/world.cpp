@@ -18,6 +18,18 @@ Eigen::Vector3d direction(const Polyline& line, bool at_end) {
 }
 }  // namespace
 
+WorldSummary summarize(const World& world) {
+  WorldSummary s;
+  s.name = world.name;
+  s.lanes = world.lanes.size();
+  s.lane_km = world.laneLength() / 1000.0;
+  s.elements = world.truth.instances.size();
+  for (const auto& m : world.truth.instances) ++s.elements_by_class[crowdClassName(m.cls)];
+  s.lane_line_km = totalLineLength(world.truth, CrowdClass::kLaneLine) / 1000.0;
+  s.stats = world.stats;
+  return s;
+}
+
 void connectLanesByEndpoints(World& world, double tolerance) {
   for (auto& a : world.lanes) {
     a.successors.clear();

@@ -17,11 +17,16 @@ nlohmann::json toJson(const fusion::AlignResult& r) {
   sum["seconds_pcm"] = r.seconds_pcm;
   sum["cost_pose_graph"] = r.cost_pose_graph;
   sum["converged_pose_graph"] = r.converged_pose_graph;
+  sum["pose_graph_solves"] = r.pose_graph_solves;
+  sum["pose_graph_iterations"] = r.pose_graph_iterations;
+  sum["pose_graph_pcg_iterations"] = r.pose_graph_pcg_iterations;
   sum["seconds_pose_graph"] = r.seconds_pose_graph;
   if (r.ran_gba) {
     sum["cost_gba"] = r.cost_gba;
     sum["gba_residuals"] = r.gba_residuals;
     sum["converged_gba"] = r.converged_gba;
+    sum["gba_iterations"] = r.gba_iterations;
+    sum["gba_pcg_iterations"] = r.gba_pcg_iterations;
     sum["seconds_gba"] = r.seconds_gba;
   }
   sum["constraints_graph_outliers"] = r.constraints_graph_outliers;

@@ -1,6 +1,5 @@
 #include "mapfuse/stages/balance.hpp"
 
-#include <algorithm>
 #include <chrono>
 #include <map>
 
@@ -8,12 +7,13 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/core/progress.hpp"
-#include "mapfuse/io/document.hpp"
-#include "mapfuse/io/json_view.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
+#include "mapfuse/io/tile_alignment.hpp"
+#include "mapfuse/io/tiles_manifest.hpp"
 #include "mapfuse/tiling/piece_links.hpp"
+#include "mapfuse/tiling/placement_overview.hpp"
 
 namespace mapfuse::stages {
 
@@ -28,78 +28,48 @@ struct PieceFiles {
   fs::path input, aligned;
 };
 
-// Registrations align's pose graph kept (PCM-consistent, not rejected as graph outliers), as
-// index pairs into the tile's list of inputs.
-std::vector<std::pair<int, int>> keptRegistrations(const fs::path& summary_path,
-                                                   const std::vector<PieceFiles>& files) {
-  const io::Json summary_doc = io::readDocument(summary_path);
-  const io::JsonView summary(summary_doc, summary_path.string());
-  const io::JsonView inputs = summary.at("inputs");
-  std::map<std::string, int> piece_of;  // file name -> index in `files`
-  for (std::size_t i = 0; i < files.size(); ++i)
-    piece_of[files[i].input.filename().string()] = int(i);
-  std::vector<int> piece(inputs.size(), -1);  // align's input index -> index in `files`
-  for (std::size_t i = 0; i < inputs.size(); ++i) {
-    const auto it = piece_of.find(fs::path(inputs.at(i).string()).filename().string());
-    if (it != piece_of.end()) piece[i] = it->second;
-  }
-  std::vector<std::pair<int, int>> links;
-  const io::JsonView pairs = summary.at("pairs");
-  for (std::size_t i = 0; i < pairs.size(); ++i) {
-    const io::JsonView p = pairs.at(i);
-    if (!p.at("accepted").boolean() || !p.at("pcm_consistent").boolean() ||
-        p.at("graph_outlier").boolean())
-      continue;
-    const int64_t a = p.at("lsm_a").integer(), b = p.at("lsm_b").integer();
-    if (a < 0 || b < 0 || a >= int64_t(piece.size()) || b >= int64_t(piece.size()))
-      p.fail("lsm_a / lsm_b outside the summary's inputs");
-    if (piece[a] >= 0 && piece[b] >= 0) links.emplace_back(piece[a], piece[b]);
-  }
-  return links;
-}
-
 // The pieces of one tile, in groups, with what align did to each.
-std::vector<std::pair<PieceFiles, tiling::TilePiece>> measureTile(const io::JsonView& tile,
+std::vector<std::pair<PieceFiles, tiling::TilePiece>> measureTile(const io::TilesManifestTile& tile,
                                                                   const fs::path& tiles_dir,
                                                                   const BalanceParams& params) {
-  const std::string name = tile.at("name").string();
-  const tiling::TileKey key{tile.at("ix").integer(), tile.at("iy").integer()};
-  const fs::path align_dir = tiles_dir / name / params.aligned_subdir;
-  const fs::path summary_path = align_dir / "align.summary.json";
-  if (!fs::exists(summary_path))
-    throw InputError(summary_path.string() + ": missing; run align on tile " + name +
-                     " first (balance needs every tile's align output)");
-  std::vector<PieceFiles> files;
-  std::vector<Lsm> inputs, aligned;
-  const io::JsonView lsms = tile.at("lsms");
-  for (std::size_t i = 0; i < lsms.size(); ++i) {
-    PieceFiles f;
-    f.tile_name = name;
-    f.input = tiles_dir / lsms.at(i).string();
-    f.aligned = align_dir / f.input.filename();
-    if (!fs::exists(f.aligned))
-      throw InputError(f.aligned.string() + ": align's output for " + f.input.string() +
-                       " is missing (align tile " + name + " again)");
-    inputs.push_back(io::readLsm(f.input));
-    aligned.push_back(io::readLsm(f.aligned));
-    files.push_back(f);
-  }
-  auto links = keptRegistrations(summary_path, files);
+  const io::TileAlignment t = io::readTileAlignment(tile, tiles_dir, params.aligned_subdir);
+  auto links = t.kept;
   const auto agreeing =
-      tiling::agreeingPieces(aligned, params.links.link_distance, params.links.link_min_points);
+      tiling::agreeingPieces(t.aligned, params.links.link_distance, params.links.link_min_points);
   links.insert(links.end(), agreeing.begin(), agreeing.end());
-  const std::vector<int> group = tiling::registrationGroups(int(files.size()), links);
-
+  const std::vector<int> group = tiling::registrationGroups(int(t.inputs.size()), links);
   std::vector<std::pair<PieceFiles, tiling::TilePiece>> out;
-  for (std::size_t i = 0; i < files.size(); ++i) {
-    files[i].group = {key, group[i]};
+  for (std::size_t i = 0; i < t.inputs.size(); ++i) {
+    const PieceFiles f{{{tile.ix, tile.iy}, group[i]}, tile.name, t.input_files[i],
+                       t.aligned_files[i]};
     try {
-      out.emplace_back(files[i], tiling::measurePiece(inputs[i], aligned[i]));
+      out.emplace_back(f, tiling::measurePiece(t.inputs[i], t.aligned[i]));
     } catch (const InputError& e) {
-      throw InputError(files[i].aligned.string() + ": " + e.what());
+      throw InputError(f.aligned.string() + ": " + e.what());
     }
-    out.back().second.group = files[i].group;
+    out.back().second.group = f.group;
   }
+  return out;
+}
+
+nlohmann::json toJson(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+nlohmann::json toJson(const std::vector<tiling::GroupShift>& groups) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& g : groups)
+    out.push_back({{"tile", g.group.tile.name()},
+                   {"group", g.group.group},
+                   {"pieces", g.pieces},
+                   {"shift_m", toJson(g.shift)}});
+  return out;
+}
+
+nlohmann::json toJson(const std::vector<tiling::TileShift>& tiles) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& t : tiles)
+    out[t.tile] = {{"groups", t.groups},
+                   {"largest_group_pieces", t.largest.pieces},
+                   {"largest_group_shift_m", toJson(t.largest.shift)}};
   return out;
 }
 
@@ -110,21 +80,18 @@ nlohmann::json runBalance(const fs::path& tiles_json, const fs::path& out,
   validateParams(params);
   const auto t0 = std::chrono::steady_clock::now();
   io::OutputTransaction outputs(out);  // locked and writable before the work
-  const io::Json doc = io::readDocument(tiles_json);
-  const io::JsonView manifest(doc, tiles_json.string());
-  manifest.checkFormat("mapfuse.tiles", 1);
+  const io::TilesManifest manifest = io::readTilesManifest(tiles_json);
   const fs::path tiles_dir = tiles_json.parent_path();
 
   // Pass 1, tile by tile: groups and what align did to every piece. Pass 2 reads the aligned
   // LSMs again, one at a time, so that memory holds one tile, not the whole batch.
   std::vector<PieceFiles> files;
   std::vector<tiling::TilePiece> pieces;
-  const io::JsonView tiles = manifest.at("tiles");
   std::size_t total = 0;
-  for (std::size_t t = 0; t < tiles.size(); ++t) total += tiles.at(t).at("lsms").size();
+  for (const auto& tile : manifest.tiles) total += tile.lsms.size();
   Progress progress("LSMs", 2 * total);
-  for (std::size_t t = 0; t < tiles.size(); ++t)
-    for (auto& [f, piece] : measureTile(tiles.at(t), tiles_dir, params)) {
+  for (const auto& tile : manifest.tiles)
+    for (auto& [f, piece] : measureTile(tile, tiles_dir, params)) {
       files.push_back(f);
       pieces.push_back(piece);
       progress.advance();
@@ -143,51 +110,21 @@ nlohmann::json runBalance(const fs::path& tiles_json, const fs::path& out,
   }
   progress.finish();
 
-  // The largest moves, for a look at where tiles disagreed most.
-  std::vector<std::pair<double, tiling::GroupKey>> moved;
-  for (const auto& [key, s] : shifts) moved.emplace_back(s.head<2>().norm(), key);
-  std::sort(moved.rbegin(), moved.rend());
-  nlohmann::json largest = nlohmann::json::array();
-  for (std::size_t i = 0; i < std::min<std::size_t>(5, moved.size()); ++i) {
-    const auto& key = moved[i].second;
-    const Eigen::Vector3d& s = shifts.at(key);
-    largest.push_back({{"tile", key.tile.name()},
-                       {"group", key.group},
-                       {"pieces", group_size[key]},
-                       {"shift_m", {s.x(), s.y(), s.z()}}});
-  }
-  int singletons = 0;
-  for (const auto& [key, n] : group_size) singletons += n == 1;
-  // Per tile: its groups and the move of its largest one (most of the tile's map).
-  std::map<std::string, std::pair<int, tiling::GroupKey>> main_group;  // pieces, group
-  std::map<std::string, int> groups_in;
-  for (const auto& [key, n] : group_size) {
-    ++groups_in[key.tile.name()];
-    auto& m = main_group[key.tile.name()];
-    if (n > m.first) m = {n, key};
-  }
-  nlohmann::json per_tile = nlohmann::json::object();
-  for (const auto& [name, m] : main_group) {
-    const Eigen::Vector3d& s = shifts.at(m.second);
-    per_tile[name] = {{"groups", groups_in[name]},
-                      {"largest_group_pieces", m.first},
-                      {"largest_group_shift_m", {s.x(), s.y(), s.z()}}};
-  }
-
+  const auto overview = tiling::overviewOfShifts(shifts, group_size, 5);
   io::writeResolvedConfig(out, "balance", paramsToJson(params));
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   nlohmann::json summary = {{"tiles", report.tiles},
                             {"groups", report.groups},
-                            {"single_piece_groups", singletons},
+                            {"single_piece_groups", overview.single_piece_groups},
                             {"pieces", report.pieces},
                             {"drives", report.drives},
                             {"keyframes", report.keyframes},
                             {"downweighted_pieces", report.downweighted},
                             {"rms_residual_m", report.rms_residual},
                             {"max_shift_m", report.max_shift},
-                            {"largest_shifts", largest},
-                            {"per_tile", per_tile},
+                            {"largest_shifts", toJson(overview.largest_shifts)},
+                            {"per_tile", toJson(overview.per_tile)},
                             {"seconds", seconds}};
   io::writeSummary(out, "balance", summary);
   outputs.commit();

@@ -7,6 +7,7 @@
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/kitti_raw.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/ply.hpp"
 #include "mapfuse/io/semantic_kitti.hpp"
 #include "mapfuse/io/stage_report.hpp"
@@ -16,24 +17,35 @@
 namespace mapfuse::stages {
 namespace {
 constexpr const char* kStage = "evaluate-voxels";
-constexpr const char* kStageName = "EvaluateVoxelsParams";
 
 std::filesystem::path truthLabels(const io::KittiRawDrive& d, const io::KittiRawFrame& f) {
   return d.dir / "labels" / (f.name + ".label");
 }
-}  // namespace
-
-void EvaluateVoxelsParams::validate() const {
-  requireParam(voxel_size > 0.0, kStageName, "voxel_size", voxel_size, "> 0");
-  requireParam(min_range >= 0.0 && min_range < max_range, kStageName, "min_range", min_range,
-               "in [0, max_range)");
-  requireParam(pose_source == "oxts" || pose_source == "oxts-enu", kStageName, "pose_source",
-               pose_source, "oxts or oxts-enu");
+/// Poses of the truth scans in the map's frame (docs/evaluate.md).
+std::vector<Pose3> truthPoses(const io::KittiRawDrive& drive, const std::filesystem::path& dir,
+                              const EvaluateVoxelsParams& P) {
+  const std::filesystem::path file =
+      P.poses_file.empty() ? drive.poses_file : std::filesystem::path(P.poses_file);
+  std::string src = P.pose_source;
+  if (src == "auto") src = drive.has_oxts ? "oxts" : "poses_file";
+  if (src == "poses_file") {
+    if (file.empty())
+      throw InputError(dir.string() +
+                       ": truth voxels need poses: no OXTS, give --poses-file (e.g. the map's "
+                       "poses.txt)");
+    return lidar::veloPosesFromFile(drive, file);
+  }
+  if (!drive.has_oxts) throw InputError(dir.string() + ": truth voxels need OXTS poses");
+  std::vector<Pose3> poses = lidar::oxtsVeloPoses(drive, src == "oxts-enu");
+  if (P.recenter) lidar::recenter(poses);
+  return poses;
 }
+}  // namespace
 
 nlohmann::json runEvaluateVoxels(const EvaluateVoxelsInputs& in, const std::filesystem::path& out,
                                  const EvaluateVoxelsParams& P) {
-  P.validate();
+  validateParams(P);
+  io::OutputTransaction outputs(out);  // locked and writable before the work (exit 4)
   if (in.map.empty() == in.predicted_labels.empty())
     throw InputError(
         "evaluate voxels: give exactly one of a voxel map or a predicted labels folder");
@@ -56,10 +68,8 @@ nlohmann::json runEvaluateVoxels(const EvaluateVoxelsInputs& in, const std::file
     doc = {{"mode", "scans"}, {"counts", {{"scans", scans}}}};
   } else {
     // (a) voxel map vs truth voxels from the labelled scans in the same frame.
-    if (!drive.has_oxts) throw InputError(in.drive.string() + ": truth voxels need OXTS poses");
-    std::vector<Pose3> poses = lidar::oxtsVeloPoses(drive, P.pose_source == "oxts-enu");
-    if (P.recenter) lidar::recenter(poses);
-    eval::VoxelTruth truth(P.voxel_size);
+    std::vector<Pose3> poses = truthPoses(drive, in.drive, P);
+    eval::VoxelTruth truth(P.truth.voxel_size);
     const Eigen::Matrix<double, 3, 4> P2 = drive.calib.veloToImage2();
     for (std::size_t k = 0; k < drive.frames.size(); ++k) {
       const auto& f = drive.frames[k];
@@ -68,9 +78,9 @@ nlohmann::json runEvaluateVoxels(const EvaluateVoxelsInputs& in, const std::file
       if (labels.size() != scan.size())
         throw InputError(truthLabels(drive, f).string() + ": " + std::to_string(labels.size()) +
                          " labels for " + std::to_string(scan.size()) + " points");
-      eval::addLabelledScan(truth, scan.points, labels, poses[k], P.min_range, P.max_range,
-                            P.camera_fov ? &P2 : nullptr, drive.calib.image_width,
-                            drive.calib.image_height);
+      eval::addLabelledScan(truth, scan.points, labels, poses[k], P.truth.min_range,
+                            P.truth.max_range, P.truth.camera_fov ? &P2 : nullptr,
+                            drive.calib.image_width, drive.calib.image_height);
     }
     const LabeledCloud map = io::readPly(in.map);
     const eval::MapComparison cmp = eval::compareVoxelMap(map, truth);
@@ -104,6 +114,7 @@ nlohmann::json runEvaluateVoxels(const EvaluateVoxelsInputs& in, const std::file
                     {"mean_iou", doc["scores"]["mean_iou"]},
                     {"mean_accuracy", doc["scores"]["mean_accuracy"]},
                     {"evaluated", scores.evaluated}});
+  outputs.commit();
   doc["markdown"] = md;
   return doc;
 }

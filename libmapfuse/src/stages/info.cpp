@@ -9,63 +9,86 @@
 namespace mapfuse::stages {
 namespace {
 
-nlohmann::json describeLsm(const Lsm& lsm) {
-  double length = 0.0;
+LsmInfo describeLsm(const Lsm& lsm) {
+  LsmInfo info;
+  info.drive_id = lsm.drive_id;
+  info.vehicle_id = lsm.vehicle_id;
+  info.frame = lsm.frame == LsmFrame::kEnu ? "enu" : "odom";
+  info.keyframes = lsm.keyframes.size();
+  info.gps_fixes = lsm.gps.size();
+  info.elements = lsm.elements.size();
+  for (const auto& e : lsm.elements) ++info.elements_per_class[crowdClassName(e.cls)];
   for (std::size_t i = 1; i < lsm.keyframes.size(); ++i)
-    length += (lsm.keyframes[i].T_frame_body.translation() -
-               lsm.keyframes[i - 1].T_frame_body.translation())
-                  .norm();
-  nlohmann::json per_class = nlohmann::json::object();
-  for (const auto& e : lsm.elements)
-    per_class[crowdClassName(e.cls)] = per_class.value(crowdClassName(e.cls), 0) + 1;
-  nlohmann::json j = {{"drive_id", lsm.drive_id},
-                      {"vehicle_id", lsm.vehicle_id},
-                      {"frame", lsm.frame == LsmFrame::kEnu ? "enu" : "odom"},
-                      {"keyframes", lsm.keyframes.size()},
-                      {"gps_fixes", lsm.gps.size()},
-                      {"elements", lsm.elements.size()},
-                      {"elements_per_class", per_class},
-                      {"trajectory_length_m", length}};
+    info.trajectory_length_m += (lsm.keyframes[i].T_frame_body.translation() -
+                                 lsm.keyframes[i - 1].T_frame_body.translation())
+                                    .norm();
   if (!lsm.keyframes.empty())
-    j["duration_s"] = lsm.keyframes.back().stamp - lsm.keyframes.front().stamp;
-  if (lsm.origin) j["origin"] = io::originToJson(*lsm.origin);
-  return j;
+    info.duration_s = lsm.keyframes.back().stamp - lsm.keyframes.front().stamp;
+  info.origin = lsm.origin;
+  return info;
 }
 
-nlohmann::json describeMap(const VectorMap& map) {
-  nlohmann::json per_class = nlohmann::json::object();
-  for (const auto& i : map.instances)
-    per_class[crowdClassName(i.cls)] = per_class.value(crowdClassName(i.cls), 0) + 1;
-  return {{"source", map.source},
-          {"origin", io::originToJson(map.origin)},
-          {"instances", map.instances.size()},
-          {"instances_per_class", per_class},
-          {"lane_line_length_m", totalLineLength(map, CrowdClass::kLaneLine)}};
+MapInfo describeMap(const VectorMap& map) {
+  MapInfo info;
+  info.source = map.source;
+  info.origin = map.origin;
+  info.instances = map.instances.size();
+  for (const auto& i : map.instances) ++info.instances_per_class[crowdClassName(i.cls)];
+  info.lane_line_length_m = totalLineLength(map, CrowdClass::kLaneLine);
+  return info;
 }
 
 }  // namespace
 
-nlohmann::json describeFile(const std::filesystem::path& path) {
-  const nlohmann::json doc = io::readDocument(path);
-  const std::string file = path.string();
-  if (!doc.is_object() || !doc.contains("format") || !doc["format"].is_string())
-    throw ParseError(file, "format", "not a mapfuse document (no \"format\" string)");
-  const std::string format = doc["format"];
+nlohmann::json toJson(const FileInfo& info) {
   nlohmann::json j;
-  if (format == io::kLsmFormat)
-    j = describeLsm(io::lsmFromJson(doc, file));
-  else if (format == io::kVectorMapFormat)
-    j = describeMap(io::vectorMapFromJson(doc, file));
-  else if (format == "mapfuse.tiles")
-    j = {{"tiles", doc.value("tiles", nlohmann::json::array()).size()}};
-  else if (format == "mapfuse.summary")
-    j = {{"stage", doc.value("stage", "")}};
-  else
-    throw ParseError(file, "format", "unknown format \"" + format + "\"");
-  j["file"] = file;
-  j["format"] = format;
-  j["bytes"] = std::filesystem::file_size(path);
+  if (const auto& l = info.lsm) {
+    j = {{"drive_id", l->drive_id},
+         {"vehicle_id", l->vehicle_id},
+         {"frame", l->frame},
+         {"keyframes", l->keyframes},
+         {"gps_fixes", l->gps_fixes},
+         {"elements", l->elements},
+         {"elements_per_class", l->elements_per_class},
+         {"trajectory_length_m", l->trajectory_length_m}};
+    if (l->duration_s) j["duration_s"] = *l->duration_s;
+    if (l->origin) j["origin"] = io::originToJson(*l->origin);
+  } else if (const auto& m = info.map) {
+    j = {{"source", m->source},
+         {"origin", io::originToJson(m->origin)},
+         {"instances", m->instances},
+         {"instances_per_class", m->instances_per_class},
+         {"lane_line_length_m", m->lane_line_length_m}};
+  } else if (info.format == "mapfuse.tiles") {
+    j = {{"tiles", info.tiles}};
+  } else {
+    j = {{"stage", info.stage}};
+  }
+  j["file"] = info.file;
+  j["format"] = info.format;
+  j["bytes"] = info.bytes;
   return j;
+}
+
+FileInfo describeFile(const std::filesystem::path& path) {
+  const nlohmann::json doc = io::readDocument(path);
+  FileInfo info;
+  info.file = path.string();
+  if (!doc.is_object() || !doc.contains("format") || !doc["format"].is_string())
+    throw ParseError(info.file, "format", "not a mapfuse document (no \"format\" string)");
+  info.format = doc["format"];
+  if (info.format == io::kLsmFormat)
+    info.lsm = describeLsm(io::lsmFromJson(doc, info.file));
+  else if (info.format == io::kVectorMapFormat)
+    info.map = describeMap(io::vectorMapFromJson(doc, info.file));
+  else if (info.format == "mapfuse.tiles")
+    info.tiles = doc.value("tiles", nlohmann::json::array()).size();
+  else if (info.format == "mapfuse.summary")
+    info.stage = doc.value("stage", "");
+  else
+    throw ParseError(info.file, "format", "unknown format \"" + info.format + "\"");
+  info.bytes = std::filesystem::file_size(path);
+  return info;
 }
 
 geo::GeoOrigin originOfLsm(const std::filesystem::path& path) {

@@ -8,6 +8,7 @@
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/core/progress.hpp"
 #include "mapfuse/io/kitti_poses.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/pcd.hpp"
 #include "mapfuse/io/picture_key.hpp"
 #include "mapfuse/io/ply.hpp"
@@ -15,10 +16,10 @@
 #include "mapfuse/io/semantic_kitti.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/velodyne.hpp"
+#include "mapfuse/lidar/drive_odometry.hpp"
 #include "mapfuse/lidar/drive_poses.hpp"
 #include "mapfuse/lidar/map_export.hpp"
 #include "mapfuse/lidar/refinement.hpp"
-#include "mapfuse/lidar/scan_odometry.hpp"
 #include "mapfuse/lidar/seen_through_filter.hpp"
 #include "mapfuse/stages/lidar_semantic_map_detail.hpp"
 
@@ -38,9 +39,9 @@ std::vector<Pose3> drivePoses(const io::KittiRawDrive& drive, const LidarSemanti
                               json& report) {
   std::string src = p.pose_source;
   if (src == "auto")
-    src = (drive.has_oxts && drive.calib.has_imu) ? "oxts"
-          : !p.poses_file.empty()                 ? "poses_file"
-                                                  : "odometry";
+    src = (drive.has_oxts && drive.calib.has_imu)              ? "oxts"
+          : !p.poses_file.empty() || !drive.poses_file.empty() ? "poses_file"
+                                                               : "odometry";
   report["source"] = src;
   std::vector<Pose3> poses;
   if (src == "oxts" || src == "oxts_enu") {
@@ -51,49 +52,20 @@ std::vector<Pose3> drivePoses(const io::KittiRawDrive& drive, const LidarSemanti
     const auto ox = io::readOxts(drive.frames.front());
     report["origin_wgs84"] = {{"lat", ox.lat}, {"lon", ox.lon}, {"alt", ox.alt}};
   } else if (src == "poses_file") {
-    if (p.poses_file.empty()) throw ConfigError("pose_source poses_file needs --poses-file");
-    const auto cam = io::readKittiOdometryPoses(p.poses_file);
-    std::vector<Pose3> sel;
-    for (const auto& f : drive.frames) {
-      if (f.index >= static_cast<int>(cam.size()))
-        throw InputError(p.poses_file + ": no pose for frame " + std::to_string(f.index));
-      sel.push_back(cam[static_cast<std::size_t>(f.index)]);
-    }
-    poses = lidar::veloPosesFromCameraPoses(sel, drive.calib.T_rect0_velo());
-    const Pose3 T0inv = poses.front().inverse();
-    for (Pose3& T : poses) T = T0inv * T;
+    const fs::path file = !p.poses_file.empty() ? fs::path(p.poses_file) : drive.poses_file;
+    if (file.empty())
+      throw ConfigError("pose_source poses_file needs --poses-file (or a sequence's poses.txt)");
+    report["file"] = file.string();
+    poses = lidar::veloPosesFromFile(drive, file);
   } else if (src == "odometry") {
-    lidar::OdometrySettings os;
-    os.voxel_size = p.odom_voxel_size;
-    os.local_map_scans = p.odom_local_map_scans;
-    os.coarse_correspondence = p.odom_coarse_distance;
-    os.fine_correspondence = p.odom_fine_distance;
-    os.deskew = p.odom_deskew;
-    os.num_threads = p.num_threads;
-    lidar::ScanOdometry odo(os);
-    Progress progress("odometry scans", drive.frames.size());
-    for (const auto& f : drive.frames) {
-      odo.add(io::readVelodyneBin(f.velodyne).points);
-      progress.advance();
-    }
-    progress.finish();
-    poses = odo.poses();
-    int converged = 0;
-    json steps = json::array();
-    double length = 0;
-    for (std::size_t i = 0; i < poses.size(); ++i) {
-      const auto& st = odo.steps()[i];
-      converged += st.converged;
-      if (i > 0) length += (poses[i].translation() - poses[i - 1].translation()).norm();
-      steps.push_back({{"frame", drive.frames[i].index},
-                       {"converged", st.converged},
-                       {"iterations", st.iterations},
-                       {"rmse", st.rmse},
-                       {"inliers", st.num_inliers}});
-    }
-    report["converged_scans"] = converged;
-    report["travelled_distance_m"] = length;
-    report["steps"] = steps;
+    lidar::DriveOdometrySettings os;
+    os.odometry.voxel_size = p.odom_voxel_size;
+    os.odometry.deskew = p.odom_deskew;
+    os.odometry.exclude_road_users = p.odom_exclude_road_users;
+    os.max_untrusted = p.odom_max_untrusted;
+    const lidar::DriveOdometryResult odo = lidar::runDriveOdometry(drive, os);
+    poses = odo.T_odom_velo;
+    report.update(lidar::odometryReport(odo, os));
   } else {
     throw ConfigError("pose_source = \"" + src +
                       "\". Violated constraint: one of auto, oxts, oxts_enu, poses_file, odometry");
@@ -104,36 +76,49 @@ std::vector<Pose3> drivePoses(const io::KittiRawDrive& drive, const LidarSemanti
 
 void LidarSemanticMapParams::validate() const {
   const char* s = "LidarSemanticMapParams";
-  requireParam(first_frame >= 0, s, "first_frame", first_frame, ">= 0");
+  requireParam(first_frame >= 0 && first_frame <= 1000000000, s, "first_frame", first_frame,
+               "in [0, 1e9]");
   requireParam(last_frame < 0 || last_frame >= first_frame, s, "last_frame", last_frame,
                "-1 or >= first_frame");
-  requireParam(stride >= 1, s, "stride", stride, ">= 1");
-  requireParam(odom_voxel_size > 0, s, "odom_voxel_size", odom_voxel_size, "> 0");
-  requireParam(odom_local_map_scans >= 1, s, "odom_local_map_scans", odom_local_map_scans, ">= 1");
-  requireParam(odom_fine_distance > 0, s, "odom_fine_distance", odom_fine_distance, "> 0");
-  requireParam(odom_coarse_distance >= odom_fine_distance, s, "odom_coarse_distance",
-               odom_coarse_distance, ">= odom_fine_distance");
+  requireParam(stride >= 1 && stride <= 1000000, s, "stride", stride, "in [1, 1e6]");
+  requireParam(odom_voxel_size >= 0.01 && odom_voxel_size <= 10, s, "odom_voxel_size",
+               odom_voxel_size, "in [0.01, 10]");
+  requireParam(odom_max_untrusted >= 0 && odom_max_untrusted <= 1000000000, s,
+               "odom_max_untrusted", odom_max_untrusted, "in [0, 1e9]");
   requireParam(enet_scale > 0.1 && enet_scale <= 4, s, "enet_scale", enet_scale, "in (0.1, 4]");
   requireParam(label_confidence > 1.0 / kNumLidarClasses && label_confidence <= 1, s,
                "label_confidence", label_confidence, "in (1/8, 1]");
   requireParam(min_probability > 0 && min_probability < 1.0 / kNumLidarClasses, s,
                "min_probability", min_probability, "in (0, 1/8)");
-  requireParam(min_range >= 0, s, "min_range", min_range, ">= 0");
-  requireParam(max_range > min_range, s, "max_range", max_range, "> min_range");
-  requireParam(voxel_size > 0, s, "voxel_size", voxel_size, "> 0");
-  requireParam(min_log_prob < 0, s, "min_log_prob", min_log_prob, "< 0");
-  requireParam(cluster_tolerance > 0, s, "cluster_tolerance", cluster_tolerance, "> 0");
-  requireParam(cluster_min_points >= 1, s, "cluster_min_points", cluster_min_points, ">= 1");
-  requireParam(rtrees_max_depth >= 1, s, "rtrees_max_depth", rtrees_max_depth, ">= 1");
-  requireParam(rtrees_trees >= 1, s, "rtrees_trees", rtrees_trees, ">= 1");
-  requireParam(rtrees_min_samples >= 1, s, "rtrees_min_samples", rtrees_min_samples, ">= 1");
+  requireParam(min_range >= 0 && min_range <= 1000, s, "min_range", min_range, "in [0, 1000]");
+  requireParam(max_range > min_range && max_range <= 1000, s, "max_range", max_range,
+               "> min_range, <= 1000");
+  requireParam(voxel_size >= 0.005 && voxel_size <= 10, s, "voxel_size", voxel_size,
+               "in [0.005, 10]");
+  requireParam(min_log_prob < 0 && min_log_prob >= -1e6, s, "min_log_prob", min_log_prob,
+               "in [-1e6, 0)");
+  requireParam(cluster_tolerance > 0 && cluster_tolerance <= 100, s, "cluster_tolerance",
+               cluster_tolerance, "in (0, 100]");
+  requireParam(cluster_min_points >= 1 && cluster_min_points <= 1000000000, s,
+               "cluster_min_points", cluster_min_points, "in [1, 1e9]");
+  requireParam(rtrees_max_depth >= 1 && rtrees_max_depth <= 64, s, "rtrees_max_depth",
+               rtrees_max_depth, "in [1, 64]");
+  requireParam(rtrees_trees >= 1 && rtrees_trees <= 10000, s, "rtrees_trees", rtrees_trees,
+               "in [1, 10000]");
+  requireParam(rtrees_min_samples >= 1 && rtrees_min_samples <= 1000000000, s,
+               "rtrees_min_samples", rtrees_min_samples, "in [1, 1e9]");
   requireParam(knn_k >= 1 && knn_k <= 32, s, "knn_k", knn_k, "in 1..32");
-  requireParam(knn_max_mean_distance > 0, s, "knn_max_mean_distance", knn_max_mean_distance, "> 0");
-  requireParam(trace_eps > 0, s, "trace_eps", trace_eps, "> 0");
-  requireParam(trace_min_points >= 1, s, "trace_min_points", trace_min_points, ">= 1");
-  requireParam(trace_max_voxels >= 1, s, "trace_max_voxels", trace_max_voxels, ">= 1");
-  requireParam(trace_max_length > 0, s, "trace_max_length", trace_max_length, "> 0");
-  requireParam(seen_through_margin > 0, s, "seen_through_margin", seen_through_margin, "> 0");
+  requireParam(knn_max_mean_distance > 0 && knn_max_mean_distance <= 100, s,
+               "knn_max_mean_distance", knn_max_mean_distance, "in (0, 100]");
+  requireParam(trace_eps > 0 && trace_eps <= 100, s, "trace_eps", trace_eps, "in (0, 100]");
+  requireParam(trace_min_points >= 1 && trace_min_points <= 1000000000, s,
+               "trace_min_points", trace_min_points, "in [1, 1e9]");
+  requireParam(trace_max_voxels >= 1 && trace_max_voxels <= 1000000000, s,
+               "trace_max_voxels", trace_max_voxels, "in [1, 1e9]");
+  requireParam(trace_max_length > 0 && trace_max_length <= 10000, s, "trace_max_length",
+               trace_max_length, "in (0, 1e4]");
+  requireParam(seen_through_margin > 0 && seen_through_margin <= 100, s,
+               "seen_through_margin", seen_through_margin, "in (0, 100]");
   requireParam(seen_through_window >= 0 && seen_through_window <= 5, s, "seen_through_window",
                seen_through_window, "in [0, 5]");
   requireParam(seen_through_window_thin >= 0 && seen_through_window_thin <= 5, s,
@@ -146,13 +131,16 @@ void LidarSemanticMapParams::validate() const {
                "seen_through_vote_radius", seen_through_vote_radius, "in [0, 5]");
   requireParam(seen_through_vote_share > 0 && seen_through_vote_share <= 1, s,
                "seen_through_vote_share", seen_through_vote_share, "in (0, 1]");
-  requireParam(topdown_resolution > 0, s, "topdown_resolution", topdown_resolution, "> 0");
-  requireParam(num_threads >= 1, s, "num_threads", num_threads, ">= 1");
+  requireParam(topdown_resolution >= 0.001 && topdown_resolution <= 100, s,
+               "topdown_resolution", topdown_resolution, "in [0.001, 100]");
+  requireParam(num_threads >= 1 && num_threads <= 1024, s, "num_threads", num_threads,
+               "in [1, 1024]");
 }
 
 json runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,
                          const LidarSemanticMapParams& p) {
   p.validate();
+  io::OutputTransaction outputs(output);  // locked and writable before the work (exit 4)
   const auto t_start = Clock::now();
   json timings, summary;
   // Inputs.
@@ -268,7 +256,9 @@ json runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,
     if (path_shown > 0) key.legend.push_back({"trajectory", path_rgb, true});
     io::writePngFrame(output / "topdown.png", io::withPictureKey(img, key));
   }
-  io::writeKittiOdometryPoses(output / "poses.txt", poses);
+  io::writeKittiOdometryPoses(output / "poses.txt",
+                              lidar::cameraPosesForFile(poses, drive.calib.T_rect0_velo()));
+  io::writeKittiOdometryPoses(output / "poses_velo.txt", poses);
   std::size_t label_files = 0, labelled_points = 0, scan_points = 0;
   if (p.write_scan_labels) {
     for (std::size_t i = 0; i < drive.frames.size(); ++i) {
@@ -331,6 +321,7 @@ json runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,
   summary["timings_s"] = timings;
   io::writeResolvedConfig(output, kStage, paramsToJson(p));
   io::writeSummary(output, kStage, summary);
+  outputs.commit();  // every output replaced as a set: a failed run above left the previous ones
   return summary;
 }
 

@@ -4,6 +4,7 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/core/progress.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/semantic_kitti.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/velodyne.hpp"
@@ -18,6 +19,7 @@ using json = nlohmann::json;
 json runLidarSemanticMapTrain(const std::vector<fs::path>& drives, const fs::path& output,
                               const LidarSemanticMapParams& p) {
   p.validate();
+  io::OutputTransaction outputs(output);  // locked and writable before the work (exit 4)
   if (drives.empty()) throw InputError("train: no labelled drive given");
   const auto t_start = std::chrono::steady_clock::now();
   std::array<lidar::LabelSamples, kNumLidarClasses> samples;
@@ -100,6 +102,7 @@ json runLidarSemanticMapTrain(const std::vector<fs::path>& drives, const fs::pat
   io::writeSummary(output, "lidar-semantic-map-train", summary);
   MAPFUSE_INFO("train: forests for " << classifier.labels().size() << " labels written to "
                                      << output);
+  outputs.commit();
   return summary;
 }
 

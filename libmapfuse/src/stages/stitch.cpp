@@ -11,6 +11,7 @@
 #include "mapfuse/io/json_view.hpp"
 #include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
+#include "mapfuse/io/tiles_manifest.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
 
 namespace mapfuse::stages {
@@ -22,8 +23,9 @@ tiling::TileKey tileOfPath(const std::filesystem::path& path) {
     std::smatch m;
     const std::string s = part.string();
     if (std::regex_match(s, m, kTile))
-      key = tiling::TileKey{(m[1] == "m" ? -1 : 1) * std::stoll(m[2]),
-                            (m[3] == "m" ? -1 : 1) * std::stoll(m[4])};
+      if (m[2].length() <= 15 && m[4].length() <= 15)  // std::stoll cannot overflow
+        key = tiling::TileKey{(m[1] == "m" ? -1 : 1) * std::stoll(m[2]),
+                              (m[3] == "m" ? -1 : 1) * std::stoll(m[4])};
   }
   if (!key) throw ParseError(path.string(), "", "no tile_<ix>_<iy> folder in the path");
   return *key;
@@ -35,10 +37,8 @@ VectorMap runStitch(const std::filesystem::path& tiles_json, const std::vector<s
   const auto t0 = std::chrono::steady_clock::now();
   const auto dir = out_map.has_parent_path() ? out_map.parent_path() : std::filesystem::path(".");
   io::OutputTransaction outputs(dir);  // locked and writable before the work
-  const io::Json doc = io::readDocument(tiles_json);
-  const io::JsonView v(doc, tiles_json.string());
-  v.checkFormat("mapfuse.tiles", 1);
-  const tiling::TileGrid grid(v.at("tile_size").number(), v.at("margin").number());
+  const io::TilesManifest manifest = io::readTilesManifest(tiles_json);
+  const tiling::TileGrid grid(manifest.tile_size, manifest.margin);
 
   std::vector<std::pair<tiling::TileKey, VectorMap>> tiles;
   for (const auto& m : maps) tiles.emplace_back(tileOfPath(m), io::readVectorMap(m));

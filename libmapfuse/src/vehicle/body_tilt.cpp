@@ -1,4 +1,4 @@
-#include "mapfuse/vehicle/body_tilt.hpp"
+#include "body_tilt.hpp"
 
 #include <Eigen/Geometry>
 

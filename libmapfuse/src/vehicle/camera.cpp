@@ -4,13 +4,6 @@
 
 namespace mapfuse::vehicle {
 
-Eigen::Matrix3d levelCameraToBodyRotation() {
-  Eigen::Matrix3d R;
-  // Columns: camera x (right) = -body y, camera y (down) = -body z, camera z (fwd) = body x.
-  R << 0, 0, 1, -1, 0, 0, 0, -1, 0;
-  return R;
-}
-
 std::optional<Eigen::Vector2d> projectPoint(const Eigen::Matrix3d& K, const Eigen::Vector3d& p_cam,
                                             double min_depth) {
   if (!(p_cam.z() > min_depth)) return std::nullopt;

@@ -53,4 +53,21 @@ std::vector<MaskComponent> extractComponents(const cv::Mat& mask, int class_id, 
   return out;
 }
 
+std::vector<GroundObservation> observationsFromMask(const cv::Mat& mask, int min_area) {
+  std::vector<GroundObservation> out;
+  for (int id = 1; id <= 4; ++id) {
+    const CrowdClass cls = CrowdClass(id - 1);
+    const ThinMode mode = cls == CrowdClass::kLaneLine   ? ThinMode::kRows
+                          : cls == CrowdClass::kStopLine ? ThinMode::kColumns
+                                                         : ThinMode::kHull;
+    for (auto& comp : extractComponents(mask, id, mode, min_area)) {
+      GroundObservation o;
+      o.cls = cls;
+      o.pixels = std::move(comp.pixels);
+      out.push_back(std::move(o));
+    }
+  }
+  return out;
+}
+
 }  // namespace mapfuse::vehicle

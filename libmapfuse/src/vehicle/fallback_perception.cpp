@@ -1,10 +1,12 @@
 #include "mapfuse/vehicle/fallback_perception.hpp"
 
+#include <chrono>
 #include <opencv2/dnn.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/core/progress.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/vehicle/centerline.hpp"
 
@@ -144,6 +146,32 @@ LaneDetection detectLanes(const cv::Mat& bgr, const cv::Mat& road_mask, const Ca
     det.lanes_ground.push_back(std::move(ground));
   }
   return det;
+}
+
+LanePerception perceiveLanes(const std::vector<std::filesystem::path>& images,
+                             const std::vector<double>& stamps, const CameraCalib& calib,
+                             const std::filesystem::path& model) {
+  using Clock = std::chrono::steady_clock;
+  RoadSegmenter segmenter(model);
+  LanePerception out;
+  out.frames.resize(images.size());
+  Progress progress("frames", images.size());
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    const auto t0 = Clock::now();
+    const cv::Mat bgr = readColorImage(images[i]);
+    const cv::Mat road = segmenter.roadMask(bgr);
+    const auto t1 = Clock::now();
+    const auto lanes = detectLanes(bgr, road, calib, LaneDetectSettings{});
+    const auto t2 = Clock::now();
+    out.frames[i].index = int(i);
+    out.frames[i].stamp = stamps[i];
+    out.frames[i].ground = lanes.lanes;
+    out.bev_images.push_back(lanes.bev_gray);
+    out.network_seconds += std::chrono::duration<double>(t1 - t0).count();
+    out.seconds += std::chrono::duration<double>(t2 - t0).count();
+    progress.advance();
+  }
+  return out;
 }
 
 }  // namespace mapfuse::vehicle

@@ -1,7 +1,10 @@
 #include "mapfuse/vehicle/flow_association.hpp"
 
 #include <algorithm>
+#include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
+
+#include "mapfuse/vehicle/fallback_perception.hpp"
 
 namespace mapfuse::vehicle {
 
@@ -72,6 +75,22 @@ void associateByFlow(const cv::Mat& prev_gray, const cv::Mat& next_gray,
   }
   for (auto& n : next)
     if (n.track_id < 0) n.track_id = next_id++;
+}
+
+void associateAerialByFlow(const std::vector<std::filesystem::path>& images,
+                           std::vector<FrameObservations>& frames) {
+  int64_t next_id = 0;
+  cv::Mat prev;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    cv::Mat gray;
+    cv::cvtColor(readColorImage(images[i]), gray, cv::COLOR_BGR2GRAY);
+    if (prev.empty()) {
+      for (auto& a : frames[i].aerial) a.track_id = next_id++;
+    } else {
+      associateByFlow(prev, gray, frames[i - 1].aerial, frames[i].aerial, next_id, FlowSettings{});
+    }
+    prev = gray;
+  }
 }
 
 }  // namespace mapfuse::vehicle

@@ -37,8 +37,8 @@ std::optional<GroundPoint> rangeGroundPixel(const Eigen::Vector2d& pixel, const 
     return Y ? *Y : *X;
   };
   const double steps[5] = {0.5, 0.5, 0.01, 1e-4, 1e-4};
-  const double sigmas[5] = {s.sigma_pixel, s.sigma_pixel, s.sigma_height, s.sigma_pitch,
-                            s.sigma_roll};
+  const double sigmas[5] = {s.sigma_pixel, s.sigma_pixel, s.sigma_height, s.sigma_attitude,
+                            s.sigma_attitude};
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   for (int k = 0; k < 5; ++k) {
     const Eigen::Vector3d d = (eval(k, steps[k]) - eval(k, -steps[k])) / (2.0 * steps[k]);

@@ -6,7 +6,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mapfuse/vehicle/ground_ranging.hpp"
+
 namespace mapfuse::vehicle {
+namespace {
+/// m, lane observations whose lateral offsets differ less belong to one line (lanes are ~3.5 m
+/// apart, a dashed line's dashes share one offset).
+constexpr double kLaneGroupGap = 0.8;
+}  // namespace
 
 std::optional<ImageLine> fitImageLine(const std::vector<Eigen::Vector2d>& pixels) {
   if (pixels.size() < 2) return std::nullopt;
@@ -78,6 +85,34 @@ std::optional<double> estimatePitchCorrection(
   const auto pitch = pitchFromVanishingDirection(nominal.normal_cam, d);
   if (!pitch || std::abs(*pitch) > s.max_pitch_correction) return std::nullopt;
   return pitch;
+}
+
+std::vector<std::vector<Eigen::Vector2d>> laneLinePixels(const FrameObservations& frame,
+                                                         const Eigen::Matrix3d& K_inv,
+                                                         const GroundPlane& nominal,
+                                                         double min_range, double max_range) {
+  std::vector<std::pair<double, std::vector<Eigen::Vector2d>>> obs;  // (lateral offset, pixels)
+  for (const auto& g : frame.ground) {
+    if (g.cls != CrowdClass::kLaneLine) continue;
+    std::vector<Eigen::Vector2d> near;
+    std::vector<double> lateral;
+    for (const auto& px : g.pixels) {
+      const auto X = backProjectToGround(px, K_inv, nominal);
+      if (!X || X->norm() < min_range || X->norm() > max_range) continue;
+      near.push_back(px);
+      lateral.push_back(X->x() * std::max(0.2, 15.0 / X->norm()));  // shrink far distortion
+    }
+    if (near.empty()) continue;
+    std::nth_element(lateral.begin(), lateral.begin() + lateral.size() / 2, lateral.end());
+    obs.push_back({lateral[lateral.size() / 2], std::move(near)});
+  }
+  std::sort(obs.begin(), obs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<std::vector<Eigen::Vector2d>> lanes;
+  for (std::size_t k = 0; k < obs.size(); ++k) {
+    if (k == 0 || obs[k].first - obs[k - 1].first > kLaneGroupGap) lanes.emplace_back();
+    lanes.back().insert(lanes.back().end(), obs[k].second.begin(), obs[k].second.end());
+  }
+  return lanes;
 }
 
 std::optional<Eigen::Vector3d> normalFromTwoDirections(const Eigen::Vector3d& d1,

@@ -1,26 +1,30 @@
 #pragma once
 /// @file Semantic aggregation (§4.3, Song et al. 2023): ENU observations of many drives ->
-/// one vector map. Lane lines: two-stage DBSCAN instantiation (lane_instantiation.hpp) then a
-/// least-squares Bezier chain (bezier_fit.hpp) with dashed/solid and colour by majority vote;
-/// the other classes: discrete clustering and confidence-weighted merging (discrete_merge.hpp).
+/// one vector map. Lane lines: two-stage DBSCAN instantiation (lane_instantiation.cpp) then a
+/// least-squares Bezier chain (bezier_fit.cpp) with dashed/solid and colour by majority vote;
+/// the other classes: discrete clustering and confidence-weighted merging (discrete_merge.cpp).
+/// Parameters: settings.hpp.
 #include <array>
 #include <cstddef>
 
-#include "mapfuse/aggregate/bezier_fit.hpp"
-#include "mapfuse/aggregate/discrete_merge.hpp"
-#include "mapfuse/aggregate/lane_instantiation.hpp"
 #include "mapfuse/aggregate/observations.hpp"
+#include "mapfuse/aggregate/settings.hpp"
 #include "mapfuse/core/vector_map.hpp"
 
 namespace mapfuse::aggregate {
 
-struct AggregatorParams {
-  LaneInstantiationParams lanes;
-  BezierFitParams bezier;
-  DiscreteMergeParams discrete;
-  double sample_step = 0.5;  ///< m, spacing of the sampled "points" of lane lines
+/// What lane instantiation did (stage 1 and stage 2).
+struct LaneInstantiationStats {
+  std::size_t pieces = 0;         ///< observation pieces after tiling
+  std::size_t comparisons = 0;    ///< stage-1 overlap tests (pairs of pieces with touching boxes)
+  std::size_t noise_pieces = 0;   ///< dropped by stage 1
+  std::size_t fragments = 0;      ///< stage-1 clusters (after merging split ones)
+  std::size_t links = 0;          ///< stage-2 links
+  std::size_t branch_ends = 0;    ///< fragment ends with more than one follower (forks/merges)
+  std::size_t dropped_short = 0;  ///< instances below min_instance_length
 };
 
+/// What aggregation did, per class and per step.
 struct AggregatorStats {
   LaneInstantiationStats lanes;
   std::array<std::size_t, kNumCrowdClasses> observations{};  ///< input count per class

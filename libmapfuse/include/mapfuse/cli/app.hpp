@@ -2,10 +2,12 @@
 /// @file Command-line conventions shared by every tool (docs/cli.md): --config FILE, one
 /// --option per declared parameter with its default, unit and rule in --help, -v / --quiet, and
 /// the mapping of errors to exit codes (0 ok, 1 internal, 2 usage/config, 3 bad input, 4 I/O).
-/// A tool's main is a StageTool: its positional arguments, then run() with the library call.
+/// A tool's main is a StageTool: its positional arguments, then run() with the library call; a
+/// tool of subcommands (evaluate) is a CommandTool.
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -97,17 +99,14 @@ void deferError(std::exception_ptr error);
 /// file's values become the defaults and command-line options override them. A bad file
 /// (unknown key, wrong type, out of range, empty, not JSON: ConfigError; unreadable: IoError)
 /// is reported by run().
+/// @brief The file of "--config FILE" / "--config=FILE" in argv, or empty.
+std::string configArgument(int argc, char** argv);
+
 template <class Params>
 void preloadConfig(int argc, char** argv, Params& params) {
   try {
-    for (int i = 1; i < argc; ++i) {
-      std::string arg = argv[i], file;
-      if (arg == "--config" && i + 1 < argc)
-        file = argv[i + 1];
-      else if (arg.rfind("--config=", 0) == 0)
-        file = arg.substr(9);
-      if (!file.empty()) paramsFromFile(params, file);
-    }
+    const std::string file = configArgument(argc, argv);
+    if (!file.empty()) paramsFromFile(params, file);
   } catch (...) {
     deferError(std::current_exception());
   }
@@ -125,7 +124,13 @@ int runStage(CLI::App& app, int argc, char** argv, Params& params,
              const std::function<void()>& body) {
   preloadConfig(argc, argv, params);
   return run(app, argc, argv, [&] {
-    params.validate();
+    try {
+      params.validate();
+    } catch (const ConfigError& e) {  // the value may come from the file: name it
+      const std::string file = configArgument(argc, argv);
+      if (file.empty()) throw;
+      throw ConfigError(file + " (or the command line): " + e.what());
+    }
     body();
   });
 }
@@ -165,5 +170,54 @@ class StageTool {
   Params params_;
   CommonOptions common_;
 };
+
+/// A tool of subcommands (`evaluate map`, `evaluate voxels`): each subcommand gets --config, -v
+/// and --quiet, then its own options from its setup, which returns what runs when it is chosen.
+///
+///   cli::CommandTool tool("evaluate", kAbout);
+///   tool.add("map", "vector maps against the truth", setupMap);  // setupMap(sub) -> action
+///   return tool.run(argc, argv);
+class CommandTool {
+ public:
+  using Action = std::function<void()>;
+  using Setup = std::function<Action(CLI::App& sub)>;
+
+  CommandTool(const char* name, const char* description);
+
+  /// @brief Adds subcommand `name` with the common options; `setup` adds the rest.
+  void add(const std::string& name, const std::string& help, const Setup& setup);
+
+  /// @brief Parses (exactly one subcommand), applies its -v / --quiet and runs its action.
+  /// @return the process exit code.
+  int run(int argc, char** argv);
+
+ private:
+  struct Command {
+    CLI::App* sub = nullptr;
+    std::unique_ptr<CommonOptions> common;  ///< bound to the subcommand's options
+    Action action;
+  };
+  CLI::App app_;
+  std::vector<Command> commands_;
+};
+
+/// @brief For a stage run as a subcommand, whose --config can only be read once parsing has told
+/// which subcommand runs: the file's values replace the parameters not given on the command line
+/// (as StageTool's preloaded defaults do), then every rule is checked.
+/// @throws ConfigError naming the file or the parameter; IoError when the file cannot be read.
+template <class Params>
+void applyCommandConfig(CLI::App& sub, Params& params) {
+  const std::string file = sub.get_option("--config")->template as<std::string>();
+  if (!file.empty()) {
+    Params from_file;
+    paramsFromFile(from_file, file);  // checked here, so problems name the file
+    const nlohmann::json loaded = paramsToJson(from_file);
+    nlohmann::json unset = nlohmann::json::object();  // the keys not given on the command line
+    for (auto it = loaded.begin(); it != loaded.end(); ++it)
+      if (sub.get_option(optionName(it.key().c_str()))->count() == 0) unset[it.key()] = *it;
+    paramsFromJson(params, unset, file);
+  }
+  validateParams(params);  // command-line values, relations
+}
 
 }  // namespace mapfuse::cli

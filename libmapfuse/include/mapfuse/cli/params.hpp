@@ -165,8 +165,11 @@ struct ValidateVisitor {
 
 /// Where and how a parameter is declared (for the "declared once" test and the docs).
 struct ParamDeclaration {
-  std::string key, unit, help, rule;  ///< rule: "" for bool and free text
-  std::string file;                   ///< source file of the `v(...)` line
+  std::string key, unit, help;
+  std::string kind;   ///< "integer", "number", "bool", "text" or "choice"
+  std::string rule;   ///< "" for bool and free text
+  param::Range range;  ///< numbers: the declared range
+  std::string file;    ///< source file of the `v(...)` line
   int line = 0;
 };
 
@@ -174,31 +177,38 @@ namespace detail {
 struct DeclarationVisitor {
   std::vector<ParamDeclaration>& out;
   template <class T>
+  static const char* kindOf() {
+    if constexpr (std::is_same_v<T, bool>) return "bool";
+    if constexpr (std::is_integral_v<T>) return "integer";
+    if constexpr (std::is_floating_point_v<T>) return "number";
+    return "text";
+  }
+  template <class T>
   void operator()(const char* key, T&, const char* unit, const char* help,
                   const param::Range& range, const char* file = __builtin_FILE(),
                   int line = __builtin_LINE()) {
-    out.push_back({key, unit, help, range.describe(key), file, line});
+    out.push_back({key, unit, help, kindOf<T>(), range.describe(key), range, file, line});
   }
   template <class T>
   void operator()(const char* key, T&, const char* unit, const char* help,
                   const char* file = __builtin_FILE(), int line = __builtin_LINE()) {
-    out.push_back({key, unit, help, "", file, line});
+    out.push_back({key, unit, help, kindOf<T>(), "", {}, file, line});
   }
   void operator()(const char* key, std::string&, const char* unit, const char* help,
                   const param::OneOf& names, const char* file = __builtin_FILE(),
                   int line = __builtin_LINE()) {
-    out.push_back({key, unit, help, names.describe(key), file, line});
+    out.push_back({key, unit, help, "choice", names.describe(key), {}, file, line});
   }
   void operator()(const char* key, std::string&, const char* unit, const char* help,
                   const param::TextRule& rule, const char* file = __builtin_FILE(),
                   int line = __builtin_LINE()) {
-    out.push_back({key, unit, help, rule.text, file, line});
+    out.push_back({key, unit, help, "text", rule.text, {}, file, line});
   }
   template <class E>
   void operator()(const char* key, E&, const char* unit, const char* help,
                   const param::Names<E>& names, const char* file = __builtin_FILE(),
                   int line = __builtin_LINE()) {
-    out.push_back({key, unit, help, names.oneOf().describe(key), file, line});
+    out.push_back({key, unit, help, "choice", names.oneOf().describe(key), {}, file, line});
   }
   template <class T>
   void relation(const char*, const T&, bool, const char*) {}

@@ -8,12 +8,14 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/core/se3.hpp"
 #include "mapfuse/core/vector_map.hpp"
 #include "mapfuse/eval/error_stats.hpp"
 
 namespace mapfuse::eval {
 
+/// Parameters of evaluateMap, each declared once (mapfuse/core/param.hpp).
 struct MapEvalParams {
   double line_tolerance = 1.0;      ///< m, a lane-line sample within this of the other map matches
   double discrete_tolerance = 1.5;  ///< m, largest centre distance of a matched discrete pair
@@ -21,6 +23,26 @@ struct MapEvalParams {
   double lane_width_min = 2.0;      ///< m, neighbouring lines closer than this are not lanes
   double lane_width_max = 6.0;      ///< m, ... farther than this neither
   double neighbour_max_distance = 100.0;  ///< m, discrete neighbours farther apart are ignored
+
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    // the search radii (tolerances, lane_width_max) bound the candidates of each sample
+    v("line_tolerance", line_tolerance, "m", "lane-line samples within this distance match",
+      gt(0) & le(100));
+    v("discrete_tolerance", discrete_tolerance, "m",
+      "largest centre distance of a matched discrete element", gt(0) & le(100));
+    // lines are sampled every sample_step (1e-7 m: 1e7 samples per metre, out of memory)
+    v("sample_step", sample_step, "m", "spacing of lane-line samples (stations)", in(0.01, 100));
+    v("lane_width_min", lane_width_min, "m", "neighbouring lines closer than this are not a lane",
+      in(0, 100));
+    v("lane_width_max", lane_width_max, "m", "neighbouring lines farther than this are not a lane",
+      gt(0) & le(100));
+    v.relation("lane_width_max", lane_width_max, lane_width_max > lane_width_min,
+               "> lane_width_min");
+    v("neighbour_max_distance", neighbour_max_distance, "m",
+      "discrete elements farther apart are not neighbours", gt(0));
+  }
 };
 
 struct ClassMetrics {
@@ -50,12 +72,36 @@ VectorMap inOrigin(const VectorMap& map, const geo::GeoOrigin& origin);
 MapMetrics evaluateMap(const VectorMap& map, const VectorMap& truth, const MapEvalParams& params,
                        const VectorMap* unscored = nullptr);
 
-/// What a forward camera at a pose sees of the ground: body x in [0, range], |y| <= lateral and
-/// |y| <= x tan(half_fov).
+/// What a forward camera at a pose sees of the ground: body x in [apex_x, range], |y| <= lateral
+/// and |y| <= (x - apex_x) tan(half_fov_deg), the apex at the camera.
 struct CoverageWedge {
-  double lateral = 12.0;    ///< m
-  double range = 22.0;      ///< m
-  double half_fov = 0.541;  ///< rad (31 deg); >= pi/2: everything ahead
+  double lateral = 12.0;       ///< m; 0: `evaluate map` scores the whole truth
+  double range = 22.0;         ///< m
+  double half_fov_deg = 31.0;  ///< deg; 90: everything ahead
+  double apex_x = 1.8;         ///< m, the camera ahead of the body origin (the simulator's mount)
+
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    // poses are hashed on a grid of cells hypot(range, lateral): every pose of a drive in one
+    // cell when they are huge
+    v("coverage_radius", lateral, "m",
+      "with --truth-trajectories: score only truth within this distance of a true trajectory "
+      "(0 = whole truth)",
+      in(0, 1000));
+    v("coverage_range", range, "m",
+      "with --truth-trajectories: how far ahead of a true pose the truth counts as seen",
+      gt(0) & le(1000));
+    v("coverage_half_fov_deg", half_fov_deg, "deg",
+      "with --truth-trajectories: half opening of the seen wedge ahead of a true pose (the "
+      "camera's field of view; 90 = everything ahead)",
+      gt(0) & le(90));
+    v("coverage_apex_x", apex_x, "m",
+      "with --truth-trajectories: the wedge's apex, the camera, this far ahead of the body "
+      "origin (the simulator's mount)",
+      ge(0) & le(1000));
+    v.relation("coverage_apex_x", apex_x, apex_x < range, "< coverage_range");
+  }
 };
 
 /// @brief The part of a truth map that forward-looking drives could observe: lane lines cut to

@@ -8,9 +8,11 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mapfuse/core/lsm.hpp"
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/eval/error_stats.hpp"
 
 namespace mapfuse::eval {
@@ -38,6 +40,22 @@ std::optional<Pose3> truePoseAt(const std::vector<const TruePose*>& sorted, doub
 
 /// @brief Reads a `mapfuse.trajectory` file (JSON or CBOR). @throws IoError, ParseError.
 TrueTrajectory readTrueTrajectory(const std::filesystem::path& path);
+
+/// @brief Reads every `<drive>.trajectory.json` of `folder`, in file-name order, with the file
+/// each came from. @throws IoError when `folder` is not a folder; IoError, ParseError.
+std::vector<std::pair<std::filesystem::path, TrueTrajectory>> readTrueTrajectories(
+    const std::filesystem::path& folder);
+
+/// Parameters of the trajectory comparison (compareTrajectory takes rpe_distance).
+struct TrajectoryEvalSettings {
+  double rpe_distance = 10.0;  ///< m, travelled distance of the relative pose error
+
+  template <class V>
+  void visit(V& v) {
+    v("rpe_distance", rpe_distance, "m", "travelled distance of the relative pose error",
+      param::gt(0));
+  }
+};
 
 struct TrajectoryMetrics {
   std::string drive_id;

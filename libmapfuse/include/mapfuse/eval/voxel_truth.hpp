@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "mapfuse/core/labeled_cloud.hpp"
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/core/se3.hpp"
 #include "mapfuse/eval/voxel_metrics.hpp"
 
@@ -74,6 +75,27 @@ MapComparison compareVoxelMap(const LabeledCloud& map, const VoxelTruth& truth);
 /// @throws InputError when the sizes differ.
 ConfusionMatrix compareScanLabels(const std::vector<uint32_t>& predicted,
                                   const std::vector<uint32_t>& truth);
+
+/// Which labelled points become truth voxels: the points the mapping pipeline can label.
+struct VoxelTruthSettings {
+  double voxel_size = 0.05;  ///< m, must equal the evaluated map's voxel size
+  double min_range = 5.0;    ///< m, truth only from points at least this far from the Velodyne
+  double max_range = 50.0;   ///< m, and at most this far
+  bool camera_fov = true;    ///< truth only from points that land in image_02
+
+  template <class V>
+  void visit(V& v) {
+    // Keys pack 21 bits per axis: 1 cm voxels still reach +-10 km from the first pose.
+    v("voxel_size", voxel_size, "m", "voxel edge, equal to the evaluated map's",
+      param::ge(0.01) & param::le(10));
+    v("min_range", min_range, "m", "truth voxels only from points at least this far",
+      param::ge(0) & param::le(1000));
+    v("max_range", max_range, "m", "truth voxels only from points at most this far",
+      param::gt(0) & param::le(1000));
+    v.relation("min_range", min_range, min_range < max_range, "< max_range");
+    v("camera_fov", camera_fov, "", "truth voxels only from points that land in image_02");
+  }
+};
 
 /// @brief Adds the points of a labelled scan to the truth: p_map = T_map_velo * p_velo for the
 /// points with range in [min_range, max_range] and, when `velo_to_image` is given, landing inside

@@ -31,7 +31,7 @@ struct AlignSettings {
   double min_overlap =
       0.3;  ///< share of coarse points with a same-label point within overlap_radius
   double overlap_radius = 4.0;  ///< m, overlap test radius (covers the GPS-level initial error)
-  int max_partners = 4;         ///< per submap, register with the best submaps of this many LSMs
+  int max_partners = 2;         ///< per submap, register with the best submaps of this many LSMs
   bool spread_partners = true;  ///< choose them evenly spread over the overlapping LSMs instead
   double coarse_radius = 8.0;   ///< m, displacement-voting search radius (coarse level)
   double coarse_bin = 0.5;      ///< m, displacement histogram bin
@@ -46,7 +46,7 @@ struct AlignSettings {
   double min_fitness = 0.3;               ///< accept a registration above this inlier fraction
   double max_rmse = 0.5;                  ///< m, and below this RMS residual
   double min_information = 10.0;          ///< SGICP: Hessian directions below this are unobservable
-  int max_iterations = 30;                ///< per pyramid level
+  int max_iterations = 12;                ///< per pyramid level
   double pcm_gate = 16.81;                ///< chi2 (6 dof, 99%) of pairwise cycle consistency
   int pcm_exact_max = 40;                 ///< exact maximum clique up to this many constraints
   double odom_sigma_per_m = 0.01;         ///< relative odometry sigma per metre (pose graph, PCM)
@@ -62,10 +62,12 @@ struct AlignSettings {
   int gba_max_partners = 2;               ///< other traversals tied to each point (0 = all)
   int gba_dof = 4;  ///< 6: full pose; 4: x, y, z, yaw (roll / pitch held where georef put them)
   int gba_line_stride = 2;  ///< GBA uses every n-th point of a line element, weighted sqrt(n)
-  double gba_early_round_tolerance = 1e-3;  ///< LM stop of GBA rounds before the last
-  int gba_cg_iterations = 50;   ///< > 0: GBA steps by CGNR (at most this many); 0: sparse Cholesky
-  int solver_iterations = 100;  ///< Levenberg-Marquardt iterations per solve
-  double function_tolerance = 1e-3;  ///< LM stops when |cost change| / cost falls below
+  double gba_early_round_tolerance = 1e-2;  ///< LM stop of GBA rounds before the last
+  int pcg_iterations = 50;                  ///< PCG iterations per LM step (pose graph and GBA)
+  double pcg_tolerance = 1e-2;              ///< PCG stops at this relative residual
+  double pcg_cell_size = 40.0;       ///< m, place cells of the PCG coarse level (0: chains only)
+  int solver_iterations = 100;       ///< Levenberg-Marquardt iterations per solve
+  double function_tolerance = 1e-2;  ///< LM stops when |cost change| / cost falls below
   int threads = 2;                   ///< OpenMP threads over pairs
 
   template <class V>
@@ -127,9 +129,13 @@ struct AlignSettings {
     v.relation("gba_dof", gba_dof, gba_dof == 4 || gba_dof == 6, "is 4 or 6");
     v("gba_line_stride", gba_line_stride, "",
       "GBA uses every n-th point of a line element, weighted by sqrt(n)", in(1, 1000));
-    v("gba_cg_iterations", gba_cg_iterations, "",
-      "GBA linear solves: conjugate gradients (at most n iterations), 0 = sparse Cholesky",
-      in(0, 100000));
+    v("pcg_iterations", pcg_iterations, "",
+      "conjugate-gradient iterations per Levenberg-Marquardt step (pose graph and GBA)",
+      in(1, 100000));
+    v("pcg_tolerance", pcg_tolerance, "",
+      "conjugate gradients stop at this residual relative to the right-hand side", gt(0) & lt(1));
+    v("pcg_cell_size", pcg_cell_size, "m",
+      "place cells of the conjugate-gradient coarse level (0: chains only)", in(0, 100000));
     v("gba_early_round_tolerance", gba_early_round_tolerance, "",
       "LM stop (relative cost change) of the GBA rounds before the last", gt(0) & lt(1));
     v("solver_iterations", solver_iterations, "", "Levenberg-Marquardt iterations per solve",
@@ -172,21 +178,32 @@ int pcmSelect(const std::vector<Lsm>& lsms, std::vector<InterConstraint>& constr
 /// `exact_max` vertices, greedy by degree above. Vertices returned sorted.
 std::vector<int> maximumClique(const std::vector<std::vector<char>>& adjacency, int exact_max);
 
-/// @brief Multi-trajectory pose graph, eq. (8)-(11): GPS priors from the current keyframes,
-/// odometry between consecutive keyframes, Huber-robust InterRPCs (only `consistent` ones).
-/// Updates keyframe poses in place; `priors` holds the georeferenced (GPS) keyframes and the
-/// odometry. @return final Ceres cost.
+/// What a pose-graph or GBA solve did (summed over its rounds).
+struct GraphSolve {
+  double cost = 0;         ///< final cost of the last round (sum of rho(|r|^2) / 2)
+  bool converged = false;  ///< the last round met the function tolerance
+  int rounds = 0;          ///< pose-graph rejection rounds / GBA association rounds
+  int iterations = 0;      ///< Levenberg-Marquardt iterations
+  int pcg_iterations = 0;  ///< conjugate-gradient iterations of the linear solves
+  int residuals = 0;       ///< GBA: element residuals of the last round
+  int blocks = 0;          ///< off-diagonal blocks of the normal equations, last round
+  int keyframes = 0;       ///< poses solved for
+};
+
+/// @brief Multi-trajectory pose graph, eq. (8)-(11): GPS priors from the georeferenced keyframes
+/// (`priors[l].keyframes`; their elements are not used), odometry between consecutive
+/// keyframes, Huber-robust InterRPCs (only `consistent` ones). Updates keyframe poses in place.
 /// Constraints whose residual at the solution exceeds `graph_reject_chi2` are marked
 /// `graph_outlier` and the graph is solved again (up to `graph_rejection_rounds` solves).
-double solveMultiPoseGraph(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors,
-                           std::vector<InterConstraint>& constraints, const AlignSettings& s,
-                           bool* converged = nullptr);
+/// Levenberg-Marquardt with PCG steps: O(keyframes + constraints) per iteration.
+GraphSolve solveMultiPoseGraph(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors,
+                               std::vector<InterConstraint>& constraints, const AlignSettings& s);
 
 /// @brief GBA, eq. (12)-(14): point-to-line (lane/stop lines, poles) and point-to-plane (arrows,
 /// crosswalks, signs) residuals between elements of different LSMs, Huber loss, GPS priors and
-/// odometry from `priors` (georef output). Updates keyframe poses in place. @return final cost.
-double solveGba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const AlignSettings& s,
-                int* residuals = nullptr, bool* converged = nullptr);
+/// odometry from `priors[l].keyframes` (georef output). Each point is tied to at most
+/// `gba_max_partners` other traversals, chosen per keyframe. Updates keyframe poses in place.
+GraphSolve solveGba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const AlignSettings& s);
 
 /// What align did: every registration with its checks, the solves' costs and timings.
 struct AlignResult {
@@ -201,7 +218,12 @@ struct AlignResult {
   double cost_gba = 0;
   int gba_residuals = 0;
   bool converged_gba = false;
-  bool converged = false;  ///< the last solve converged
+  int pose_graph_solves = 0;          ///< pose-graph solve / reject rounds
+  int pose_graph_iterations = 0;      ///< Levenberg-Marquardt iterations of the pose graph
+  int pose_graph_pcg_iterations = 0;  ///< and their conjugate-gradient iterations
+  int gba_iterations = 0;             ///< Levenberg-Marquardt iterations of GBA
+  int gba_pcg_iterations = 0;         ///< and their conjugate-gradient iterations
+  bool converged = false;             ///< the last solve converged
   double seconds_registration = 0, seconds_pcm = 0, seconds_pose_graph = 0, seconds_gba = 0;
 };
 

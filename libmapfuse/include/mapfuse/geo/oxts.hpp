@@ -3,7 +3,6 @@
 /// eq. 1; KITTI devkit convertOxtsToPose / pykitti): Mercator projection scaled by the
 /// cosine of the first frame's latitude, R = Rz(yaw) Ry(pitch) Rx(roll), T_w_imu.
 #include <array>
-#include <string>
 
 #include "mapfuse/core/se3.hpp"
 #include "mapfuse/geo/origin.hpp"
@@ -23,10 +22,6 @@ struct OxtsRecord {
 
 /// Earth radius used by the KITTI devkit (m).
 constexpr double kKittiEarthRadius = 6378137.0;
-
-/// @brief Parses one OXTS text line (30 whitespace-separated numbers).
-/// @throws ParseError naming `file` and the field that is missing or not a number.
-OxtsRecord parseOxtsLine(const std::string& line, const std::string& file);
 
 /// @brief Mercator scale of the devkit: cos(lat0 * pi / 180).
 double mercatorScale(double lat0_deg);

@@ -8,10 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "mapfuse/core/drive_records.hpp"
 #include "mapfuse/core/lsm.hpp"
-#include "mapfuse/vehicle/camera.hpp"
-#include "mapfuse/vehicle/dead_reckoning.hpp"
-#include "mapfuse/vehicle/observations.hpp"
 
 namespace mapfuse::io {
 
@@ -30,13 +28,13 @@ struct DriveFrames {
   std::string drive_id;
   std::string vehicle_id;
   std::optional<geo::GeoOrigin> origin;  ///< of the truth poses only
-  vehicle::CameraCalib calib;
-  std::vector<vehicle::ImuSample> imu;
-  std::vector<vehicle::WheelSample> wheel;
+  CameraCalib calib;
+  std::vector<ImuSample> imu;
+  std::vector<WheelSample> wheel;
   std::vector<GpsFix> gps;
   std::vector<FrameEntry> frames;
-  std::vector<vehicle::FrameObservations> observations;  ///< empty when the file is absent
-  std::vector<Pose3> truth_T_enu_body;                   ///< per frame, empty when absent
+  std::vector<FrameObservations> observations;  ///< empty when the file is absent
+  std::vector<Pose3> truth_T_enu_body;          ///< per frame, empty when absent
 };
 
 /// @brief Reads a drive folder (frames.json and everything it names).
@@ -49,12 +47,11 @@ DriveFrames readDriveFrames(const std::filesystem::path& dir);
 /// the expected size.
 cv::Mat readMask(const std::filesystem::path& path, int width, int height);
 
-/// @brief Ground observations of a mask: one per connected component of the classes 1-4
-/// (CrowdClass + 1), lane lines thinned to centre lines, stop lines column-wise, planar hulls.
-std::vector<vehicle::GroundObservation> observationsFromMask(const cv::Mat& mask, int min_area);
-
 /// @brief KITTI odometry poses: one line per frame, 12 numbers = row-major [R|t] of
-/// T_world_cam0. @throws IoError, ParseError(file, "line N") when malformed.
+/// T_world_cam0. @throws IoError, ParseError(file, "line N") when malformed or a translation is
+/// beyond bounds::kMaxCoordinate.
 std::vector<Pose3> readKittiPoses(const std::filesystem::path& path);
+/// @brief The same from the text of a file; `file` names it in errors.
+std::vector<Pose3> parseKittiPoses(const std::string& text, const std::string& file);
 
 }  // namespace mapfuse::io

@@ -22,13 +22,15 @@ void writeClassAndAttributes(Json& j, CrowdClass cls, const Attributes& attribut
 /// @brief Reads "class" (required) and "style" / "color" (optional) of an element or instance.
 void readClassAndAttributes(const JsonView& v, CrowdClass& cls, Attributes& attributes);
 
-/// @brief Array of [x, y, z] arrays.
+/// @brief Array of [x, y, z] arrays, each coordinate within bounds::kMaxCoordinate.
 std::vector<Eigen::Vector3d> readPoints(const JsonView& v);
-/// @brief Pose; the quaternion must have unit norm within 1e-3 (then it is normalized).
+/// @brief Pose; the quaternion must have unit norm within 1e-3 (then it is normalized), the
+/// translation within bounds::kMaxCoordinate.
 Pose3 readPose(const JsonView& v);
-/// @brief Origin; lat/lon must be valid WGS84.
+/// @brief Origin; lat/lon must be valid WGS84, alt within the bounds:: altitude range.
 geo::GeoOrigin readOrigin(const JsonView& v);
-/// @brief Symmetric 3x3 from 6 entries; must be positive semi-definite.
+/// @brief Symmetric 3x3 from 6 entries (each within bounds::kMaxVariance); must be positive
+/// semi-definite.
 Eigen::Matrix3d readCov3(const JsonView& v);
 
 }  // namespace mapfuse::io

@@ -5,9 +5,12 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <initializer_list>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+
+#include "mapfuse/io/bounds.hpp"
 
 namespace mapfuse::io {
 
@@ -33,10 +36,18 @@ class JsonView {
   std::size_t size() const;
 
   double number() const;    ///< finite number
-  int64_t integer() const;  ///< integral number
+  int64_t integer() const;  ///< integral number that fits in int64
+  /// @brief A finite number within [lo, hi]; fails naming the range otherwise.
+  double number(double lo, double hi) const;
+  /// @brief An integer within [lo, hi] (checked before any narrowing by the caller).
+  int64_t integer(int64_t lo, int64_t hi) const;
+  /// @brief An integer that fits in `int` and is at least `lo`.
+  int integerInt(int lo = std::numeric_limits<int>::min()) const;
   std::string string() const;
   bool boolean() const;
-  Eigen::Vector3d vec3() const;                             ///< array of exactly 3 finite numbers
+  Eigen::Vector3d vec3() const;  ///< array of exactly 3 finite numbers
+  /// @brief vec3() with every component within [-limit, limit].
+  Eigen::Vector3d coordinate(double limit = bounds::kMaxCoordinate) const;
   Eigen::VectorXd vector(std::size_t expected_size) const;  ///< 0 = any size
 
   /// @brief The node must be an object whose keys are all in `allowed`.

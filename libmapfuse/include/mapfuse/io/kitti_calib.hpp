@@ -22,8 +22,9 @@ class KittiCalibFile {
   static KittiCalibFile parse(const std::string& text, const std::string& file);
 
   bool has(const std::string& key) const { return values_.count(key) != 0; }
-  /// @brief Exactly `count` numbers of `key`.
-  /// @throws ParseError(file, key) when missing, not numeric, not finite or the wrong count.
+  /// @brief Exactly `count` numbers of `key`, each within [-1e7, 1e7].
+  /// @throws ParseError(file, key) when missing, not numeric, not finite, out of range or the
+  /// wrong count.
   std::vector<double> numbers(const std::string& key, std::size_t count) const;
   /// @brief A rows x cols matrix stored row-major under `key`.
   Eigen::MatrixXd matrix(const std::string& key, int rows, int cols) const;
@@ -55,6 +56,13 @@ struct KittiCalibration {
   /// @brief Rectified camera-0 frame from Velodyne: R_rect_00 * T_cam0_velo.
   Pose3 T_rect0_velo() const;
 };
+
+/// @brief The calibration from parsed files: P_rect_02, R_rect_00, S_rect_02 of `cam`
+/// (S_rect_02 within [1, bounds::kMaxImageSide] per side and bounds::kMaxImagePixels in all;
+/// P_rect_02 a rectified projection), R / T of `velo` and of `imu` when not null (translations
+/// within bounds::kMaxExtrinsic). @throws ParseError naming file and key.
+KittiCalibration kittiCalibrationFromFiles(const KittiCalibFile& cam, const KittiCalibFile& velo,
+                                           const KittiCalibFile* imu);
 
 /// @brief Reads calib_cam_to_cam.txt and calib_velo_to_cam.txt (required) and
 /// calib_imu_to_velo.txt (optional; has_imu says whether it was found) from a date folder.

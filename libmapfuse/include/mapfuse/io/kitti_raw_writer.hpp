@@ -13,6 +13,7 @@
 
 #include "mapfuse/core/se3.hpp"
 #include "mapfuse/geo/oxts.hpp"
+#include "mapfuse/io/kitti_calib.hpp"
 
 namespace mapfuse::io {
 
@@ -27,6 +28,10 @@ std::string kittiFrameName(int index);
 /// the real KITTI 2011_09_26 calibration (cam_to_cam, velo_to_cam, imu_to_velo).
 /// @throws IoError on write failure.
 void writeKittiCalibration(const std::filesystem::path& date_dir);
+
+/// @brief What readKittiCalibration reads back from the files writeKittiCalibration writes
+/// (parsed from the same text, without the files: they may still be staged, io/output_transaction).
+KittiCalibration writtenKittiCalibration();
 
 /// @brief One OXTS line: 30 space-separated fields, doubles with 17 significant digits (so the
 /// text parses back to the same double), the five status fields as integers.

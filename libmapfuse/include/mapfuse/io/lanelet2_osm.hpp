@@ -6,7 +6,8 @@
 /// conversions write them) is read as `virtual` and counted in `untyped_ways`; way types outside
 /// the Lanelet2 tagging spec and unknown relation types are kept as geometry but counted as
 /// skipped. Structural faults (XML syntax, truncation, a reference to a missing node or way, a
-/// bad coordinate, a lanelet without a bound) are ParseErrors naming the file and the element.
+/// bad coordinate, an id beyond +-(2^63 - 2^32), a lanelet without a bound) are ParseErrors naming the
+/// file and the element.
 #include <cstdint>
 #include <filesystem>
 #include <map>

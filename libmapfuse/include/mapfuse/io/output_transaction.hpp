@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <mutex>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -39,6 +40,10 @@ class OutputTransaction {
   /// @brief Called by the atomic writers: `tmp` holds the finished content of `target`.
   void stage(const std::filesystem::path& tmp, const std::filesystem::path& target);
 
+  /// @brief The staged temporary file holding `target`'s new content, or empty when `target`
+  /// was not written in this transaction.
+  std::filesystem::path stagedPath(const std::filesystem::path& target);
+
   const std::filesystem::path& folder() const { return folder_; }
   std::size_t staged() const { return files_.size(); }
 
@@ -49,8 +54,13 @@ class OutputTransaction {
   bool done_ = false;
   std::mutex mutex_;
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;  // tmp, target
+  std::unordered_map<std::string, std::size_t> index_;  // target -> its entry in files_
   OutputTransaction* outer_ = nullptr;
 };
+
+/// @brief Where the newest content of `target` is: its staged temporary file while the open
+/// transaction holds it (e.g. to measure a file just written), else `target` itself.
+std::filesystem::path contentPath(const std::filesystem::path& target);
 
 /// @brief Removes "<name>.tmp-<pid>" files below `folder` whose process no longer runs.
 /// @return how many were removed.

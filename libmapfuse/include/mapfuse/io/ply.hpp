@@ -5,6 +5,7 @@
 /// is mapfuse's LiDAR class id 0-7, `semantic_kitti` the SemanticKITTI semantic id of that class
 /// (docs/formats.md "LiDAR classes"); the header's comments say so.
 #include <filesystem>
+#include <string>
 
 #include "mapfuse/core/labeled_cloud.hpp"
 
@@ -16,7 +17,10 @@ void writePly(const std::filesystem::path& path, const LabeledCloud& cloud);
 /// @brief Reads a binary little-endian PLY with vertex properties x, y, z (float or double)
 /// and optional label (any integer type) and confidence (float); other properties are skipped.
 /// @throws IoError when unreadable; ParseError(file, field) for a malformed header, an
-/// unsupported format or type, a missing x/y/z or a truncated body.
+/// unsupported format or type, a missing x/y/z, a truncated body, a coordinate beyond
+/// bounds::kMaxCoordinate, a label that is no LiDAR class id or a confidence outside [0, 1].
 LabeledCloud readPly(const std::filesystem::path& path);
+/// @brief The same from the bytes of a file; `file` names it in errors.
+LabeledCloud parsePly(const std::string& bytes, const std::string& file);
 
 }  // namespace mapfuse::io

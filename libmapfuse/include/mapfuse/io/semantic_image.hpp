@@ -53,6 +53,9 @@ std::optional<std::filesystem::path> findSemanticImage(const std::filesystem::pa
 /// @throws IoError when unreadable; ParseError (file, field) for a bad header, size, channel
 /// count, bit depth or a label outside 0..7.
 SemanticImage readSemanticImage(const std::filesystem::path& path);
+/// @brief The same from the bytes of a file; the extension of `file` chooses the kind and
+/// `file` names it in errors.
+SemanticImage parseSemanticImage(const std::string& bytes, const std::string& file);
 
 /// @brief Writes a label image as `.png` or probabilities as `.prob` (by extension; the
 /// image kind must match), atomically (temp file + rename).

@@ -3,6 +3,7 @@
 /// low 16 bits, instance id in the high 16 bits.
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace mapfuse::io {
@@ -10,6 +11,8 @@ namespace mapfuse::io {
 /// @brief Reads a `.label` file. @throws IoError when unreadable; ParseError(file, "size")
 /// when the byte count is not a multiple of 4.
 std::vector<uint32_t> readSemanticKittiLabels(const std::filesystem::path& path);
+/// @brief The same from the bytes of a file; `file` names it in errors.
+std::vector<uint32_t> parseSemanticKittiLabels(const std::string& bytes, const std::string& file);
 
 /// @brief Writes a `.label` file atomically.
 void writeSemanticKittiLabels(const std::filesystem::path& path,

@@ -3,6 +3,7 @@
 /// little-endian, in the Velodyne frame (m).
 #include <Eigen/Core>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace mapfuse::io {
@@ -16,8 +17,11 @@ struct VelodyneScan {
 
 /// @brief Reads a `.bin` scan.
 /// @throws IoError when unreadable; ParseError(file, "size") when the byte count is not a
-/// multiple of 16, ParseError(file, "point <i>") for a non-finite coordinate.
+/// multiple of 16, ParseError(file, "point <i>") for a coordinate that is not finite or beyond
+/// bounds::kMaxLidarRange, or a non-finite reflectance.
 VelodyneScan readVelodyneBin(const std::filesystem::path& path);
+/// @brief The same from the bytes of a file; `file` names it in errors.
+VelodyneScan parseVelodyneBin(const std::string& bytes, const std::string& file);
 
 /// @brief Writes a `.bin` scan atomically. @throws InputError if the two arrays differ in size.
 void writeVelodyneBin(const std::filesystem::path& path, const VelodyneScan& scan);

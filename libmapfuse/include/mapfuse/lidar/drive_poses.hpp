@@ -1,6 +1,7 @@
 #pragma once
 /// @file Velodyne poses of a KITTI raw drive from OXTS (Jeong et al. 2018, eq. 1) or from a
 /// KITTI-odometry poses file.
+#include <filesystem>
 #include <vector>
 
 #include "mapfuse/core/se3.hpp"
@@ -19,6 +20,23 @@ std::vector<Pose3> oxtsVeloPoses(const io::KittiRawDrive& drive, bool enu);
 /// T_velo0_velo_i = inv(T_cam_velo) * T_cam0_cam_i * T_cam_velo.
 std::vector<Pose3> veloPosesFromCameraPoses(const std::vector<Pose3>& T_cam0_cam,
                                             const Pose3& T_cam_velo);
+
+/// @brief Velodyne poses of the selected frames from a poses file of T_world_cam0 (KITTI
+/// convention, io/kitti_poses.hpp), in the map frame of a run from a poses file: the Velodyne
+/// frame of the first selected frame. Lines are matched to frames by one of two rules, which
+/// agree whenever both apply: line i = frame i when the file has a line for every index up to
+/// the last selected frame (a KITTI odometry or SemanticKITTI file); else line k = the k-th
+/// selected frame when the file has exactly one line per selected frame (what lidar-semantic-map
+/// writes for a --first-frame/--stride selection).
+/// @throws InputError naming the file when neither rule applies; IoError / ParseError from the
+/// reader (checked before anything else is read).
+std::vector<Pose3> veloPosesFromFile(const io::KittiRawDrive& drive,
+                                     const std::filesystem::path& poses_file);
+
+/// @brief The KITTI poses file of a run: T_cam0first_cam0_i = T_cam_velo * inv(T_map_velo_0) *
+/// T_map_velo_i * inv(T_cam_velo), camera 0 of the first frame as world, whatever the map frame.
+std::vector<Pose3> cameraPosesForFile(const std::vector<Pose3>& T_map_velo,
+                                      const Pose3& T_cam_velo);
 
 /// @brief Moves the poses so that the first lies at the origin (translation only, axes kept:
 /// keeps z up for OXTS worlds). @return the removed translation (m).

@@ -1,56 +1,100 @@
 #pragma once
-/// @file LiDAR odometry by scan-to-map registration with the project's GICP
-/// (fusion/gicp.hpp): constant-velocity prediction, a local map of the most recent scans,
-/// coarse-to-fine correspondence distances, optional constant-velocity de-skew.
+/// @file LiDAR odometry (docs/lidar.md, "Odometry"), after kiss-icp (Vizzo et al. 2023): each
+/// sweep is de-skewed with the constant-velocity motion, optionally stripped of possible road users
+/// (lidar/scan_geometry.hpp), thinned, and registered point-to-plane to a bounded local voxel map
+/// (lidar/local_voxel_map.hpp) with an adaptive correspondence threshold, then once more with a
+/// fine one. The step is judged (lidar/odometry_trust.hpp); trusted sweeps that moved far enough
+/// from the last keyframe enter the map. Keyframes keep the map's samples apart from the sweep
+/// being registered: in slow traffic, a map of the last few sweeps holds nearly the same ring
+/// pattern as the new one and pulls the estimate towards standing still. Poses are composed on
+/// SE(3) and re-orthonormalised after every step.
 #include <Eigen/Core>
-#include <deque>
+#include <cstdint>
 #include <vector>
 
 #include "mapfuse/core/se3.hpp"
-#include "mapfuse/fusion/point_cloud.hpp"
+#include "mapfuse/lidar/local_voxel_map.hpp"
+#include "mapfuse/lidar/map_registration.hpp"
+#include "mapfuse/lidar/odometry_trust.hpp"
+#include "mapfuse/lidar/scan_geometry.hpp"
 
 namespace mapfuse::lidar {
 
 struct OdometrySettings {
-  double voxel_size = 0.25;            ///< m, source and local-map downsampling
-  double min_range = 3.0;              ///< m, drops the ego vehicle
-  double max_range = 80.0;             ///< m
-  int local_map_scans = 10;            ///< recent registered scans forming the target
-  double coarse_correspondence = 2.0;  ///< m, first GICP pass
-  double fine_correspondence = 0.5;    ///< m, second GICP pass
-  int max_iterations = 50;             ///< per pass
-  int covariance_neighbors = 10;       ///< k of the GICP covariances
-  bool deskew = false;                 ///< constant-velocity motion compensation of each sweep
-  int num_threads = 1;                 ///< OpenMP threads inside GICP
+  double min_range = 3.0;           ///< m, drops the ego vehicle
+  double max_range = 100.0;         ///< m, also the local map's radius
+  double voxel_size = 1.0;          ///< m, local-map voxel (exact nearest-neighbour radius)
+  int max_points_per_voxel = 10;    ///< local map (kiss-icp: 20; measured no better here)
+  double scan_spacing = 0.5;        ///< m, the sweep is thinned to this spacing for the map
+  double source_spacing = 1.0;      ///< m, and to this one for the registration
+  int normal_neighbors = 10;        ///< k of the normals of keyframe points
+  double normal_radius = 2.0;       ///< m, their search radius (spanning several rings)
+  double keyframe_distance = 0.5;   ///< m moved since the last keyframe that makes a new one
+  double keyframe_angle = 5.0;      ///< deg turned since the last keyframe that makes a new one
+  bool deskew = true;               ///< constant-velocity motion compensation of each sweep
+  double sweep_period = 0.1;        ///< s, one turn of the sensor (KITTI HDL-64E: 10 Hz)
+  bool exclude_road_users = false;  ///< leave possible road users out (lidar/scan_geometry.hpp)
+  SceneGeometrySettings geometry;   ///< the road-user rule
+  double geometry_spacing = 0.2;    ///< m, the sweep is thinned to this spacing for the rule
+  double initial_threshold = 2.0;   ///< m, sigma of the adaptive threshold before any motion
+  double min_motion = 0.1;          ///< m, smaller model deviations do not adapt the threshold
+  double fine_threshold = 0.5;      ///< m, correspondence threshold of the second pass
+  MapRegistrationSettings registration;
+  TrustSettings trust;
+
+  /// @throws ConfigError naming the field when a value is out of range.
+  void validate() const;
 };
 
-/// Registration quality of one scan.
+/// Registration quality and trust of one scan.
 struct OdometryStep {
-  bool converged = true;
+  bool first = false;  ///< the first scan: it defines the odometry frame, no registration
+  bool converged = false;
   int iterations = 0;
-  int num_inliers = 0;
-  double rmse = 0.0;  ///< m
-  double fitness = 0.0;
+  int correspondences = 0;
+  double inlier_share = 0.0;
+  double rmse = 0.0;                 ///< m
+  double threshold = 0.0;            ///< m, correspondence threshold of the first pass (3 sigma)
+  bool keyframe = false;             ///< the sweep entered the local map
+  std::size_t points = 0;            ///< registered points (after downsampling)
+  std::size_t road_user_points = 0;  ///< map-resolution points left out as road users
+  StepAssessment assessment;         ///< motion figures and the trust verdict
+  bool trusted() const { return first || assessment.trusted; }
 };
 
 class ScanOdometry {
  public:
   explicit ScanOdometry(const OdometrySettings& settings);
 
-  /// @brief Registers the next scan (Velodyne frame) to the local map.
-  /// @return T_odom_velo of the scan (odom = the first scan's Velodyne frame); with de-skew the
-  /// pose is that of the sweep's middle.
-  Pose3 add(const std::vector<Eigen::Vector3f>& scan_velo);
+  /// @brief Registers the next sweep (Velodyne frame).
+  /// @param dt time since the previous sweep, s (ignored for the first)
+  /// @param exclude optional, one per point: non-zero leaves the point out (e.g. the vehicle
+  /// class of a segmentation)
+  /// @return the step; its pose is poses().back(), T_odom_velo of the sweep's middle (odom = the
+  /// first sweep's Velodyne frame). An untrusted step gets the constant-velocity prediction from
+  /// the last trusted sweep, its sweep does not enter the local map and the velocity is kept.
+  const OdometryStep& add(const std::vector<Eigen::Vector3f>& scan, double dt,
+                          const std::vector<uint8_t>* exclude = nullptr);
 
   const std::vector<Pose3>& poses() const { return poses_; }
   const std::vector<OdometryStep>& steps() const { return steps_; }
+  const LocalVoxelMap& localMap() const { return map_; }
 
  private:
-  fusion::Cloud preprocess(const std::vector<Eigen::Vector3f>& scan, const Pose3& motion) const;
+  double sigma() const;
+  void insertKeyframe(const std::vector<Eigen::Vector3d>& frame, const Pose3& T);
   OdometrySettings s_;
+  LocalVoxelMap map_;
   std::vector<Pose3> poses_;
   std::vector<OdometryStep> steps_;
-  std::deque<fusion::Cloud> recent_;  ///< downsampled scans in the odom frame
+  Pose3 trusted_pose_ = Pose3::Identity();    ///< pose of the last trusted sweep
+  double since_trusted_ = 0.0;                ///< s since that sweep
+  Pose3 last_delta_ = Pose3::Identity();      ///< motion between the last two trusted sweeps
+  double last_dt_ = 0.0;                      ///< s, its duration; 0 = velocity unknown
+  Pose3 keyframe_ = Pose3::Identity();        ///< pose of the last sweep that entered the map
+  std::vector<Eigen::Vector3d> first_frame_;  ///< the first sweep, until it can be de-skewed
+  double model_sse_ = 0.0;                    ///< adaptive threshold state (kiss-icp)
+  int model_samples_ = 0;
 };
 
 /// @brief kiss-icp's KITTI convention for the relative time of a point within its sweep:
@@ -58,8 +102,15 @@ class ScanOdometry {
 double sweepFraction(const Eigen::Vector3f& p);
 
 /// @brief Constant-velocity de-skew: p' = exp((s - 0.5) * log(motion)) p, with `motion`
-/// T_prev_current of the previous step (one sweep).
+/// T_start_end of one sweep; the result is in the frame of the sweep's middle.
 std::vector<Eigen::Vector3d> deskewScan(const std::vector<Eigen::Vector3f>& scan,
                                         const Pose3& motion);
+
+/// @brief The rotation of T projected back onto SO(3) (nearest rotation by quaternion
+/// normalisation), translation kept.
+Pose3 orthonormalized(const Pose3& T);
+
+/// @brief exp(alpha * log(T)): the same constant-velocity motion over alpha times the time.
+Pose3 scaleMotion(const Pose3& T, double alpha);
 
 }  // namespace mapfuse::lidar

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mapfuse/core/lsm.hpp"
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/geo/origin.hpp"
 #include "mapfuse/sim/world.hpp"
 
@@ -43,6 +44,57 @@ struct DriveParams {
   double pitch_frequency = 0.7;           ///< Hz
   double roll_amplitude = 0.005;          ///< rad, body roll oscillation
   double roll_frequency = 0.5;            ///< Hz
+
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    v("speed_min", speed_min, "m/s", "per-traversal speed, lower bound", gt(0.5) & le(100));
+    v("speed_max", speed_max, "m/s", "per-traversal speed, upper bound", gt(0.5) & le(100));
+    v.relation("speed_max", speed_max, speed_max >= speed_min, ">= speed_min");
+    v("lateral_offset_sigma", lateral_offset_sigma, "m",
+      "per-traversal offset from the lane centre", in(0, 10));
+    // a drive holds one sample per IMU period (the simulation step)
+    v("imu_rate", imu_rate, "Hz", "IMU rate (simulation step)", in(1, 10000));
+    v("wheel_rate", wheel_rate, "Hz", "wheel odometry rate", gt(0) & le(10000));
+    v.relation("wheel_rate", wheel_rate, dividesImuRate(wheel_rate), "divides imu_rate");
+    v("gps_rate", gps_rate, "Hz", "GPS fix rate", gt(0) & le(10000));
+    v.relation("gps_rate", gps_rate, dividesImuRate(gps_rate), "divides imu_rate");
+    v("camera_rate", camera_rate, "Hz", "camera frame rate", gt(0) & le(10000));
+    v.relation("camera_rate", camera_rate, dividesImuRate(camera_rate), "divides imu_rate");
+    v("gps_bias_min", gps_bias_min, "m", "initial horizontal GPS bias magnitude, min", in(0, 1000));
+    v("gps_bias_max", gps_bias_max, "m", "initial horizontal GPS bias magnitude, max", in(0, 1000));
+    v.relation("gps_bias_max", gps_bias_max, gps_bias_max >= gps_bias_min, ">= gps_bias_min");
+    v("gps_bias_walk", gps_bias_walk, "m/sqrt(s)", "random walk of the GPS bias per axis",
+      in(0, 100));
+    v("gps_white_sigma", gps_white_sigma, "m", "GPS horizontal white noise per axis", in(0, 1000));
+    v("gps_vertical_sigma", gps_vertical_sigma, "m", "GPS vertical white noise", in(0, 1000));
+    v("gps_outlier_probability", gps_outlier_probability, "",
+      "multipath outlier probability per fix", in(0, 1));
+    v("gps_outlier_min", gps_outlier_min, "m", "multipath outlier magnitude, min", in(0, 10000));
+    v("gps_outlier_max", gps_outlier_max, "m", "multipath outlier magnitude, max", in(0, 10000));
+    v.relation("gps_outlier_max", gps_outlier_max, gps_outlier_max >= gps_outlier_min,
+               ">= gps_outlier_min");
+    v("gps_reported_sigma_h", gps_reported_sigma_h, "m", "horizontal sigma reported in fixes",
+      gt(0) & le(1000));
+    v("gps_reported_sigma_v", gps_reported_sigma_v, "m", "vertical sigma reported in fixes",
+      gt(0) & le(1000));
+    v("wheel_scale_sigma", wheel_scale_sigma, "", "per-traversal wheel scale error, 1-sigma",
+      in(0, 1));
+    v("wheel_speed_noise", wheel_speed_noise, "m/s", "wheel speed white noise", in(0, 100));
+    v("gyro_bias_sigma", gyro_bias_sigma, "rad/s", "per-traversal gyro bias per axis", in(0, 1));
+    v("gyro_noise_density", gyro_noise_density, "rad/s/sqrt(Hz)", "gyro white noise density",
+      in(0, 1));
+    v("accel_noise", accel_noise, "m/s^2", "accelerometer white noise per sample", in(0, 100));
+    v("attitude_noise", attitude_noise, "rad", "levelled roll/pitch noise of the odometry",
+      in(0, 1));
+    v("pitch_amplitude", pitch_amplitude, "rad", "body pitch oscillation amplitude", in(0, 1));
+    v("pitch_frequency", pitch_frequency, "Hz", "body pitch oscillation frequency", in(0, 100));
+    v("roll_amplitude", roll_amplitude, "rad", "body roll oscillation amplitude", in(0, 1));
+    v("roll_frequency", roll_frequency, "Hz", "body roll oscillation frequency", in(0, 100));
+  }
+
+  /// @brief True when `rate` is at most imu_rate and imu_rate is an integer multiple of it.
+  bool dividesImuRate(double rate) const;
 };
 
 /// @brief IMU-rate samples between two camera frames (frame f is sample f * stride).

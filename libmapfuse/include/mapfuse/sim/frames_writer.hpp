@@ -4,6 +4,7 @@
 /// of aerial elements with track ids and truth ids, and the true pose of every frame.
 #include <filesystem>
 
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/sim/drive.hpp"
 #include "mapfuse/sim/lsm_observer.hpp"
 #include "mapfuse/sim/sim_camera.hpp"
@@ -14,6 +15,13 @@ namespace mapfuse::sim {
 struct FramesParams {
   double pixel_sigma = 0.5;  ///< px, noise of pixel observations (0 = exact projections)
   bool masks = true;         ///< write masks/<index>.png
+
+  template <class V>
+  void visit(V& v) {
+    v("frames_pixel_sigma", pixel_sigma, "px", "pixel noise of frame observations",
+      param::in(0, 1000));
+    v("frames_masks", masks, "", "write per-frame PNG masks");
+  }
 };
 
 /// Counts of one written drive.

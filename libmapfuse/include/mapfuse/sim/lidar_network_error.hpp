@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/io/semantic_image.hpp"
 #include "mapfuse/sim/lidar_camera.hpp"
 
@@ -25,6 +26,32 @@ struct NetworkErrorParams {
   double blob_radius_max = 45.0;    ///< px
   double bleed_sigma = 2.0;         ///< px, Gaussian softening of class boundaries
   double confidence = 0.8;          ///< probability mass on the (softened) labels
+
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    v("offset_u", offset_u, "px", "horizontal calibration offset of the network labels",
+      in(-1000, 1000));
+    v("offset_v", offset_v, "px", "vertical calibration offset of the network labels",
+      in(-1000, 1000));
+    v("sidewalk_as_road", sidewalk_as_road, "", "share of sidewalk area the network calls road",
+      in(0, 1));
+    v("road_as_sidewalk", road_as_sidewalk, "", "share of road area the network calls sidewalk",
+      in(0, 1));
+    v("fence_as_building", fence_as_building, "", "share of fence area called building", in(0, 1));
+    v("building_as_fence", building_as_fence, "", "share of building area called fence", in(0, 1));
+    // the confusion field is drawn on a grid of image size / confusion_scale cells
+    v("confusion_scale", confusion_scale, "px", "size of the confused regions", in(1, 1e6));
+    v("blobs_per_frame", blobs_per_frame, "", "mean number of wrong-class blobs per image",
+      in(0, 1000));
+    v("blob_radius_min", blob_radius_min, "px", "smallest blob radius", gt(0) & le(10000));
+    v("blob_radius_max", blob_radius_max, "px", "largest blob radius", gt(0) & le(10000));
+    v.relation("blob_radius_min", blob_radius_min, blob_radius_min <= blob_radius_max,
+               "<= blob_radius_max");
+    v("bleed_sigma", bleed_sigma, "px", "Gaussian softening of class boundaries", in(0, 100));
+    v("confidence", confidence, "", "probability mass on the network's labels (rest uniform)",
+      gt(0) & le(1));
+  }
 };
 
 /// @brief The corrupted hard labels before softening (for tests and the docs).

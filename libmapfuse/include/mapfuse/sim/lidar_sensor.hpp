@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/core/se3.hpp"
 #include "mapfuse/sim/lidar_scene.hpp"
 
@@ -24,6 +25,19 @@ struct LidarSensorParams {
   double range_noise = 0.02;        ///< m, standard deviation along the ray
   double dropout = 0.03;            ///< probability a return is lost
   double reflectance_noise = 0.05;  ///< standard deviation of the remission
+
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    // a scan holds up to beams * azimuth_steps points
+    v("azimuth_steps", azimuth_steps, "", "LiDAR rays per laser per turn (64 lasers)",
+      in(8, 36000));
+    v("lidar_min_range", min_range, "m", "closer returns are dropped", in(0, 10000));
+    v("lidar_max_range", max_range, "m", "farthest return", gt(0) & le(10000));
+    v.relation("lidar_min_range", min_range, min_range < max_range, "< lidar_max_range");
+    v("range_noise", range_noise, "m", "standard deviation of the range", in(0, 100));
+    v("dropout", dropout, "", "probability that a return is lost", in(0, 1) & lt(1));
+  }
 };
 
 /// One scan in the Velodyne frame, with the true label of every point.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mapfuse/core/lsm.hpp"
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/sim/drive.hpp"
 #include "mapfuse/sim/sim_camera.hpp"
 #include "mapfuse/sim/world.hpp"
@@ -32,6 +33,42 @@ struct ObservationParams {
   double correlated_fraction = 0.5;       ///< share of the noise variance common to an element
   double miss_probability = 0.05;         ///< per element and keyframe
   double false_positives_per_km = 5.0;    ///< spurious elements per km driven
+  /// m; a stop line whose centre a drive never sees is observed once, its longest visible run,
+  /// when that is at least this long (0: off, only whole stop lines are observed)
+  double partial_stop_line_min_length = 1.0;
+
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    v("keyframe_spacing", keyframe_spacing, "m", "odometry distance between keyframes",
+      in(1, 10000));
+    v("point_spacing", point_spacing, "m", "lane-line point spacing in LSMs", in(0.1, 100));
+    // the observer looks up true elements within about lateral_range of each keyframe
+    v("lateral_range", lateral_range, "m", "max |y| of observed elements", gt(0) & le(1000));
+    v("aerial_window_offset", aerial_window_offset, "m",
+      "aerial elements are anchored this much further ahead", in(-1000, 1000));
+    v("ground_edge_margin_px", ground_edge_margin_px, "px",
+      "ground points beside the road are observed where the image first holds them with this "
+      "margin (0: fixed window at camera_min_range)",
+      in(0, 10000));
+    v("ground_sigma_base", ground_sigma_base, "m", "ground point noise floor", in(0, 100));
+    v("ground_sigma_range_quad", ground_sigma_range_quad, "1/m", "along-ray ground sigma k r^2",
+      in(0, 1));
+    v("ground_sigma_angular", ground_sigma_angular, "rad", "across-ray sigma k r", in(0, 1));
+    v("aerial_sigma_base", aerial_sigma_base, "m", "triangulated point noise floor", in(0, 100));
+    v("aerial_sigma_range_quad", aerial_sigma_range_quad, "1/m", "aerial depth sigma k r^2",
+      in(0, 1));
+    v("correlated_fraction", correlated_fraction, "",
+      "share of noise variance common to an element", in(0, 1));
+    v("miss_probability", miss_probability, "", "missed detection probability per element",
+      in(0, 1) & lt(1));
+    v("partial_stop_line_min_length", partial_stop_line_min_length, "m",
+      "a stop line whose centre a drive never sees: its visible part at least this long is "
+      "observed (0 = off)",
+      in(0, 1000));
+    v("false_positives_per_km", false_positives_per_km, "1/km", "spurious elements per km",
+      in(0, 1e6));
+  }
 };
 
 /// The true elements cut into observable pieces, with a grid index.
@@ -48,7 +85,9 @@ class PieceIndex {
   std::vector<int> near(const Eigen::Vector3d& center, double radius) const;
 
  private:
-  static int64_t key(int64_t ix, int64_t iy) { return (ix << 32) ^ (iy & 0xffffffff); }
+  static int64_t key(int64_t ix, int64_t iy) {  // unsigned shift: defined for negative ix
+    return int64_t((uint64_t(ix) << 32) ^ (uint64_t(iy) & 0xffffffffULL));
+  }
   double cell_ = 10.0;
   std::vector<Piece> pieces_;
   std::unordered_map<int64_t, std::vector<int>> grid_;
@@ -59,6 +98,7 @@ struct ObservationStats {
   int elements = 0;  ///< true observations written
   int false_positives = 0;
   int missed = 0;
+  int partial_stop_lines = 0;  ///< stop lines observed only in part (their centre never seen)
 };
 
 struct ObservedDrive {

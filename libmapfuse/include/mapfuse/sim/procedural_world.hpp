@@ -4,6 +4,7 @@
 /// merge (a bypass lane), stop lines, ground arrows, crosswalks, signs, traffic lights and poles.
 #include <cstdint>
 
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/geo/origin.hpp"
 #include "mapfuse/sim/world.hpp"
 
@@ -20,6 +21,28 @@ struct ProceduralParams {
   double traffic_light_fraction = 0.5;  ///< share of intersections with traffic lights
   double crosswalk_probability = 0.5;   ///< per intersection arm without lights
   double pole_spacing = 60.0;           ///< m between street-lamp poles along a road side
+
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    // the world holds grid_size^2 intersections
+    v("world_grid_size", grid_size, "", "procedural: intersections per side", in(2, 50));
+    v("world_block_length", block_length, "m", "procedural: intersection spacing",
+      gt(0) & le(10000));
+    v("world_jitter", jitter, "m", "procedural: random shift of intersections", in(0, 1000));
+    v("world_curve_amplitude", curve_amplitude, "m", "procedural: max road bulge", in(0, 1000));
+    v("world_lane_width", lane_width, "m", "procedural: lane width", gt(2) & le(10));
+    v("world_max_lanes_per_direction", max_lanes_per_direction, "",
+      "procedural: lanes per direction in [1, this]", in(1, 4));
+    v("world_intersection_radius", intersection_radius, "m", "procedural: centre to stop line",
+      gt(0) & le(1000));
+    v("world_traffic_light_fraction", traffic_light_fraction, "",
+      "procedural: share of intersections with lights", in(0, 1));
+    v("world_crosswalk_probability", crosswalk_probability, "",
+      "procedural: crosswalk per arm without lights", in(0, 1));
+    v("world_pole_spacing", pole_spacing, "m", "procedural: street-lamp spacing",
+      gt(5) & le(100000));
+  }
 };
 
 /// @brief Builds the procedural world around `origin` (ENU, flat road surface z = 0).

@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <optional>
 
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/core/se3.hpp"
 
 namespace mapfuse::sim {
@@ -21,6 +22,25 @@ struct CameraParams {
   double pitch = 0.035;     ///< rad, downward pitch of the optical axis
   double min_range = 4.0;   ///< m, closest ground point used (from the camera)
   double max_range = 40.0;  ///< m, farthest element observed (from the camera)
+
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    // frames masks hold width * height pixels
+    v("camera_width", width, "px", "image width", in(1, 10000));
+    v("camera_height", height, "px", "image height", in(1, 10000));
+    v("camera_fx", fx, "px", "focal length x", gt(0) & le(1e6));
+    v("camera_fy", fy, "px", "focal length y", gt(0) & le(1e6));
+    v("camera_cx", cx, "px", "principal point x", in(-1e5, 1e5));
+    v("camera_cy", cy, "px", "principal point y", in(-1e5, 1e5));
+    v("camera_x", x, "m", "camera position in the body frame, forward", in(-100, 100));
+    v("camera_y", y, "m", "camera position in the body frame, left", in(-100, 100));
+    v("camera_z", z, "m", "camera height above the road", gt(0.3) & le(100));
+    v("camera_pitch", pitch, "rad", "downward pitch of the optical axis", in(-1.5, 1.5));
+    v("camera_min_range", min_range, "m", "closest ground point used", gt(0) & le(10000));
+    v("camera_max_range", max_range, "m", "farthest element observed", gt(0) & le(10000));
+    v.relation("camera_max_range", max_range, max_range > min_range, "> camera_min_range");
+  }
 };
 
 class SimCamera {

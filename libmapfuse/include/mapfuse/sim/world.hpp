@@ -37,6 +37,20 @@ struct World {
   double laneLength() const;
 };
 
+/// What a world holds, for the summary.
+struct WorldSummary {
+  std::string name;  ///< "procedural" or the map file
+  std::size_t lanes = 0;
+  double lane_km = 0.0;                          ///< lane centrelines
+  std::size_t elements = 0;                      ///< true elements
+  std::map<std::string, int> elements_by_class;  ///< by class name
+  double lane_line_km = 0.0;                     ///< true lane lines
+  std::map<std::string, double> stats;           ///< the world builder's counts
+};
+
+/// @brief Counts and lengths of a world's lanes and true elements.
+WorldSummary summarize(const World& world);
+
 /// @brief Connects lane a -> b when the end of a is within `tolerance` m of the start of b and
 /// the directions agree within 60 degrees. Replaces existing successors.
 void connectLanesByEndpoints(World& world, double tolerance);

@@ -1,53 +1,34 @@
 #pragma once
-/// @file `evaluate map` (§5, Song et al. 2023): vector map(s) against the ground-truth map,
-/// optionally trajectories of aligned LSMs against the true trajectories. Writes
-/// evaluate.summary.json, evaluate.config.json, evaluate.md and PNG plots (docs/evaluate.md).
+/// @file `evaluate map` (§5, Song et al. 2023): vector map(s) against the ground-truth map
+/// (eval::evaluateMap, the truth clipped to what the drives could see with eval::clipToCoverage),
+/// optionally trajectories of aligned LSMs against the true trajectories
+/// (eval::compareTrajectory). Writes evaluate.summary.json, evaluate.config.json, evaluate.md and
+/// PNG plots (docs/evaluate.md).
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "mapfuse/cli/params.hpp"
 #include "mapfuse/eval/map_metrics.hpp"
+#include "mapfuse/eval/map_report.hpp"
+#include "mapfuse/eval/trajectory_metrics.hpp"
 
 namespace mapfuse::stages {
 
 struct EvaluateMapParams {
-  double line_tolerance = 1.0;            ///< m
-  double discrete_tolerance = 1.5;        ///< m
-  double sample_step = 0.5;               ///< m
-  double lane_width_min = 2.0;            ///< m
-  double lane_width_max = 6.0;            ///< m
-  double neighbour_max_distance = 100.0;  ///< m
-  double rpe_distance = 10.0;             ///< m
-  double coverage_radius = 12.0;          ///< m, 0 = evaluate against the whole truth
-  double coverage_range = 22.0;           ///< m, forward reach of the coverage wedge
-  double coverage_half_fov_deg = 31.0;    ///< deg, half opening of the coverage wedge
+  static constexpr const char* kName = "EvaluateMapParams";
+  eval::MapEvalParams metrics;
+  eval::TrajectoryEvalSettings trajectories;
+  eval::CoverageWedge coverage;
 
   template <class V>
   void visit(V& v) {
-    v("line_tolerance", line_tolerance, "m", "lane-line samples within this distance match");
-    v("discrete_tolerance", discrete_tolerance, "m",
-      "largest centre distance of a matched discrete element");
-    v("sample_step", sample_step, "m", "spacing of lane-line samples (stations)");
-    v("lane_width_min", lane_width_min, "m", "neighbouring lines closer than this are not a lane");
-    v("lane_width_max", lane_width_max, "m", "neighbouring lines farther than this are not a lane");
-    v("neighbour_max_distance", neighbour_max_distance, "m",
-      "discrete elements farther apart are not neighbours");
-    v("rpe_distance", rpe_distance, "m", "travelled distance of the relative pose error");
-    v("coverage_radius", coverage_radius, "m",
-      "with --truth-trajectories: score only truth within this distance of a true trajectory "
-      "(0 = whole truth)");
-    v("coverage_range", coverage_range, "m",
-      "with --truth-trajectories: how far ahead of a true pose the truth counts as seen");
-    v("coverage_half_fov_deg", coverage_half_fov_deg, "deg",
-      "with --truth-trajectories: half opening of the seen wedge ahead of a true pose (the "
-      "camera's field of view; 90 = everything ahead)");
+    metrics.visit(v);
+    trajectories.visit(v);
+    coverage.visit(v);
   }
-  /// @throws ConfigError naming the field, the value and the rule.
-  void validate() const;
-  eval::MapEvalParams toEval() const;
-  eval::CoverageWedge coverageWedge() const;
 };
 
 struct EvaluateMapInputs {
@@ -58,13 +39,29 @@ struct EvaluateMapInputs {
   std::vector<int> traversals;     ///< per map (optional; else read beside the map)
 };
 
+/// What one `evaluate map` run found.
+struct EvaluateMapRun {
+  std::string truth;                       ///< the truth map file
+  std::size_t coverage_trajectories = 0;   ///< true trajectories the truth was clipped to
+  std::vector<eval::MapReportEntry> maps;  ///< per map, in input order
+  std::vector<eval::TrajectoryMetrics> trajectories;  ///< per LSM, in input order
+};
+
+/// @brief The summary evaluate.summary.json holds.
+nlohmann::json toJson(const EvaluateMapRun& run);
+/// Largest number of traversals read from an aggregate summary.
+constexpr int64_t kMaxTraversals = 1000000;
+
 /// @brief Number of traversals behind a map: "inputs.drives" of aggregate.summary.json in the
 /// map's folder when present, else the largest instance support (0 for an empty map).
+/// @throws ParseError naming the summary and the field when inputs.drives is there but is not an
+/// integer in [0, kMaxTraversals]; IoError / ParseError when the summary cannot be read.
 int traversalsOf(const std::filesystem::path& map_file, const VectorMap& map);
 
-/// @brief Runs the evaluation and writes the outputs into `out_dir`. @return the summary.
-/// @throws IoError, ParseError, InputError (e.g. --lsm without --truth-trajectories).
-nlohmann::json runEvaluateMap(const EvaluateMapInputs& inputs, const std::filesystem::path& out_dir,
+/// @brief Runs the evaluation and writes the outputs into `out_dir`.
+/// @throws ConfigError (parameters), IoError, ParseError, InputError (e.g. --lsm without
+/// --truth-trajectories).
+EvaluateMapRun runEvaluateMap(const EvaluateMapInputs& inputs, const std::filesystem::path& out_dir,
                               const EvaluateMapParams& params);
 
 }  // namespace mapfuse::stages

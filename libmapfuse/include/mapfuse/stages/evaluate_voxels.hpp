@@ -2,8 +2,8 @@
 /// @file Stage `evaluate voxels`: per-class accuracy (eq. 10) and IoU (eq. 11) of Jeong et al.
 /// 2018 in the paper's Table 1 layout, for (a) a semantic voxel map (PLY from
 /// lidar-semantic-map) against truth voxels built from the drive's labelled scans
-/// (`<drive>/labels/<frame>.label`) with the drive's poses, or (b) per-scan `.label`
-/// predictions against the truth `.label` files. Writes voxels.json, voxels.md and
+/// (`<drive>/labels/<frame>.label`) with the drive's poses (OXTS or a poses file), or (b) per-scan
+/// `.label` predictions against the truth `.label` files. Writes voxels.json, voxels.md and
 /// evaluate-voxels.{config,summary}.json in the output folder.
 #include <filesystem>
 #include <string>
@@ -11,30 +11,30 @@
 #include <nlohmann/json.hpp>
 
 #include "mapfuse/cli/params.hpp"
+#include "mapfuse/eval/voxel_truth.hpp"
 
 namespace mapfuse::stages {
 
 struct EvaluateVoxelsParams {
-  double voxel_size = 0.05;          ///< m, must equal the map's voxel size
-  double min_range = 5.0;            ///< m, truth only from points the mapper uses
-  double max_range = 50.0;           ///< m
-  bool camera_fov = true;            ///< truth only from points that land in image_02
-  std::string pose_source = "oxts";  ///< oxts (devkit Mercator) | oxts-enu
+  static constexpr const char* kName = "EvaluateVoxelsParams";
+  eval::VoxelTruthSettings truth;    ///< which labelled points become truth voxels
+  std::string pose_source = "auto";  ///< auto | oxts (devkit Mercator) | oxts-enu | poses_file
+  std::string poses_file;            ///< T_world_cam0 poses (KITTI), e.g. the map's poses.txt
   bool recenter = true;              ///< first pose at the origin (as the map is written)
   std::string title = "mapfuse";     ///< first column of the Markdown table
 
   template <class V>
   void visit(V& v) {
-    v("voxel_size", voxel_size, "m", "voxel edge, equal to the evaluated map's");
-    v("min_range", min_range, "m", "truth voxels only from points at least this far");
-    v("max_range", max_range, "m", "truth voxels only from points at most this far");
-    v("camera_fov", camera_fov, "", "truth voxels only from points that land in image_02");
-    v("pose_source", pose_source, "", "poses of the truth scans: oxts (devkit) or oxts-enu");
+    truth.visit(v);
+    v("pose_source", pose_source, "",
+      "poses of the truth scans: auto (OXTS when every frame has it, else the poses file or the "
+      "sequence's poses.txt), oxts (devkit), oxts-enu or poses_file",
+      param::oneOf({"auto", "oxts", "oxts-enu", "poses_file"}));
+    v("poses_file", poses_file, "",
+      "KITTI poses file (T_world_cam0), e.g. the evaluated map's poses.txt");
     v("recenter", recenter, "", "move the first pose to the origin, as the map is written");
     v("title", title, "", "method name in the first column of the Markdown table");
   }
-  /// @throws ConfigError naming field, value and rule.
-  void validate() const;
 };
 
 /// Inputs of the evaluation: exactly one of `map` and `predicted_labels`.

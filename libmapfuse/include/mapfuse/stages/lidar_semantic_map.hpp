@@ -18,12 +18,11 @@ struct LidarSemanticMapParams {
   int stride = 1;       ///< every stride-th frame present
   // poses
   std::string pose_source = "auto";  ///< auto | oxts | oxts_enu | poses_file | odometry
-  std::string poses_file;            ///< KITTI-odometry poses (camera 0) for pose_source poses_file
-  double odom_voxel_size = 0.25;     ///< m
-  int odom_local_map_scans = 10;
-  double odom_coarse_distance = 2.0;  ///< m
-  double odom_fine_distance = 0.5;    ///< m
-  bool odom_deskew = false;
+  std::string poses_file;        ///< KITTI poses file, T_world_cam0 (docs/kitti.md, "Poses files")
+  double odom_voxel_size = 1.0;  ///< m, local-map voxel (docs/lidar.md, "Odometry")
+  bool odom_deskew = true;
+  bool odom_exclude_road_users = false;
+  int odom_max_untrusted = 0;  ///< untrusted odometry steps tolerated; one more: exit 3
   // semantics
   std::string segmenter = "auto";  ///< auto | enet | precomputed
   std::string model;  ///< ENet model; empty = <shared>/models/enet-cityscapes/enet-model.net
@@ -73,16 +72,19 @@ struct LidarSemanticMapParams {
     v("last_frame", last_frame, "", "last frame index, inclusive (-1 = all)");
     v("stride", stride, "", "use every stride-th frame present");
     v("pose_source", pose_source, "",
-      "auto|oxts|oxts_enu|poses_file|odometry (auto: OXTS when every frame has it, else poses_file "
-      "if given, else odometry)");
+      "auto|oxts|oxts_enu|poses_file|odometry (auto: OXTS when every frame has it, else the poses "
+      "file if given or the sequence's poses.txt, else odometry)");
     v("poses_file", poses_file, "",
-      "KITTI-odometry poses file (camera 0, one line per frame index)");
-    v("odom_voxel_size", odom_voxel_size, "m", "odometry downsampling voxel");
-    v("odom_local_map_scans", odom_local_map_scans, "", "scans in the odometry local map");
-    v("odom_coarse_distance", odom_coarse_distance, "m",
-      "GICP correspondence distance, first pass");
-    v("odom_fine_distance", odom_fine_distance, "m", "GICP correspondence distance, second pass");
+      "KITTI poses file, T_world_cam0 (line i = frame i, or one line per selected frame; "
+      "docs/kitti.md)");
+    v("odom_voxel_size", odom_voxel_size, "m",
+      "odometry local-map voxel (its nearest-neighbour reach; docs/lidar.md)");
     v("odom_deskew", odom_deskew, "", "constant-velocity de-skew of each sweep");
+    v("odom_exclude_road_users", odom_exclude_road_users, "",
+      "leave low objects (road users) out of the odometry (geometric rule, docs/lidar.md; off: "
+      "measured no better, and it drops nearby walls)");
+    v("odom_max_untrusted", odom_max_untrusted, "",
+      "untrusted odometry steps tolerated (listed in the summary); one more stops the run, exit 3");
     v("segmenter", segmenter, "",
       "auto|enet|precomputed (auto: precomputed when the folder has the first frame)");
     v("model", model, "",

@@ -7,6 +7,8 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "mapfuse/core/drive_records.hpp"
+
 namespace mapfuse::vehicle {
 
 /// How a mask component is reduced to pixels.
@@ -24,5 +26,11 @@ struct MaskComponent {
 /// @param mask CV_8UC1 class-id image.
 std::vector<MaskComponent> extractComponents(const cv::Mat& mask, int class_id, ThinMode mode,
                                              int min_area, int step = 1);
+
+/// @brief Ground observations of a mask: one per connected component of the classes 1-4
+/// (CrowdClass + 1), lane lines thinned to centre lines, stop lines column-wise, planar hulls.
+/// @param mask CV_8UC1 class-id image (docs/formats-frames.md "masks").
+/// @param min_area px, smaller components are noise.
+std::vector<GroundObservation> observationsFromMask(const cv::Mat& mask, int min_area);
 
 }  // namespace mapfuse::vehicle

@@ -7,12 +7,30 @@
 #include <filesystem>
 #include <memory>
 #include <opencv2/core.hpp>
+#include <string>
 #include <vector>
 
+#include "mapfuse/core/drive_records.hpp"
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/vehicle/camera.hpp"
-#include "mapfuse/vehicle/observations.hpp"
 
 namespace mapfuse::vehicle {
+
+/// How lsm-build perceives frames that come without observations: ground-marking masks
+/// (centerline.hpp) or camera images through this fallback perception. Declared once, in visit().
+struct PerceptionSettings {
+  std::string segmenter = "enet";  ///< fallback perception network
+  std::string model;               ///< ENet model; "" = <shared>/models/enet-cityscapes/...
+  int mask_min_area = 20;          ///< px, smaller mask components are noise
+
+  template <class V>
+  void visit(V& v) {
+    v("segmenter", segmenter, "", "fallback segmentation network", param::oneOf({"enet"}));
+    v("model", model, "", "segmentation model file; empty = shared models/enet-cityscapes");
+    v("mask_min_area", mask_min_area, "px", "smaller mask components are dropped",
+      param::in(1, 100000000));
+  }
+};
 
 /// @brief Reads a colour image. @throws IoError when missing, ParseError when undecodable.
 cv::Mat readColorImage(const std::filesystem::path& path);
@@ -61,5 +79,21 @@ struct LaneDetection {
 /// calibration's nominal ground plane.
 LaneDetection detectLanes(const cv::Mat& bgr, const cv::Mat& road_mask, const CameraCalib& calib,
                           const LaneDetectSettings& settings);
+
+/// Lane lines the fallback perception found in every frame of a drive.
+struct LanePerception {
+  std::vector<FrameObservations> frames;  ///< index, stamp and lane lines per image
+  std::vector<cv::Mat> bev_images;        ///< BEV grey per image (for the top-down picture)
+  double seconds = 0.0;                   ///< s, perception, network included
+  double network_seconds = 0.0;           ///< s, of which the segmentation network
+};
+
+/// @brief Road segmentation (ENet, `model`) and BEV lane detection (LaneDetectSettings{}) on
+/// each image, one after the other: the network uses OpenCV's own threads.
+/// @param stamps s per image
+/// @throws IoError when the model or an image is missing, ParseError when undecodable.
+LanePerception perceiveLanes(const std::vector<std::filesystem::path>& images,
+                             const std::vector<double>& stamps, const CameraCalib& calib,
+                             const std::filesystem::path& model);
 
 }  // namespace mapfuse::vehicle

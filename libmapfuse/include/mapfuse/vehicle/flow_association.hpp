@@ -4,10 +4,11 @@
 /// of points inside each box of the previous frame predicts where the box moved; the box of
 /// the next frame with the best overlap (IoU) inherits the track id.
 #include <cstdint>
+#include <filesystem>
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "mapfuse/vehicle/observations.hpp"
+#include "mapfuse/core/drive_records.hpp"
 
 namespace mapfuse::vehicle {
 
@@ -25,6 +26,12 @@ void associateByFlow(const cv::Mat& prev_gray, const cv::Mat& next_gray,
                      const std::vector<AerialObservation>& prev,
                      std::vector<AerialObservation>& next, int64_t& next_id,
                      const FlowSettings& settings);
+
+/// @brief Gives the aerial boxes of a whole drive track ids: fresh ids in the first frame, then
+/// associateByFlow (FlowSettings{}) between each pair of consecutive images (one per frame).
+/// @throws IoError / ParseError for a missing or undecodable image.
+void associateAerialByFlow(const std::vector<std::filesystem::path>& images,
+                           std::vector<FrameObservations>& frames);
 
 /// @brief Intersection over union of two boxes (u_min, v_min, u_max, v_max).
 double boxIou(const Eigen::Vector4d& a, const Eigen::Vector4d& b);

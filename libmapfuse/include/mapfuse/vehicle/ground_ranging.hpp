@@ -8,18 +8,29 @@
 #include <optional>
 #include <vector>
 
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/vehicle/camera.hpp"
 
 namespace mapfuse::vehicle {
 
-/// Settings of eq. (1).
+/// Settings of eq. (1); each declared once, in visit().
 struct RangingSettings {
-  double min_range = 3.0;      ///< m, closest accepted point (distance from the camera)
-  double max_range = 40.0;     ///< m, farthest accepted point
-  double sigma_pixel = 1.0;    ///< px, 1-sigma pixel noise of a marking point
-  double sigma_height = 0.03;  ///< m, 1-sigma camera height uncertainty
-  double sigma_pitch = 0.003;  ///< rad, 1-sigma residual pitch after calibration
-  double sigma_roll = 0.003;   ///< rad, 1-sigma residual roll
+  double min_range = 3.0;         ///< m, closest accepted point (distance from the camera)
+  double max_range = 30.0;        ///< m, farthest accepted point
+  double sigma_pixel = 1.0;       ///< px, 1-sigma pixel noise of a marking point
+  double sigma_height = 0.03;     ///< m, 1-sigma camera height uncertainty
+  double sigma_attitude = 0.003;  ///< rad, 1-sigma residual pitch and roll after calibration
+
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    v("min_range", min_range, "m", "closest ranged ground point (eq. 1 band)", in(0, 1000));
+    v("max_range", max_range, "m", "farthest ranged ground point (eq. 1 band)", gt(0) & le(10000));
+    v.relation("max_range", max_range, max_range > min_range, "> min_range");
+    v("sigma_pixel", sigma_pixel, "px", "marking pixel noise (covariances)", gt(0) & le(100));
+    v("sigma_height", sigma_height, "m", "camera height uncertainty (covariances)", in(0, 10));
+    v("sigma_attitude", sigma_attitude, "rad", "pitch/roll uncertainty (covariances)", in(0, 1));
+  }
 };
 
 /// @brief Eq. (1), Song et al. 2023: X = -h K^-1 x / (n^T K^-1 x) in the camera frame.

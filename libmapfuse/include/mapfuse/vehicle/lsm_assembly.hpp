@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mapfuse/core/lsm.hpp"
+#include "mapfuse/core/param.hpp"
 
 namespace mapfuse::vehicle {
 
@@ -32,6 +33,7 @@ struct AerialElement {
   int observations = 1;
 };
 
+/// Settings of the assembly; the parameters declared once, in visit().
 struct AssemblySettings {
   double association_radius = 0.6;           ///< m, spatial association of id-less markings
   double point_spacing = 0.5;                ///< m, resampling step along merged lines
@@ -40,6 +42,24 @@ struct AssemblySettings {
   int min_observations = 2;                  ///< frames needed to keep a ground instance
   double keyframe_sigma_translation = 0.05;  ///< m, keyframe pose 1-sigma written to the LSM
   double keyframe_sigma_rotation = 0.002;    ///< rad
+
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    v("association_radius", association_radius, "m", "spatial merge radius of id-less markings",
+      gt(0) & le(100));
+    // the resampled lines hold length / point_spacing points
+    v("point_spacing", point_spacing, "m", "resampling step along merged lines", in(0.01, 100));
+    v("max_element_length", max_element_length, "m", "longer lines are split", gt(0) & le(10000));
+    v.relation("max_element_length", max_element_length, max_element_length > point_spacing,
+               "> point_spacing");
+    v("min_observations", min_observations, "", "frames needed to keep a ground instance",
+      in(1, 100000));
+    v("keyframe_sigma_translation", keyframe_sigma_translation, "m", "keyframe pose sigma",
+      gt(0) & le(100));
+    v("keyframe_sigma_rotation", keyframe_sigma_rotation, "rad", "keyframe pose sigma",
+      gt(0) & le(10));
+  }
 };
 
 struct AssemblyStats {

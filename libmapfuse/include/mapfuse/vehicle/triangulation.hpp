@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/core/se3.hpp"
 
 namespace mapfuse::vehicle {
@@ -17,14 +18,31 @@ struct TrackObservation {
   Eigen::Vector2d pixel;  ///< px
 };
 
+/// Settings of eq. (2)-(3); the parameters declared once, in visit().
 struct TriangulationSettings {
   double min_parallax = 0.02;         ///< rad, largest angle between two observation rays
   int min_observations = 3;           ///< frames
-  double sigma_pixel = 1.5;           ///< px, observation 1-sigma (scales the residuals)
+  double sigma_pixel = 1.0;           ///< px, observation 1-sigma (scales the residuals)
   double huber_delta = 2.0;           ///< in sigmas, Huber loss threshold (robust loss of eq. 3)
   double max_reprojection_rms = 4.0;  ///< px, tracks fitting worse are rejected
-  double max_range = 0.0;             ///< m, > 0: tracks never seen closer than this are rejected
+  double max_range = 30.0;            ///< m, > 0: tracks never seen closer than this are rejected
   int max_iterations = 30;            ///< Levenberg-Marquardt iterations
+
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    v("min_parallax", min_parallax, "rad", "aerial tracks with less parallax are rejected",
+      in(0, 3.2));
+    v("min_track_frames", min_observations, "", "frames needed to triangulate a track",
+      in(2, 100000));
+    v("track_sigma_pixel", sigma_pixel, "px", "aerial key-point noise", gt(0) & le(100));
+    v("huber_delta", huber_delta, "sigma", "robust loss threshold of the triangulation",
+      gt(0) & le(1e6));
+    v("max_reprojection_rms", max_reprojection_rms, "px", "worse tracks are rejected",
+      gt(0) & le(1e6));
+    v("max_track_range", max_range, "m", "aerial tracks never seen closer are rejected",
+      gt(0) & le(100000));
+  }
 };
 
 /// Outcome of one track.

@@ -8,17 +8,33 @@
 #include <optional>
 #include <vector>
 
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/vehicle/camera.hpp"
 
 namespace mapfuse::vehicle {
 
-/// Settings of the vanishing-point calibration.
+/// Settings of the vanishing-point calibration; the parameters declared once, in visit().
 struct VanishingSettings {
-  int min_points_per_line = 8;         ///< pixels needed to fit one lane line
-  double max_line_rms = 2.0;           ///< px, lines fitting worse (curves) are rejected
-  double min_line_angle = 0.05;        ///< rad, lines must differ this much in image direction
+  bool enabled = true;        ///< correct the ground plane from lane vanishing points
+  int window = 601;           ///< frames in the median window (the mount error is constant)
+  double max_range = 25.0;    ///< m, lane points farther away are not fitted
+  double max_line_rms = 1.5;  ///< px, lines fitting worse (curves) are rejected
   double max_pitch_correction = 0.05;  ///< rad, larger corrections are rejected as outliers
-  int window = 5;                      ///< frames in the median window (1 = per frame)
+  int min_points_per_line = 8;         ///< pixels needed to fit one lane line
+  double min_line_angle = 0.05;        ///< rad, lines must differ this much in image direction
+
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    v("vp_calibration", enabled, "", "vanishing-point ground-plane calibration");
+    v("vp_window", window, "frames", "median window of the pitch correction", in(1, 1000000));
+    v("vp_max_range", max_range, "m", "lane points farther than this are not fitted",
+      gt(0) & le(1000));
+    v("vp_max_line_rms", max_line_rms, "px", "straightness required of a fitted lane",
+      gt(0) & le(1000));
+    v("max_pitch_correction", max_pitch_correction, "rad", "larger corrections are outliers",
+      gt(0) & le(1));
+  }
 };
 
 /// A homogeneous image line l (l^T x = 0, (l0, l1) unit) with its fit RMS.
@@ -46,6 +62,14 @@ std::optional<double> pitchFromVanishingDirection(const Eigen::Vector3d& normal_
 std::optional<double> estimatePitchCorrection(
     const std::vector<std::vector<Eigen::Vector2d>>& lane_pixels, const Eigen::Matrix3d& K,
     const GroundPlane& nominal, const VanishingSettings& settings);
+
+/// @brief The lane-line pixels of one frame that the calibration fits: those ranged on the
+/// nominal plane within [min_range, max_range], grouped by their lateral offset so that the
+/// dashes of one dashed line are fitted as one line.
+std::vector<std::vector<Eigen::Vector2d>> laneLinePixels(const FrameObservations& frame,
+                                                         const Eigen::Matrix3d& K_inv,
+                                                         const GroundPlane& nominal,
+                                                         double min_range, double max_range);
 
 /// @brief Ground normal from two vanishing directions in the road plane (pitch and roll):
 /// n ~ d1 x d2, oriented like `nominal`; nullopt when the directions are nearly parallel.

@@ -1,0 +1,111 @@
+#!/usr/bin/env bash
+# Seed corpora of the fuzz targets, made at fuzz time from the samples and small outputs of the
+# tools (nothing binary is committed):
+#   fuzz/make-corpus.sh BIN_DIR SEEDS_DIR
+# BIN_DIR holds the release tools (build/bin). A small crowd batch (simulate frames -> lsm-build
+# -> georef -> tile -> align -> balance -> aggregate -> stitch, scripts/crowd.mk) gives LSMs in
+# JSON and CBOR, vector maps (plain JSON, compact CBOR), the OSM export, tiles.json, align
+# summaries, calibration.json and raw drive folders; a 2-frame simulate-lidar drive and
+# lidar-semantic-map give KITTI calibration, OXTS, timestamps, Velodyne scans, semantics, labels,
+# poses, PLY and PCD; configs/ the configurations; ../shared/data (when present) the real KITTI
+# and Lanelet2 files. Large files are cut to small, still valid, seeds (fuzz/shrink.py).
+set -euo pipefail
+bin=$(cd "$1" && pwd)
+seeds=$2
+root=$(cd "$(dirname "$0")/.." && pwd)
+shared=${MAPFUSE_SHARED:-$root/../shared}/data
+work=$(mktemp -d "${TMPDIR:-/tmp}/mapfuse-corpus-XXXXXX")
+trap 'rm -rf "$work"' EXIT
+rm -rf "$seeds"
+mkdir -p "$seeds"
+seed() { mkdir -p "$seeds/$1"; cat > "$seeds/$1/$2"; }  # seed TARGET NAME < bytes
+shrink() { python3 "$root/fuzz/shrink.py" "$@"; }
+start=$(date +%s)
+
+# ---- crowd batch: 3 short drives on a small procedural world
+cat > "$work/sim.json" <<'JSON'
+{"seed": 5, "level": "frames", "traversals": 3, "vehicles": 2, "routes": 1,
+ "route_length": 150.0, "world_grid_size": 2, "world_block_length": 120.0}
+JSON
+"$bin/simulate" -q --config "$work/sim.json" -o "$work/sim" >/dev/null
+make -s -f "$root/scripts/crowd.mk" BIN="$bin" FRAMES_DIR="$work/sim/frames" WORK="$work/crowd" \
+  TILE_SIZE=80 TILE_MARGIN=20 >/dev/null 2>&1
+make -s -f "$root/scripts/crowd.mk" BIN="$bin" FRAMES_DIR="$work/sim/frames" \
+  WORK="$work/crowd-untiled" >/dev/null 2>&1
+crowd=$work/crowd
+
+n=0
+for f in "$work"/crowd-untiled/align/*.lsm.json; do
+  shrink lsm-json "$f" 6 | seed fuzz_lsm "aligned-$((n++)).json"
+done
+# the smallest tile LSMs (CBOR), distinct contents only
+for f in $(ls -Sr "$crowd"/tiles/tile_*/*.cbor | head -6); do
+  seed fuzz_lsm "tile-$(md5sum < "$f" | cut -c1-8).cbor" < "$f"
+done
+shrink vector-map-json "$work/sim/truth/vector_map.json" 10 | seed fuzz_vector_map truth.json
+shrink vector-map-json "$work/crowd-untiled/aggregate/map.json" 10 | seed fuzz_vector_map map.json
+seed fuzz_vector_map map.cbor < "$work/crowd-untiled/aggregate/map.cbor"
+seed fuzz_vector_map stitched.cbor < "$crowd/stitch/map.cbor"
+for m in "$crowd"/tiles/tile_*/aggregate/map.cbor; do
+  seed fuzz_vector_map "$(basename "$(dirname "$(dirname "$m")")").cbor" < "$m"
+done
+seed fuzz_lanelet2_osm aggregate.osm < "$(ls -Sr "$crowd"/tiles/tile_*/aggregate/map.osm | head -1)"
+seed fuzz_tiles_manifest tiles.json < "$crowd/tiles/tiles.json"
+for s in "$crowd"/tiles/tile_*/align/align.summary.json; do
+  seed fuzz_align_summary "$(basename "$(dirname "$(dirname "$s")")").json" < "$s"
+done
+seed fuzz_align_summary untiled.json < "$work/crowd-untiled/align/align.summary.json"
+seed fuzz_aggregate_summary untiled.json < "$work/crowd-untiled/aggregate/aggregate.summary.json"
+seed fuzz_aggregate_summary stitched.json < "$(ls "$crowd"/tiles/tile_*/aggregate/aggregate.summary.json | head -1)"
+drive=$(ls -d "$work"/sim/frames/*/ | head -1)
+seed fuzz_camera_calib calibration.json < "$drive/calibration.json"
+shrink drive-frames "$drive" 6 | seed fuzz_drive_frames drive.txt
+seed fuzz_semantic_image mask.png < "$(ls "$drive"/masks/*.png | head -1)"
+
+# ---- configurations: one byte chooses the stage (fuzz_config.cpp's order), then the file
+i=0
+for stage in aggregate align balance evaluate evaluate-voxels georef lidar-semantic-map \
+             lsm-build simulate simulate-lidar tile stitch; do
+  { printf "\\$(printf '%03o' "$i")"; cat "$root/configs/$stage.json"; } | seed fuzz_config "$stage.json"
+  i=$((i + 1))
+done
+printf '\014{}' | seed fuzz_config info.json  # info (index 12) has no parameters
+
+# ---- KITTI raw: a 2-frame synthetic drive and its voxel map
+"$bin/simulate-lidar" -q --seed 3 --frames 2 -o "$work/kitti" > "$work/kitti.txt"
+kd=$(cat "$work/kitti.txt")
+date_dir=$(dirname "$kd")
+"$bin/lidar-semantic-map" -q "$kd" -o "$work/voxels" >/dev/null
+kitti_calib() {  # kitti_calib DATE_DIR: cam, velo (and imu) as one input
+  cat "$1/calib_cam_to_cam.txt"; printf '====\n'; cat "$1/calib_velo_to_cam.txt"
+  if [ -f "$1/calib_imu_to_velo.txt" ]; then printf '====\n'; cat "$1/calib_imu_to_velo.txt"; fi
+}
+kitti_calib "$date_dir" | seed fuzz_kitti_calib sim.txt
+seed fuzz_oxts sim.txt < "$(ls "$kd"/oxts/data/*.txt | head -1)"
+seed fuzz_kitti_timestamps velodyne.txt < "$kd/velodyne_points/timestamps.txt"
+head -c 1024 "$(ls "$kd"/velodyne_points/data/*.bin | head -1)" | seed fuzz_velodyne scan.bin
+head -c 512 "$(ls "$work"/voxels/labels/*.label | head -1)" | seed fuzz_semantic_labels scan.label
+shrink prob "$(ls "$kd"/semantics_02/*.prob | head -1)" 6 4 | seed fuzz_semantic_image frame.prob
+seed fuzz_kitti_poses voxels.txt < "$work/voxels/poses.txt"
+shrink ply "$work/voxels/map.ply" 40 | seed fuzz_ply map.ply
+shrink pcd "$work/voxels/map.pcd" 40 | seed fuzz_pcd map.pcd
+
+# ---- real data, when ../shared is there
+if [ -d "$shared" ]; then
+  kitti=$shared/kitti_raw/2011_09_26
+  [ -f "$kitti/calib_cam_to_cam.txt" ] && kitti_calib "$kitti" | seed fuzz_kitti_calib real.txt
+  d5=$kitti/2011_09_26_drive_0005_sync
+  [ -d "$d5" ] && seed fuzz_oxts real.txt < "$(ls "$d5"/oxts/data/*.txt | head -1)"
+  [ -d "$d5" ] && head -n 20 "$d5/velodyne_points/timestamps.txt" | seed fuzz_kitti_timestamps real.txt
+  [ -d "$d5" ] && head -c 2048 "$(ls "$d5"/velodyne_points/data/*.bin | head -1)" |
+    seed fuzz_velodyne real.bin
+  odo=$shared/kitti_odometry
+  [ -f "$odo/poses/00.txt" ] && seed fuzz_kitti_poses real.txt < "$odo/poses/00.txt"
+  [ -f "$odo/sequences/00/calib.txt" ] &&
+    seed fuzz_kitti_calib odometry.txt < "$odo/sequences/00/calib.txt"
+  osm=$shared/maps/lanelet2_karlsruhe_mapping_example.osm
+  [ -f "$osm" ] && shrink osm "$osm" 4 | seed fuzz_lanelet2_osm karlsruhe.osm
+fi
+
+echo "fuzz: seeds for $(ls "$seeds" | wc -l) targets, $(find "$seeds" -type f | wc -l) files," \
+  "$(du -sk "$seeds" | cut -f1) KB in $(( $(date +%s) - start )) s" >&2

@@ -1,0 +1,44 @@
+#pragma once
+/// @file LiDAR odometry over the selected frames of a drive (lidar/scan_odometry.hpp), with the
+/// untrusted-step policy of docs/lidar.md: every untrusted step is reported on stderr and in the
+/// summary, and once more than `max_untrusted` steps are untrusted the run stops with an
+/// InputError (exit 3) naming the frame, before the caller has written anything.
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "mapfuse/io/kitti_raw.hpp"
+#include "mapfuse/lidar/scan_odometry.hpp"
+
+namespace mapfuse::lidar {
+
+struct DriveOdometrySettings {
+  OdometrySettings odometry;
+  int max_untrusted = 0;      ///< untrusted steps tolerated; one more stops the run
+  double frame_period = 0.1;  ///< s between consecutive frame indices without timestamps
+};
+
+struct DriveOdometryResult {
+  std::vector<Pose3> T_odom_velo;  ///< one per selected frame (odom = first frame's velo)
+  std::vector<OdometryStep> steps;
+  std::vector<int> frame_index;  ///< frame number of each pose
+  double seconds = 0.0;          ///< wall time of the registration (scan reading included)
+};
+
+/// @brief Time between two frames: timestamps when both are known, else the index gap times
+/// `frame_period`.
+double frameInterval(const io::KittiRawFrame& prev, const io::KittiRawFrame& cur,
+                     double frame_period);
+
+/// @brief Runs the odometry over `drive.frames`.
+/// @throws InputError naming the frame when more than max_untrusted steps are untrusted;
+/// IoError / ParseError from the scans.
+DriveOdometryResult runDriveOdometry(const io::KittiRawDrive& drive,
+                                     const DriveOdometrySettings& settings);
+
+/// @brief Summary block: converged and trusted steps (frame 0 is not a step), travelled
+/// distance, untrusted steps with their reasons, and per step frame, convergence, iterations,
+/// inlier share, rmse, threshold, speed, constraint and trust.
+nlohmann::json odometryReport(const DriveOdometryResult& result,
+                              const DriveOdometrySettings& settings);
+
+}  // namespace mapfuse::lidar

@@ -1,0 +1,55 @@
+#include "mapfuse/aggregate/road_length.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+
+#include "mapfuse/io/bounds.hpp"
+
+namespace mapfuse::aggregate {
+
+double coveredRoadKm(const std::vector<Lsm>& lsms, const RoadLengthSettings& settings) {
+  const double tolerance = settings.tolerance;
+  auto cellKey = [](int64_t ix, int64_t iy) {  // unsigned: no shift of a negative value
+    return (uint64_t(ix) << 32) ^ (uint64_t(iy) & 0xffffffffULL);
+  };
+  auto key = [&](const Eigen::Vector3d& p) {
+    return cellKey(int64_t(std::floor(p.x() / tolerance)), int64_t(std::floor(p.y() / tolerance)));
+  };
+  std::unordered_multimap<uint64_t, Eigen::Vector3d> accepted;
+  double metres = 0.0;
+  for (const Lsm& lsm : lsms) {
+    std::vector<Eigen::Vector3d> samples;
+    for (std::size_t i = 1; i < lsm.keyframes.size(); ++i) {
+      const Eigen::Vector3d a = lsm.keyframes[i - 1].T_frame_body.translation();
+      const Eigen::Vector3d b = lsm.keyframes[i].T_frame_body.translation();
+      // A step longer than the readers' keyframe gap (io/bounds.hpp) is not road the drive saw;
+      // the readers refuse such steps, this keeps the 1 m sampling bounded regardless.
+      if ((b - a).norm() > io::bounds::kMaxKeyframeGap) continue;
+      const int n = std::max(1, int(std::ceil((b - a).norm())));
+      for (int k = 0; k < n; ++k) samples.push_back(a + (b - a) * (double(k) + 0.5) / n);
+      const double step = (b - a).norm() / n;
+      for (int k = 0; k < n; ++k) {
+        const Eigen::Vector3d& s = samples[samples.size() - n + k];
+        bool known = false;
+        const int64_t ix = int64_t(std::floor(s.x() / tolerance));
+        const int64_t iy = int64_t(std::floor(s.y() / tolerance));
+        // The sample's own cell first: with many drives on a road its first sample there already
+        // answers (the other cells may hold hundreds of samples farther than the tolerance).
+        for (int c = 0; c < 9 && !known; ++c) {
+          const int64_t dx = c == 0 ? 0 : (c - 1) % 3 - 1, dy = c == 0 ? 0 : (c - 1) / 3 - 1;
+          if (c > 0 && dx == 0 && dy == 0) continue;
+          auto range = accepted.equal_range(cellKey(ix + dx, iy + dy));
+          for (auto it = range.first; it != range.second && !known; ++it)
+            known = (it->second - s).head<2>().norm() <= tolerance;
+        }
+        if (!known) metres += step;
+      }
+    }
+    for (const auto& s : samples) accepted.emplace(key(s), s);
+  }
+  return metres / 1000.0;
+}
+
+}  // namespace mapfuse::aggregate

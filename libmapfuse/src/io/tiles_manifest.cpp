@@ -1,0 +1,68 @@
+#include "mapfuse/io/tiles_manifest.hpp"
+
+#include <cmath>
+#include <set>
+
+#include "mapfuse/io/bounds.hpp"
+#include "mapfuse/io/document.hpp"
+#include "mapfuse/io/json_geometry.hpp"
+
+namespace mapfuse::io {
+namespace {
+
+/// A relative path below the manifest's folder: no root, no "." or ".." part, no empty part,
+/// no control characters.
+bool staysBelow(const std::string& path) {
+  if (path.empty() || path.front() == '/' || path.back() == '/') return false;
+  for (unsigned char c : path)
+    if (c < 0x20 || c == 0x7f || c == '\\') return false;
+  for (const auto& part : std::filesystem::path(path))
+    if (part.empty() || part == "." || part == "..") return false;
+  return path.find("//") == std::string::npos;
+}
+
+}  // namespace
+
+TilesManifest tilesManifestFromJson(const Json& doc, const std::string& file) {
+  const JsonView v(doc, file);
+  v.onlyKeys({"format", "version", "tile_size", "margin", "origin", "tiles"});
+  v.checkFormat("mapfuse.tiles", 1);
+  TilesManifest m;
+  m.tile_size = v.at("tile_size").number(1.0, bounds::kMaxCoordinate);
+  m.margin = v.at("margin").number(0.0, bounds::kMaxCoordinate);
+  if (!(m.margin < m.tile_size / 2)) v.at("margin").fail("must be below tile_size / 2");
+  if (auto o = v.find("origin")) m.origin = readOrigin(*o);
+  const auto max_index = int64_t(std::floor(bounds::kMaxCoordinate / m.tile_size));
+  std::set<std::string> names, files;
+  std::set<std::pair<int64_t, int64_t>> keys;
+  const JsonView tiles = v.at("tiles");
+  for (std::size_t i = 0; i < tiles.size(); ++i) {
+    const JsonView t = tiles.at(i);
+    t.onlyKeys({"name", "ix", "iy", "core", "lsms"});
+    TilesManifestTile tile;
+    tile.name = t.at("name").string();
+    if (!staysBelow(tile.name) || tile.name.find('/') != std::string::npos)
+      t.at("name").fail("'" + tile.name + "' is not a folder name");
+    if (!names.insert(tile.name).second) t.at("name").fail("'" + tile.name + "' given twice");
+    tile.ix = t.at("ix").integer(-max_index, max_index);
+    tile.iy = t.at("iy").integer(-max_index, max_index);
+    if (!keys.insert({tile.ix, tile.iy}).second)
+      t.at("iy").fail("tile (" + std::to_string(tile.ix) + ", " + std::to_string(tile.iy) +
+                      ") given twice");
+    const JsonView lsms = t.at("lsms");
+    for (std::size_t k = 0; k < lsms.size(); ++k) {
+      const std::string f = lsms.at(k).string();
+      if (!staysBelow(f)) lsms.at(k).fail("'" + f + "' is not a path below the manifest's folder");
+      if (!files.insert(f).second) lsms.at(k).fail("'" + f + "' is listed twice");
+      tile.lsms.push_back(f);
+    }
+    m.tiles.push_back(std::move(tile));
+  }
+  return m;
+}
+
+TilesManifest readTilesManifest(const std::filesystem::path& path) {
+  return tilesManifestFromJson(readDocument(path), path.string());
+}
+
+}  // namespace mapfuse::io

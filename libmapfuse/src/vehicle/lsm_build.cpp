@@ -1,0 +1,119 @@
+#include "mapfuse/vehicle/lsm_build.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <chrono>
+#include <optional>
+
+#include "aerial_tracks.hpp"
+#include "body_tilt.hpp"
+
+namespace mapfuse::vehicle {
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+}  // namespace
+
+void calibrateGroundPlanes(const DriveData& d, const LsmBuildSettings& s, LsmBuildResult& out) {
+  const std::size_t n = d.frames.size();
+  // The nominal plane tilted with the body (body_tilt.hpp).
+  out.planes.assign(n, d.calib.ground);
+  if (s.tilt_window > 0) {
+    const auto tilt = roadTiltInBody(d.T_odom_body, d.stamps, s.tilt_window);
+    for (std::size_t i = 0; i < n; ++i)
+      out.planes[i].normal_cam =
+          tiltByBodyRotation(d.calib.ground.normal_cam, tilt[i], d.calib.T_body_cam.linear());
+  }
+  // Lane vanishing points against that plane (§3.2.1), median over the window.
+  out.pitch_corrections.assign(n, 0.0);
+  if (s.vanishing.enabled) {
+    const Eigen::Matrix3d K_inv = d.calib.K.inverse();
+    std::vector<std::optional<double>> per_frame(n);
+#pragma omp parallel for schedule(dynamic)
+    for (int i = 0; i < int(n); ++i) {
+      const auto lanes = laneLinePixels(d.frames[i], K_inv, d.calib.ground, s.ranging.min_range,
+                                        s.vanishing.max_range);
+      per_frame[i] = estimatePitchCorrection(lanes, d.calib.K, out.planes[i], s.vanishing);
+    }
+    for (const auto& c : per_frame) out.vp_frames += c ? 1 : 0;
+    out.pitch_corrections = smoothCorrections(per_frame, s.vanishing.window);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    out.planes[i].normal_cam = tiltNormal(out.planes[i].normal_cam, out.pitch_corrections[i], 0.0);
+}
+
+std::vector<RangedMarking> rangeMarkings(const DriveData& d, const std::vector<GroundPlane>& planes,
+                                         const RangingSettings& s) {
+  const std::size_t n = d.frames.size();
+  std::vector<std::vector<RangedMarking>> per_frame(n);
+#pragma omp parallel for schedule(dynamic)
+  for (int i = 0; i < int(n); ++i) {
+    const Pose3 T_odom_cam = d.T_odom_body[i] * d.calib.T_body_cam;
+    for (const auto& g : d.frames[i].ground) {
+      RangedMarking m;
+      m.cls = g.cls;
+      m.attributes = g.attributes;
+      m.track_id = g.track_id;
+      m.truth_id = g.truth_id;
+      m.frame = i;
+      for (const auto& gp : rangeGroundPolyline(g.pixels, d.calib.K, planes[i], s)) {  // eq. (1)
+        m.points.push_back(T_odom_cam * gp.p_cam);
+        m.covariances.push_back(rotateCovariance(T_odom_cam.linear(), gp.cov_cam));
+      }
+      const std::size_t need = geometryKind(g.cls) == GeometryKind::kPlanar ? 1 : 2;
+      if (m.points.size() >= need) per_frame[i].push_back(std::move(m));
+    }
+  }
+  std::vector<RangedMarking> markings;
+  for (auto& f : per_frame)
+    for (auto& m : f) markings.push_back(std::move(m));
+  return markings;
+}
+
+LsmBuildResult buildLsm(const DriveData& d, const LsmBuildSettings& s) {
+  LsmBuildResult out;
+  const std::size_t n = d.frames.size();
+  const auto t_all = Clock::now();
+
+  // 1. Ground plane per frame (§3.2.1).
+  auto t = Clock::now();
+  calibrateGroundPlanes(d, s, out);
+  out.seconds_calibration = since(t);
+
+  // 2. Ground ranging (eq. 1) into the odom frame, frame-parallel.
+  t = Clock::now();
+  const std::vector<RangedMarking> markings = rangeMarkings(d, out.planes, s.ranging);
+  out.seconds_ranging = since(t);
+
+  // 3. Aerial triangulation (eq. 2-3), track-parallel.
+  t = Clock::now();
+  AerialTracks aerial = triangulateAerialTracks(d, s.triangulation);
+  out.seconds_triangulation = since(t);
+
+  // 4. Keyframes and assembly (§3.3).
+  t = Clock::now();
+  const auto kf = selectKeyframes(d.T_odom_body, s.keyframes.spacing, s.keyframes.max_angle);
+  out.lsm = assembleLsm(d.T_odom_body, d.stamps, kf, markings, aerial.elements, s.assembly,
+                        &out.assembly);
+  out.lsm.drive_id = d.drive_id;
+  out.lsm.vehicle_id = d.vehicle_id;
+  out.lsm.frame = LsmFrame::kOdom;
+  out.lsm.gps = d.gps;
+  out.seconds_assembly = since(t);
+
+  for (double c : out.pitch_corrections)
+    out.mean_pitch_correction += c / double(std::max<std::size_t>(1, n));
+  out.frames = int(n);
+  out.keyframes = int(kf.size());
+  out.ranged_markings = int(markings.size());
+  out.aerial_tracks = aerial.tracks;
+  out.aerial_triangulated = int(aerial.elements.size());
+  out.aerial_rejected = std::move(aerial.rejected);
+  out.aerial_unassociated_observations = aerial.unassociated;
+  out.seconds_total = since(t_all);
+  return out;
+}
+
+}  // namespace mapfuse::vehicle

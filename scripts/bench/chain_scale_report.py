@@ -1,0 +1,132 @@
+#!/usr/bin/env python3
+"""Writes bench_chain_scale.sh's rows into docs/performance-chain.md (between the chain-scale
+markers, appended when absent) and plots seconds and peak MB against driven km with gnuplot.
+usage: chain_scale_report.py ROWS.jsonl PERFORMANCE-CHAIN.md OUT.png"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+BEGIN, END = "<!-- chain-scale begin -->", "<!-- chain-scale end -->"
+
+
+def cpu_model():
+    out = subprocess.run(["lscpu"], capture_output=True, text=True).stdout
+    for line in out.splitlines():
+        if line.startswith("Model name:"):
+            return line.split(":", 1)[1].strip()
+    return "?"
+
+
+def fmt(v, spec):
+    return "–" if v is None else format(v, spec)
+
+
+def main(rows_file, md, png):
+    rows = [json.loads(l) for l in open(rows_file) if l.strip()]
+    untiled = [r for r in rows if not r["tile"]]
+    by = {r["name"]: r for r in rows}
+    for r in rows:  # stitch reports no size: a tiled run covers the road of its untiled twin
+        twin = by.get(r["name"].replace("-tiled", ""))
+        if r["road_km"] is None and twin:
+            r["road_km"] = twin["road_km"]
+    lines = [BEGIN, "## Issue 18: 50 and 100 traversals, 2 to 20 km of road", "",
+             "Produced by `scripts/bench/bench_chain_scale.sh` (one command; `NICE=10` to run the"
+             " chain niced, rows as arguments `KM:TRAVERSALS` to rerun some of them). Per row:"
+             " `simulate --traversals N --routes 1 --route-length L --world-grid-size G` (G = 3, 4,"
+             " 6, 9 for 2, 5, 10, 20 km), then `make -j2 -f scripts/crowd.mk LSM_DIR=... map`"
+             " timed from make's start to the map (georef per drive, align gba_sgicp, aggregate);"
+             " evaluate runs afterwards, untimed. Peak MB is the largest single process (GNU time"
+             " over make). Each row was measured once, at the date and load average it gives: a load"
+             " near 2 is this 2-core machine doing only the bench; at higher loads other builds"
+             " shared the CPU and wall seconds are an upper bound. `cpu s` (user + system of all"
+             " processes) is the load-independent figure.",
+             "", f"- machine: 2 cores, {cpu_model()}, {os.cpu_count()} logical CPUs", "",
+             "| run | traversals | road km | driven km | date | load before / after | nice |"
+             " chain s | cpu s | road km/h | s per driven km | cpu s per driven km | peak MB |"
+             " align s (reg. / pose graph / GBA) | pairs | lane compl. | lane rel. prec. m |"
+             " stop line compl. | min class compl. | max redundancy |",
+             "|" + "---|" * 20]
+    for r in rows:
+        cls = r["classes"]
+        lane = cls.get("lane_line", {})
+        comp = [c["completeness"] for c in cls.values() if c.get("completeness") is not None]
+        red = [c["redundancy"] for c in cls.values() if c.get("redundancy") is not None]
+        al = r.get("align_seconds") or {}
+        split = " / ".join(fmt(al.get(k), ".1f") for k in ("registration", "pose_graph", "gba"))
+        km = r["road_km"] or float("nan")
+        lines.append(
+            f"| {r['name']} | {r['traversals']} | {km:.2f} | {r['driven_km']:.0f} | {r['date']} |"
+            f" {r['load_before']} / {r['load_after']} | {r['nice']} | {r['seconds']:.1f} |"
+            f" {r['cpu_seconds']:.1f} | {3600 * km / r['seconds']:.0f} |"
+            f" {r['seconds'] / r['driven_km']:.3f} | {r['cpu_seconds'] / r['driven_km']:.3f} |"
+            f" {r['rss_mb']:.0f} | {split} | {fmt(r.get('align_pairs'), 'd')} |"
+            f" {fmt(lane.get('completeness'), '.3f')} |"
+            f" {fmt(lane.get('relative_precision_m'), '.3f')} |"
+            f" {fmt(cls.get('stop_line', {}).get('completeness'), '.3f')} |"
+            f" {fmt(min(comp) if comp else None, '.3f')} | {fmt(max(red) if red else None, '.3f')} |")
+    if untiled:
+        wall = [r["seconds"] / r["driven_km"] for r in untiled]
+        cpu = [r["cpu_seconds"] / r["driven_km"] for r in untiled]
+        kmh = [3600 * (r["road_km"] or 0) / r["seconds"] for r in untiled]
+        big = [r for r in untiled if r["route_km"] >= 20]
+        lines += ["", "Acceptance (issue 18) on these rows:", "",
+                  f"- road km/h >= 1000 in every row: lowest {min(kmh):.0f}"
+                  f" ({'met' if min(kmh) >= 1000 else 'not met'} at the recorded loads)",
+                  f"- slowest / fastest seconds per driven km <= 1.5: wall {max(wall) / min(wall):.2f},"
+                  f" cpu {max(cpu) / min(cpu):.2f}"]
+        if big:
+            lines.append(f"- peak RSS <= 1024 MB at 20 km: {big[-1]['rss_mb']:.0f} MB"
+                         f" ({'met' if big[-1]['rss_mb'] <= 1024 else 'not met'})")
+    def quality(r):
+        cls = r["classes"]
+        lane = cls.get("lane_line", {})
+        comp = min(c["completeness"] for c in cls.values() if c.get("completeness") is not None)
+        red = max(c["redundancy"] for c in cls.values() if c.get("redundancy") is not None)
+        ok = (lane.get("relative_precision_m", 1) <= 0.03 and lane.get("completeness", 0) >= 0.98
+              and comp >= 0.95 and red <= 0.02)
+        return (f"{r['name']}: lane rel. precision {lane.get('relative_precision_m', float('nan')):.3f}"
+                f" m (<= 0.03), lane completeness {lane.get('completeness', float('nan')):.3f}"
+                f" (>= 0.98), lowest class completeness {comp:.3f} (>= 0.95), highest redundancy"
+                f" {red:.3f} (<= 0.02): {'met' if ok else 'NOT met'}")
+    lines += ["", "Map quality per row (the issue's bars are for 2 km x 50; the others for"
+              " information):", ""] + [f"- {quality(r)}" for r in rows]
+    lines += ["", f"![seconds and peak MB against driven km](images/{os.path.basename(png)})", END]
+    text = open(md).read() if os.path.exists(md) else ""
+    if BEGIN in text and END in text:
+        text = text[:text.index(BEGIN)] + "\n".join(lines) + text[text.index(END) + len(END):]
+    else:
+        text = text.rstrip("\n") + "\n\n" + "\n".join(lines) + "\n"
+    open(md, "w").write(text)
+
+    with tempfile.NamedTemporaryFile("w", suffix=".dat", delete=False) as f:
+        for r in sorted(untiled, key=lambda r: r["driven_km"]):
+            f.write(f"{r['driven_km']:.1f} {r['seconds']:.2f} {r['cpu_seconds']:.2f}"
+                    f" {r['rss_mb']:.1f} \"{r['route_km']:g} km x {r['traversals']}\"\n")
+        dat = f.name
+    script = f"""
+set terminal pngcairo size 900,560 font ',11'
+set output '{png}'
+set title 'Crowd chain (make -j2 over crowd.mk, to the map): cost against driven km'
+set xlabel 'driven km (road km x traversals)'
+set ylabel 'seconds'
+set y2label 'peak RSS, MB'
+set ytics nomirror
+set y2tics
+set yrange [0:*]
+set y2range [0:*]
+set key top left
+set grid
+plot '{dat}' using 1:2 with linespoints lw 2 pt 7 title 'wall seconds (at the recorded load)', \\
+     '' using 1:3 with linespoints lw 2 pt 5 title 'CPU seconds (user + system)', \\
+     '' using 1:4 axes x1y2 with linespoints lw 2 pt 9 title 'peak RSS MB (right axis)', \\
+     '' using 1:2:5 with labels offset 0,1.2 font ',9' notitle
+"""
+    subprocess.run(["gnuplot"], input=script, text=True, check=True)
+    os.unlink(dat)
+    print(f"chain_scale_report: wrote {md} and {png}", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main(*sys.argv[1:4])
