@@ -6,6 +6,8 @@
 #include <GeographicLib/UTMUPS.hpp>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <filesystem>
+#include <string>
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/geo/map_projection.hpp"
@@ -38,8 +40,9 @@ double distance(const sim::RefPose& p, double x, double y) {
   return std::hypot(p.x - x, p.y - y);
 }
 
-/// A two-way road A (line, 100 m), a junction with one connecting road C (a quarter arc of radius
-/// 20 m, lane -1 only) from A's end to road B (line north, 80 m), signals and objects on A.
+/// A two-way road A (line, 100 m, rising 1 m), a junction with one connecting road C (a quarter
+/// arc of radius 20 m, lane -1 only) from A's end to road B (line north, 80 m), both level at A's
+/// end height (2 m), signals and objects on A.
 const char* kJunctionMap = R"(<?xml version="1.0"?>
 <OpenDRIVE>
   <header revMajor="1" revMinor="6" name="test">
@@ -75,6 +78,7 @@ const char* kJunctionMap = R"(<?xml version="1.0"?>
     <link><predecessor elementType="road" elementId="A" contactPoint="end"/>
           <successor elementType="road" elementId="B" contactPoint="start"/></link>
     <planView><geometry s="0" x="100" y="0" hdg="0" length="31.41592653589793"><arc curvature="0.05"/></geometry></planView>
+    <elevationProfile><elevation s="0" a="2.0" b="0" c="0" d="0"/></elevationProfile>
     <lanes><laneSection s="0">
       <center><lane id="0" type="none"/></center>
       <right><lane id="-1" type="driving"><link><predecessor id="-1"/><successor id="-1"/></link>
@@ -84,6 +88,7 @@ const char* kJunctionMap = R"(<?xml version="1.0"?>
   <road id="B" length="80" junction="-1">
     <link><predecessor elementType="junction" elementId="J"/></link>
     <planView><geometry s="0" x="120" y="20" hdg="1.5707963267948966" length="80"><line/></geometry></planView>
+    <elevationProfile><elevation s="0" a="2.0" b="0" c="0" d="0"/></elevationProfile>
     <lanes><laneSection s="0">
       <left><lane id="1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></left>
       <center><lane id="0" type="none"><roadMark sOffset="0" type="broken" color="white"/></lane></center>
@@ -317,9 +322,25 @@ TEST_CASE("OpenDRIVE: MONAEast (RoadRunner, Munich) loads as a routable world",
   CHECK(origin.lon == Approx(11.59292664305758).margin(1e-12));
   CHECK(world.stats.at("roads") == 25);
   CHECK(world.stats.at("junctions") == 4);
-  CHECK(world.lanes.size() >= 39);
+  // Independently from the file: the driving lanes, and those whose road ends in the driving
+  // direction without a link (the map's boundary: roads 2, 4, 8, 10 leave it, road 0's left lane
+  // too). Every other lane must continue.
+  const io::OdrMap odr = io::readOpenDrive(path);
+  int driving = 0, boundary = 0;
+  for (const auto& road : odr.roads)
+    for (std::size_t k = 0; k < road.sections.size(); ++k)
+      for (const auto& lane : road.sections[k].lanes) {
+        if (lane.id == 0 || lane.type != "driving") continue;
+        ++driving;
+        const bool along = lane.id < 0;  // the map is right-hand traffic
+        const bool last = along ? k + 1 == road.sections.size() : k == 0;
+        boundary += last && !(along ? road.successor : road.predecessor);
+      }
+  CHECK(driving == 39);
+  CHECK(boundary == 10);
+  CHECK(world.lanes.size() == static_cast<std::size_t>(driving));
   CHECK(world.stats.at("lane_links_rejected") == 0);
-  CHECK(world.stats.at("lanes_with_successor") >= 0.8 * world.lanes.size());
+  CHECK(world.stats.at("lanes_with_successor") == driving - boundary);
   CHECK(sim::trueMarkings(world) > 20);
   // Every link joins a lane's end to its successor's start in the driving direction.
   for (const auto& l : world.lanes)
@@ -339,4 +360,108 @@ TEST_CASE("OpenDRIVE: MONAEast (RoadRunner, Munich) loads as a routable world",
       CHECK(p.y() < -120);
       CHECK(p.y() > -430);
     }
+}
+
+namespace {
+/// kJunctionMap with `from` replaced by `to` (the first occurrence; it must exist).
+std::string edited(const std::string& from, const std::string& to) {
+  std::string xml = kJunctionMap;
+  const std::size_t at = xml.find(from);
+  REQUIRE(at != std::string::npos);
+  return xml.replace(at, from.size(), to);
+}
+
+std::string parseMessage(const std::string& xml) {
+  try {
+    const io::OdrMap map = io::parseOpenDrive(xml, "bad.xodr");
+    sim::worldFromOpenDrive(map, sim::openDriveOrigin(map, 0.0));
+  } catch (const ParseError& e) {
+    return std::string("ParseError: ") + e.what();
+  } catch (const InputError& e) {
+    return std::string("InputError: ") + e.what();
+  }
+  return "(accepted)";
+}
+}  // namespace
+
+TEST_CASE("OpenDRIVE: malformed maps name the file, the element and the field",
+          "[sim][opendrive][bad]") {
+  using Catch::Contains;
+  const std::string road_a_geometry =
+      R"(<geometry s="0" x="0" y="0" hdg="0" length="100"><line/></geometry>)";
+  // Structure and syntax.
+  CHECK_THAT(parseMessage("<OpenDRIVE><road"), Contains("ParseError: bad.xodr: XML:"));
+  CHECK_THAT(parseMessage("<osm/>"), Contains("no <OpenDRIVE> root element"));
+  CHECK_THAT(parseMessage("<OpenDRIVE><header/></OpenDRIVE>"), Contains("the map has no roads"));
+  CHECK_THAT(parseMessage(edited(road_a_geometry,
+                                 R"(<geometry s="0" x="0" y="0" hdg="0"><line/></geometry>)")),
+             Contains("field 'road A geometry@length': missing"));
+  CHECK_THAT(parseMessage(
+                 edited(R"(hdg="0" length="100"><line/>)", R"(hdg="north" length="100"><line/>)")),
+             Contains("field 'road A geometry@hdg': 'north' is not a number"));
+  CHECK_THAT(parseMessage(edited("<line/></geometry></planView>\n    <elevationProfile>",
+                                 "<clothoid/></geometry></planView>\n    <elevationProfile>")),
+             Contains("unknown geometry 'clothoid'"));
+  CHECK_THAT(parseMessage(edited(R"(<lane id="1" type="driving"><width sOffset="0" a="3.5")",
+                                 R"(<lane id="1" type="driving"><border sOffset="0" a="3.5")")),
+             Contains("road A laneSection s=0 lane 1 border") &&
+                 Contains("lane borders are not supported"));
+  CHECK_THAT(parseMessage(
+                 edited(R"(<laneLink from="-1" to="-1"/>)", R"(<laneLink from="-1.5" to="-1"/>)")),
+             Contains("junction J laneLink@from") && Contains("not an integer"));
+  // Value bounds (docs/formats.md "Value bounds").
+  CHECK_THAT(parseMessage(edited(R"(x="0" y="0" hdg="0" length="100")",
+                                 R"(x="2e7" y="0" hdg="0" length="100")")),
+             Contains("field 'road A geometry@x': '2e7' is outside [-10000000, 10000000]"));
+  CHECK_THAT(parseMessage(edited(R"(<road id="A" length="100")", R"(<road id="A" length="-5")")),
+             Contains("road A road@length") && Contains("outside [0, 100000]"));
+  CHECK_THAT(parseMessage(edited(R"(<arc curvature="0.05"/>)", R"(<arc curvature="1e9"/>)")),
+             Contains("road C arc@curvature") && Contains("outside [-1000, 1000]"));
+  CHECK_THAT(parseMessage(edited(R"(type="206" subtype="-1" height="0.7")",
+                                 R"(type="206" subtype="-1" height="5000")")),
+             Contains("road A signal s1 signal@height") && Contains("outside [0, 1000]"));
+  CHECK_THAT(parseMessage(edited(R"(type="pole" s="30" t="-6")", R"(type="pole" s="30" t="nan")")),
+             Contains("road A object o2 object@t") && Contains("not a number"));
+  // A width polynomial can still throw a border far away: the evaluated point is checked.
+  CHECK_THAT(parseMessage(
+                 edited(R"(<lane id="1" type="driving"><width sOffset="0" a="3.5" b="0" c="0")",
+                        R"(<lane id="1" type="driving"><width sOffset="0" a="3.5" b="0" c="1e9")")),
+             Contains("InputError: bad.xodr: a lane border, signal or object lies at map") &&
+                 Contains("beyond 10000000 m"));
+  // The intact map passes.
+  CHECK(parseMessage(kJunctionMap) == "(accepted)");
+}
+
+TEST_CASE("simulate --map on OpenDRIVE: bad maps and maps without markings exit 3",
+          "[sim][opendrive][bad][app]") {
+  namespace fs = std::filesystem;
+  const fs::path dir = test::tempDir("opendrive_app");
+  test::writeText(dir / "junction.xodr", kJunctionMap);
+  test::writeText(dir / "bad.xodr", edited(R"(x="0" y="0" hdg="0" length="100")",
+                                           R"(x="0" y="0" hdg="0" length="1e300")"));
+  // No painted line, stop line or crosswalk: every road mark "none", no signals or objects.
+  std::string bare = kJunctionMap;
+  for (const char* type : {"\"solid solid\"", "\"solid\"", "\"broken\""})
+    for (std::size_t at; (at = bare.find(std::string("type=") + type)) != std::string::npos;)
+      bare.replace(at, 5 + std::string(type).size(), "type=\"none\"");
+  bare.replace(bare.find("<signals>"), bare.find("</objects>") + 10 - bare.find("<signals>"), "");
+  test::writeText(dir / "bare.xodr", bare);
+  const std::string sim = test::appPath("simulate").string();
+  auto run = [&](const std::string& map, const std::string& extra, const std::string& name) {
+    return test::runCommand(sim + " --map " + (dir / map).string() +
+                            " --traversals 1 --route-length 60 --level truth " + extra + " -o " +
+                            (dir / name).string() + " > /dev/null 2> " +
+                            (dir / (name + ".err")).string());
+  };
+  CHECK(run("junction.xodr", "", "ok") == 0);
+  CHECK(fs::exists(dir / "ok" / "truth" / "vector_map.json"));
+  CHECK(run("bad.xodr", "", "bad") == 3);
+  CHECK_THAT(test::readText(dir / "bad.err"),
+             Catch::Contains("bad.xodr") && Catch::Contains("road A geometry@length"));
+  CHECK_FALSE(fs::exists(dir / "bad" / "simulate.summary.json"));
+  CHECK(run("bare.xodr", "", "bare") == 3);
+  CHECK_THAT(test::readText(dir / "bare.err"),
+             Catch::Contains("bare.xodr") && Catch::Contains("no true markings"));
+  CHECK_FALSE(fs::exists(dir / "bare" / "simulate.summary.json"));
+  CHECK(run("missing.xodr", "", "missing") == 4);
 }

@@ -37,6 +37,10 @@ MapProjection MapProjection::fromProj(const std::string& proj) {
     p[tok.substr(1, eq == std::string::npos ? std::string::npos : eq - 1)] =
         eq == std::string::npos ? "" : tok.substr(eq + 1);
   }
+  // The projection first: a foreign projection's own parameters are not the problem to name.
+  const std::string name = p.count("proj") ? p.at("proj") : "";
+  if (name != "tmerc" && name != "utm")
+    fail(name.empty() ? "no +proj" : "projection '" + name + "' is not supported");
   static const char* const kKnown[] = {"proj",    "lat_0", "lon_0",      "k",      "k_0",
                                        "x_0",     "y_0",   "ellps",      "datum",  "units",
                                        "no_defs", "type",  "geoidgrids", "vunits", "towgs84",
@@ -47,7 +51,6 @@ MapProjection MapProjection::fromProj(const std::string& proj) {
     if (!known) fail("parameter +" + key + " is not supported");
   }
   MapProjection m;
-  const std::string name = p.count("proj") ? p.at("proj") : "";
   const std::string ellps = p.count("ellps")   ? p.at("ellps")
                             : p.count("datum") ? p.at("datum")
                                                : "";
@@ -81,8 +84,6 @@ MapProjection MapProjection::fromProj(const std::string& proj) {
     m.k0_ = 0.9996;
     m.x0_ = 500000.0;
     m.y0_ = p.count("south") ? 10000000.0 : 0.0;
-  } else {
-    fail(name.empty() ? "no +proj" : "projection '" + name + "' is not supported");
   }
   if (std::abs(m.lat0_) > 90 || std::abs(m.lon0_) > 180 || !(m.k0_ > 0))
     fail("lat_0 / lon_0 / k out of range");

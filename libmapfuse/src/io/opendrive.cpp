@@ -8,10 +8,15 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/bounds.hpp"
 
 namespace mapfuse::io {
 
 namespace {
+
+/// m: lateral offsets (t), heights above the road and sizes of signals and objects; a road is
+/// never wider, a sign never bigger.
+constexpr double kMaxOffset = 1e3;
 
 /// Reads the attributes of one element; errors name the file and the element's path.
 class Reader {
@@ -27,6 +32,15 @@ class Reader {
     const pugi::xml_attribute a = n.attribute(attr);
     return a ? parse(n, attr, a.value()) : fallback;
   }
+  /// A required number within [lo, hi].
+  double bounded(const pugi::xml_node& n, const char* attr, double lo, double hi) const {
+    return check(n, attr, number(n, attr), lo, hi);
+  }
+  /// An optional number within [lo, hi].
+  double bounded(const pugi::xml_node& n, const char* attr, double fallback, double lo,
+                 double hi) const {
+    return check(n, attr, number(n, attr, fallback), lo, hi);
+  }
   int integer(const pugi::xml_node& n, const char* attr) const {
     const double v = number(n, attr);
     if (v != std::floor(v) || std::abs(v) > 1e9)
@@ -36,11 +50,20 @@ class Reader {
   static std::string text(const pugi::xml_node& n, const char* attr) {
     return n.attribute(attr).value();
   }
+  /// A cubic record: its start within a road, coefficients finite (the evaluated points are
+  /// checked against the coordinate bound by sim/opendrive_world.cpp).
   OdrPoly3 poly(const pugi::xml_node& n, const char* s_attr) const {
-    return {number(n, s_attr), number(n, "a"), number(n, "b"), number(n, "c"), number(n, "d")};
+    return {bounded(n, s_attr, 0.0, bounds::kMaxOdrRoadLength), number(n, "a"), number(n, "b"),
+            number(n, "c"), number(n, "d")};
   }
   [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
     throw ParseError(file_, where_ + (field.empty() ? "" : " " + field), problem);
+  }
+  double check(const pugi::xml_node& n, const char* attr, double v, double lo, double hi) const {
+    if (!bounds::within(v, lo, hi))
+      fail(std::string(n.name()) + "@" + attr,
+           "'" + text(n, attr) + "' is outside " + bounds::rangeText(lo, hi));
+    return v;
   }
 
  private:
@@ -64,23 +87,23 @@ std::optional<OdrLink> readLink(const pugi::xml_node& n) {
 
 OdrGeometry readGeometry(const pugi::xml_node& g, const Reader& R) {
   OdrGeometry geo;
-  geo.s = R.number(g, "s");
-  geo.x = R.number(g, "x");
-  geo.y = R.number(g, "y");
-  geo.hdg = R.number(g, "hdg");
-  geo.length = R.number(g, "length");
-  if (geo.length < 0) R.fail("geometry@length", "negative");
+  using bounds::kMaxCoordinate, bounds::kMaxOdrRoadLength, bounds::kMaxCurvature;
+  geo.s = R.bounded(g, "s", 0.0, kMaxOdrRoadLength);
+  geo.x = R.bounded(g, "x", -kMaxCoordinate, kMaxCoordinate);
+  geo.y = R.bounded(g, "y", -kMaxCoordinate, kMaxCoordinate);
+  geo.hdg = R.bounded(g, "hdg", -bounds::kMaxAngle, bounds::kMaxAngle);
+  geo.length = R.bounded(g, "length", 0.0, kMaxOdrRoadLength);
   const pugi::xml_node k = g.first_child();
   const std::string kind = k.name();
   if (kind == "line") {
     geo.kind = OdrGeometry::Kind::kLine;
   } else if (kind == "arc") {
     geo.kind = OdrGeometry::Kind::kArc;
-    geo.curvature = R.number(k, "curvature");
+    geo.curvature = R.bounded(k, "curvature", -kMaxCurvature, kMaxCurvature);
   } else if (kind == "spiral") {
     geo.kind = OdrGeometry::Kind::kSpiral;
-    geo.curv_start = R.number(k, "curvStart");
-    geo.curv_end = R.number(k, "curvEnd");
+    geo.curv_start = R.bounded(k, "curvStart", -kMaxCurvature, kMaxCurvature);
+    geo.curv_end = R.bounded(k, "curvEnd", -kMaxCurvature, kMaxCurvature);
   } else if (kind == "poly3") {
     geo.kind = OdrGeometry::Kind::kPoly3;
     geo.a = R.number(k, "a");
@@ -117,10 +140,10 @@ OdrLane readLane(const pugi::xml_node& l, const Reader& road_reader, const std::
   for (const pugi::xml_node w : l.children("width")) lane.widths.push_back(R.poly(w, "sOffset"));
   for (const pugi::xml_node m : l.children("roadMark")) {
     OdrRoadMark mark;
-    mark.s_offset = R.number(m, "sOffset");
+    mark.s_offset = R.bounded(m, "sOffset", 0.0, bounds::kMaxOdrRoadLength);
     mark.type = m.attribute("type").value();
     mark.color = m.attribute("color").value();
-    mark.width = R.number(m, "width", 0.12);
+    mark.width = R.bounded(m, "width", 0.12, 0.0, 1e3);
     lane.marks.push_back(mark);
   }
   if (const pugi::xml_node link = l.child("link")) {
@@ -136,6 +159,7 @@ OdrLane readLane(const pugi::xml_node& l, const Reader& road_reader, const std::
 }
 
 OdrRoad readRoad(const pugi::xml_node& r, const std::string& file) {
+  using bounds::kMaxOdrRoadLength;
   OdrRoad road;
   road.id = r.attribute("id").value();
   const std::string where = "road " + road.id;
@@ -143,7 +167,7 @@ OdrRoad readRoad(const pugi::xml_node& r, const std::string& file) {
   if (road.id.empty()) R.fail("road@id", "missing");
   road.name = r.attribute("name").value();
   road.junction = r.attribute("junction").as_string("-1");
-  road.length = R.number(r, "length");
+  road.length = R.bounded(r, "length", 0.0, bounds::kMaxOdrRoadLength);
   if (const std::string rule = r.attribute("rule").value(); !rule.empty()) road.rule = rule;
   if (road.rule != "RHT" && road.rule != "LHT")
     R.fail("road@rule", "'" + road.rule + "' is not RHT or LHT");
@@ -161,11 +185,14 @@ OdrRoad readRoad(const pugi::xml_node& r, const std::string& file) {
     road.lane_offset.push_back(R.poly(o, "s"));
   for (const pugi::xml_node sec : lanes.children("laneSection")) {
     OdrLaneSection section;
-    section.s = R.number(sec, "s");
+    section.s = R.bounded(sec, "s", 0.0, bounds::kMaxOdrRoadLength);
     const std::string sw = where + " laneSection s=" + Reader::text(sec, "s");
     for (const char* side : {"left", "center", "right"})
       for (const pugi::xml_node l : sec.child(side).children("lane"))
         section.lanes.push_back(readLane(l, R, sw, file));
+    if (section.lanes.size() > static_cast<std::size_t>(2 * bounds::kMaxOdrLanesPerSection + 1))
+      Reader(file, sw).fail("lane", std::to_string(section.lanes.size()) + " lanes, more than " +
+                                        std::to_string(2 * bounds::kMaxOdrLanesPerSection + 1));
     road.sections.push_back(std::move(section));
   }
   if (road.sections.empty()) R.fail("lanes", "no laneSection");
@@ -173,12 +200,13 @@ OdrRoad readRoad(const pugi::xml_node& r, const std::string& file) {
     OdrSignal sig;
     sig.id = s.attribute("id").value();
     sig.name = s.attribute("name").value();
-    sig.s = R.number(s, "s");
-    sig.t = R.number(s, "t");
-    sig.z_offset = R.number(s, "zOffset", 0.0);
-    sig.h_offset = R.number(s, "hOffset", 0.0);
-    sig.height = R.number(s, "height", 0.0);
-    sig.width = R.number(s, "width", 0.0);
+    const Reader RS(file, where + " signal " + sig.id);
+    sig.s = RS.bounded(s, "s", 0.0, kMaxOdrRoadLength);
+    sig.t = RS.bounded(s, "t", -kMaxOffset, kMaxOffset);
+    sig.z_offset = RS.bounded(s, "zOffset", 0.0, -kMaxOffset, kMaxOffset);
+    sig.h_offset = RS.bounded(s, "hOffset", 0.0, -bounds::kMaxAngle, bounds::kMaxAngle);
+    sig.height = RS.bounded(s, "height", 0.0, 0.0, bounds::kMaxElementHeight);
+    sig.width = RS.bounded(s, "width", 0.0, 0.0, kMaxOffset);
     sig.type = s.attribute("type").value();
     sig.subtype = s.attribute("subtype").value();
     sig.country = s.attribute("country").value();
@@ -191,22 +219,27 @@ OdrRoad readRoad(const pugi::xml_node& r, const std::string& file) {
     obj.id = o.attribute("id").value();
     obj.name = o.attribute("name").value();
     obj.type = o.attribute("type").value();
-    obj.s = R.number(o, "s");
-    obj.t = R.number(o, "t");
-    obj.z_offset = R.number(o, "zOffset", 0.0);
-    obj.hdg = R.number(o, "hdg", 0.0);
-    obj.length = R.number(o, "length", 0.0);
-    obj.width = R.number(o, "width", 0.0);
-    obj.height = R.number(o, "height", 0.0);
-    obj.radius = R.number(o, "radius", 0.0);
+    const Reader RO(file, where + " object " + obj.id);
+    obj.s = RO.bounded(o, "s", 0.0, kMaxOdrRoadLength);
+    obj.t = RO.bounded(o, "t", -kMaxOffset, kMaxOffset);
+    obj.z_offset = RO.bounded(o, "zOffset", 0.0, -kMaxOffset, kMaxOffset);
+    obj.hdg = RO.bounded(o, "hdg", 0.0, -bounds::kMaxAngle, bounds::kMaxAngle);
+    obj.length = RO.bounded(o, "length", 0.0, 0.0, kMaxOffset);
+    obj.width = RO.bounded(o, "width", 0.0, 0.0, kMaxOffset);
+    obj.height = RO.bounded(o, "height", 0.0, 0.0, bounds::kMaxElementHeight);
+    obj.radius = RO.bounded(o, "radius", 0.0, 0.0, kMaxOffset);
     pugi::xml_node outline = o.child("outline");
     if (!outline) outline = o.child("outlines").child("outline");
     for (const pugi::xml_node c : outline.children()) {
       const std::string kind = c.name();
       if (kind == "cornerLocal")
-        obj.outline.push_back({R.number(c, "u"), R.number(c, "v"), R.number(c, "z", 0.0), false});
+        obj.outline.push_back({RO.bounded(c, "u", -kMaxOffset, kMaxOffset),
+                               RO.bounded(c, "v", -kMaxOffset, kMaxOffset),
+                               RO.bounded(c, "z", 0.0, -kMaxOffset, kMaxOffset), false});
       else if (kind == "cornerRoad")
-        obj.outline.push_back({R.number(c, "s"), R.number(c, "t"), R.number(c, "dz", 0.0), true});
+        obj.outline.push_back({RO.bounded(c, "s", 0.0, kMaxOdrRoadLength),
+                               RO.bounded(c, "t", -kMaxOffset, kMaxOffset),
+                               RO.bounded(c, "dz", 0.0, -kMaxOffset, kMaxOffset), true});
     }
     road.objects.push_back(obj);
   }
@@ -254,12 +287,32 @@ OdrMap parseOpenDrive(const std::string& xml, const std::string& file) {
   map.geo_reference = header.child("geoReference").text().get();
   if (const pugi::xml_node off = header.child("offset")) {
     const Reader R(file, "header");
-    map.offset_x = R.number(off, "x", 0.0);
-    map.offset_y = R.number(off, "y", 0.0);
-    map.offset_z = R.number(off, "z", 0.0);
-    map.offset_hdg = R.number(off, "hdg", 0.0);
+    using bounds::kMaxCoordinate;
+    map.offset_x = R.bounded(off, "x", 0.0, -kMaxCoordinate, kMaxCoordinate);
+    map.offset_y = R.bounded(off, "y", 0.0, -kMaxCoordinate, kMaxCoordinate);
+    map.offset_z = R.bounded(off, "z", 0.0, -kMaxCoordinate, kMaxCoordinate);
+    map.offset_hdg = R.bounded(off, "hdg", 0.0, -bounds::kMaxAngle, bounds::kMaxAngle);
   }
-  for (const pugi::xml_node r : root.children("road")) map.roads.push_back(readRoad(r, file));
+  // The work of converting a map grows with its length: reference lines (plan-view records
+  // included) and lanes are sampled every 0.5 m.
+  double road_m = 0.0, geometry_m = 0.0, lane_m = 0.0;
+  for (const pugi::xml_node r : root.children("road")) {
+    map.roads.push_back(readRoad(r, file));
+    const OdrRoad& road = map.roads.back();
+    road_m += road.length;
+    for (const auto& g : road.plan_view) geometry_m += g.length;
+    for (std::size_t k = 0; k < road.sections.size(); ++k) {
+      const double end = k + 1 < road.sections.size() ? road.sections[k + 1].s : road.length;
+      lane_m += std::max(0.0, end - road.sections[k].s) * road.sections[k].lanes.size();
+    }
+    for (const auto& [what, metres] : {std::pair{"road lengths", road_m},
+                                       {"plan-view geometry lengths", geometry_m},
+                                       {"lane lengths (section length x lanes)", lane_m}})
+      if (metres > bounds::kMaxOdrMapLength)
+        throw ParseError(file, "road " + road.id,
+                         std::string("the map's ") + what + " add up to more than " +
+                             bounds::numberText(bounds::kMaxOdrMapLength) + " m");
+  }
   if (map.roads.empty()) throw ParseError(file, "road", "the map has no roads");
   for (const pugi::xml_node j : root.children("junction")) {
     OdrJunction junction;

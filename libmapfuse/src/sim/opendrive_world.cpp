@@ -7,6 +7,7 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
+#include "mapfuse/io/bounds.hpp"
 #include "opendrive_internal.hpp"
 
 namespace mapfuse::sim {
@@ -25,6 +26,14 @@ Eigen::Vector3d OdrContext::toEnu(const Eigen::Vector3d& p) const {
   const double c = std::cos(map.offset_hdg), s = std::sin(map.offset_hdg);
   const Eigen::Vector3d q(c * p.x() - s * p.y() + map.offset_x,
                           s * p.x() + c * p.y() + map.offset_y, p.z() + map.offset_z);
+  // Every record is bounded when read, but widths, offsets and elevations are polynomials: the
+  // point they give is checked (docs/formats.md "Value bounds").
+  if (!(q.cwiseAbs().maxCoeff() <= io::bounds::kMaxCoordinate))
+    throw InputError(map.file + ": a lane border, signal or object lies at map (" +
+                     io::bounds::numberText(q.x()) + ", " + io::bounds::numberText(q.y()) + ", " +
+                     io::bounds::numberText(q.z()) + "), beyond " +
+                     io::bounds::numberText(io::bounds::kMaxCoordinate) +
+                     " m: lane widths, lane offsets or elevation out of range");
   if (!projection) return q;
   return enu.toEnu(projection->toWgs84(q.x(), q.y(), q.z()));
 }
