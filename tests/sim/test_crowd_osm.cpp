@@ -170,3 +170,22 @@ TEST_CASE("Lanelet2: ids near the int64 limits and 1000 km of lanes are refused"
     CHECK_THAT(std::string(e.what()), Catch::Contains("far.osm") && Catch::Contains("km"));
   }
 }
+
+TEST_CASE("Lanelet2: a lanelet whose bounds lie 100 km apart is refused", "[sim][osm][bounds]") {
+  // Fuzz finding (fuzz_lanelet2_osm, second 10-minute run): one node of a right bound 730 km
+  // east of the rest made a lanelet 365 km wide on average, whose centreline ran far from both
+  // bounds; simulate then drove it for hours (44 s, 2.9 GB per run). Now an InputError naming
+  // the file, the lanelet and its two ways.
+  std::string wide = kSmallMap;
+  wide.replace(wide.find("lat='49.0000000' lon='8.4000500'"), 32,
+               "lat='49.0000000' lon='18.4000500'");
+  const io::Lanelet2Map map = io::parseLanelet2Osm(wide, "wide.osm");
+  try {
+    sim::worldFromLanelet2(map, *map.first_node);
+    FAIL("a lanelet 365 km wide was accepted");
+  } catch (const InputError& e) {
+    CHECK_THAT(std::string(e.what()),
+               Catch::Contains("wide.osm") && Catch::Contains("lanelet -20") &&
+                   Catch::Contains("-10") && Catch::Contains("-12") && Catch::Contains("m apart"));
+  }
+}

@@ -242,3 +242,25 @@ TEST_CASE("simulate world: the default world's roads, markings, signs and poles"
     CHECK(dashed > 0);
   }
 }
+
+TEST_CASE("simulate routes: a lane far longer than the route is cut 1 km past the target",
+          "[sim][world][bounds]") {
+  // Fuzz finding (fuzz_lanelet2_osm): whole lanes were appended until the target length was
+  // reached, so one 365 km lanelet made a 365 km route and drives of 28,000 s (2.9 GB).
+  constexpr double kTarget = 1500.0, kOvershoot = 1000.0;  // m; drive.cpp's cut
+  sim::World world;
+  sim::Lane lane;
+  lane.centerline = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(50000, 0, 0)};  // one 50 km lane
+  world.lanes.push_back(lane);
+  const auto routes = sim::planRoutes(world, 3, kTarget, 7);
+  REQUIRE(routes.size() == 3);
+  for (const auto& route : routes) {
+    const double length = sim::arcLengths(route).back();
+    CHECK(length == Approx(kTarget + kOvershoot).margin(1e-6));
+    CHECK(route.back().x() == Approx(kTarget + kOvershoot).margin(1e-6));
+  }
+  // A lane shorter than the cut keeps its whole length (routes of street maps are unchanged).
+  world.lanes[0].centerline = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(2400, 0, 0)};
+  CHECK(sim::arcLengths(sim::planRoutes(world, 1, kTarget, 7).front()).back() ==
+        Approx(2400.0).margin(1e-6));
+}

@@ -9,13 +9,14 @@
 #include <cmath>
 #include <numeric>
 #include <optional>
+#include <tuple>
 
 #include "box2d.hpp"
 #include "dbscan.hpp"
 #include "lane_fragments.hpp"
 #include "lane_links.hpp"
-#include "mapfuse/aggregate/geometry2d.hpp"
 #include "line_buffer.hpp"
+#include "mapfuse/aggregate/geometry2d.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/bounds.hpp"
 #include "partner_drives.hpp"
@@ -181,31 +182,11 @@ std::vector<std::vector<std::size_t>> overlapNeighbours(const std::vector<Observ
                                                         const LaneInstantiationParams& p,
                                                         std::size_t* comparisons_made) {
   const std::size_t n = pieces.size();
-  // the polygons in tile-local coordinates, prepared for the exact overlap area
-  std::vector<OverlapPolygon> polys(n);
-  std::vector<double> areas(n);
-  std::vector<Box2> boxes(n);
-#pragma omp parallel for schedule(dynamic, 64)
-  for (std::ptrdiff_t si = 0; si < std::ptrdiff_t(n); ++si) {
-    const std::size_t i = std::size_t(si);
-    // The buffer ring built directly (line_buffer.hpp); Boost's where that may differ.
-    Line2 simple;
-    bg::simplify(toLine(pieces[i].points), simple, kSimplifyTolerance);
-    std::vector<Eigen::Vector2d> line;
-    for (const auto& q : simple) line.emplace_back(bg::get<0>(q), bg::get<1>(q));
-    if (const auto ring = mitreBuffer(line, p.buffer_width)) {
-      areas[i] = ringArea(*ring);
-      polys[i] = OverlapPolygon({*ring}, pieces[i].corner);
-    } else {
-      const MPoly2 buffered = bufferPiece(pieces[i], p.buffer_width);
-      areas[i] = bg::area(buffered);
-      polys[i] = toOverlapPolygon(buffered, pieces[i].corner);
-    }
-    boxes[i] = boxOf(pieces[i].points, p.buffer_width);
-  }
   // Candidates: pieces of the same tile whose boxes intersect (touching counts), of at most
   // `partner_drives` other drives per piece (partner_drives.hpp). Tile by tile: a piece's
-  // neighbours all lie in its own tile, so tiles run in parallel without sharing lists.
+  // neighbours all lie in its own tile, so tiles run in parallel without sharing lists, and a
+  // tile's polygons live only while it is compared (all tiles' at once were a third of
+  // aggregate's peak memory).
   std::vector<std::size_t> by_tile(n);
   std::iota(by_tile.begin(), by_tile.end(), std::size_t(0));
   auto driveOf = [&](std::size_t i) { return items[pieces[i].obs].drive; };
@@ -222,27 +203,55 @@ std::vector<std::vector<std::size_t>> overlapNeighbours(const std::vector<Observ
   }
   std::vector<std::vector<std::size_t>> neighbours(n);
   std::size_t comparisons = 0;
-  auto similar = [&](std::size_t i, std::size_t j, std::size_t& count) {
-    if (!bg::intersects(boxes[i], boxes[j])) return false;
-    ++count;
-    const double smaller = std::min(areas[i], areas[j]);
-    if (smaller <= 0) return false;
-    std::optional<double> inter = intersectionArea(polys[i], polys[j]);
-    if (!inter) {  // degenerate (touching vertices, shared edges): Boost's robust overlay
-      MPoly2 both;
-      bg::intersection(bufferPiece(pieces[i], p.buffer_width),
-                       bufferPiece(pieces[j], p.buffer_width), both);
-      inter = bg::area(both);
-    }
-    return *inter >= p.min_overlap_ratio * smaller;
-  };
 #pragma omp parallel reduction(+ : comparisons)
   {
     std::vector<int> present, partners;
     std::vector<std::pair<std::size_t, std::size_t>> edges;
+    // the tile's polygons in tile-local coordinates, prepared for the exact overlap area; by
+    // position in by_tile minus the tile's begin
+    std::vector<OverlapPolygon> polys;
+    std::vector<double> areas;
+    std::vector<Box2> boxes;
+    std::size_t b = 0;
+    auto similar = [&](std::size_t r, std::size_t q, std::size_t& count) {
+      const std::size_t ri = r - b, qi = q - b;
+      if (!bg::intersects(boxes[ri], boxes[qi])) return false;
+      ++count;
+      const double smaller = std::min(areas[ri], areas[qi]);
+      if (smaller <= 0) return false;
+      std::optional<double> inter = intersectionArea(polys[ri], polys[qi]);
+      if (!inter) {  // degenerate (touching vertices, shared edges): Boost's robust overlay
+        MPoly2 both;
+        bg::intersection(bufferPiece(pieces[by_tile[r]], p.buffer_width),
+                         bufferPiece(pieces[by_tile[q]], p.buffer_width), both);
+        inter = bg::area(both);
+      }
+      return *inter >= p.min_overlap_ratio * smaller;
+    };
 #pragma omp for schedule(dynamic, 16)
     for (std::ptrdiff_t t = 0; t < std::ptrdiff_t(tiles.size()); ++t) {
-      const auto [b, e] = tiles[std::size_t(t)];
+      std::size_t e = 0;
+      std::tie(b, e) = tiles[std::size_t(t)];
+      polys.assign(e - b, OverlapPolygon());
+      areas.assign(e - b, 0.0);
+      boxes.assign(e - b, Box2());
+      for (std::size_t r = b; r < e; ++r) {
+        const Piece& piece = pieces[by_tile[r]];
+        // The buffer ring built directly (line_buffer.hpp); Boost's where that may differ.
+        Line2 simple;
+        bg::simplify(toLine(piece.points), simple, kSimplifyTolerance);
+        std::vector<Eigen::Vector2d> line;
+        for (const auto& q : simple) line.emplace_back(bg::get<0>(q), bg::get<1>(q));
+        if (const auto ring = mitreBuffer(line, p.buffer_width)) {
+          areas[r - b] = ringArea(*ring);
+          polys[r - b] = OverlapPolygon({*ring}, piece.corner);
+        } else {
+          const MPoly2 buffered = bufferPiece(piece, p.buffer_width);
+          areas[r - b] = bg::area(buffered);
+          polys[r - b] = toOverlapPolygon(buffered, piece.corner);
+        }
+        boxes[r - b] = boxOf(piece.points, p.buffer_width);
+      }
       // the tile's drives and the range of each (by_tile is sorted by drive within a tile)
       present.clear();
       std::vector<std::pair<std::size_t, std::size_t>> range;
@@ -259,7 +268,7 @@ std::vector<std::vector<std::size_t>> overlapNeighbours(const std::vector<Observ
         const std::size_t i = by_tile[r];
         if (all) {  // every pair once
           for (std::size_t q = r + 1; q < e; ++q)
-            if (similar(i, by_tile[q], comparisons)) edges.emplace_back(i, by_tile[q]);
+            if (similar(r, q, comparisons)) edges.emplace_back(i, by_tile[q]);
           continue;
         }
         const uint64_t offset = uint64_t(driveOf(i)) + uint64_t(pieces[i].tile) * 40503ull;
@@ -269,7 +278,7 @@ std::vector<std::vector<std::size_t>> overlapNeighbours(const std::vector<Observ
           const auto [qb, qe] = range[std::size_t(it - present.begin())];
           for (std::size_t q = qb; q < qe; ++q) {
             const std::size_t j = by_tile[q];
-            if (j != i && similar(i, j, comparisons))
+            if (j != i && similar(r, q, comparisons))
               edges.emplace_back(std::min(i, j), std::max(i, j));
           }
         }
@@ -311,7 +320,7 @@ LaneInstantiation instantiateLanes(const std::vector<Observation>& items,
                                    const std::vector<std::size_t>& indices,
                                    const LaneInstantiationParams& p, int num_drives) {
   LaneInstantiation result;
-  const std::vector<Piece> pieces = cutObservations(items, indices, p.tile_size);
+  std::vector<Piece> pieces = cutObservations(items, indices, p.tile_size);
   result.stats.pieces = pieces.size();
   if (pieces.empty()) return result;
 
@@ -321,9 +330,12 @@ LaneInstantiation instantiateLanes(const std::vector<Observation>& items,
       dbscan(overlapNeighbours(items, pieces, p, &result.stats.comparisons), min_pts);
   result.stats.noise_pieces = std::size_t(clusters.num_noise);
   std::vector<Fragment> frags = clusterFragments(pieces, clusters, p);
+  std::vector<Piece>().swap(pieces);  // in the fragments' samples now
   mergeSideBySide(frags, p);
   absorbStubs(frags, p);
   result.stats.fragments = frags.size();
+  // Stage 2 reads only the centrelines: the samples (the largest part of stage 1's memory) go.
+  for (Fragment& f : frags) std::vector<Eigen::Vector3d>().swap(f.samples);
 
   // stage 2: link fragment ends with the modified core-object rule, walk the chains
   const FragmentEnds ends(frags, p);

@@ -1,9 +1,9 @@
 #include "mapfuse/io/lsm_io.hpp"
 
-#include "lsm_cbor.hpp"
-#include "mapfuse/core/error.hpp"
 #include <algorithm>
 #include <cmath>
+#include "lsm_cbor.hpp"
+#include "mapfuse/core/error.hpp"
 
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/document.hpp"
@@ -191,7 +191,9 @@ Lsm lsmFromJson(const Json& doc, const std::string& file) {
 
 namespace {
 
-bool within(double x, double lo, double hi) { return x >= lo && x <= hi; }
+bool within(double x, double lo, double hi) {
+  return x >= lo && x <= hi;
+}
 
 // The value bounds the general reader checks (docs/formats.md "Value bounds"), on an LSM the
 // fast CBOR codec decoded: when one fails, the general reader reads the file again and refuses
@@ -245,7 +247,7 @@ Lsm readLsm(const std::filesystem::path& path) {
   return lsmFromJson(readDocument(path), path.string());
 }
 
-std::vector<Lsm> readLsmInputs(const std::vector<std::string>& files) {
+std::vector<Lsm> readLsmInputs(const std::vector<std::string>& files, bool covariances) {
   namespace fs = std::filesystem;
   for (std::size_t i = 0; i < files.size(); ++i)
     for (std::size_t j = 0; j < i; ++j) {
@@ -258,6 +260,8 @@ std::vector<Lsm> readLsmInputs(const std::vector<std::string>& files) {
   lsms.reserve(files.size());
   for (std::size_t i = 0; i < files.size(); ++i) {
     lsms.push_back(readLsm(files[i]));
+    if (!covariances)
+      for (Element& e : lsms.back().elements) std::vector<Eigen::Matrix3d>().swap(e.covariances);
     for (std::size_t j = 0; j < i; ++j)
       if (lsms[j].drive_id == lsms[i].drive_id)
         throw ConfigError("inputs " + files[j] + " and " + files[i] + " hold the same drive '" +

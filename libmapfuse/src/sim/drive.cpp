@@ -13,6 +13,21 @@ constexpr double kPathStep = 0.5;     // m, route resampling
 constexpr int kSmoothHalfWindow = 4;  // samples (2 m) of the path smoothing
 constexpr int kSmoothPasses = 3;
 constexpr int kRouteAttempts = 20;
+// A route ends at most this far past its target length: the last lane appended is cut there,
+// so that one very long lanelet (a map of a motorway, or a fuzzed node 700 km away) cannot make
+// a drive of hours (a drive holds ~0.4 kB per IMU sample). Lanes of street maps are far shorter,
+// so their routes are not cut.
+constexpr double kMaxRouteOvershoot = 1000.0;  // m
+
+/// The first `length` metres of `line` (the line itself when it is not longer).
+Polyline headOf(const Polyline& line, double length) {
+  const auto cum = arcLengths(line);
+  if (cum.back() <= length) return line;
+  Polyline out;
+  for (std::size_t i = 0; i < line.size() && cum[i] < length; ++i) out.push_back(line[i]);
+  out.push_back(pointAt(line, cum, length));
+  return out;
+}
 }  // namespace
 
 bool DriveParams::dividesImuRate(double rate) const {
@@ -53,6 +68,7 @@ std::vector<Polyline> planRoutes(const World& world, int count, double length, u
         lane = next[std::uniform_int_distribution<std::size_t>(0, next.size() - 1)(rng)];
         if (visits[lane] > 1) break;
       }
+      route = headOf(route, length + kMaxRouteOvershoot);
       const double len = polylineLength(route);
       if (len > best_len) best = route, best_len = len;
       if (len >= 0.5 * length) break;

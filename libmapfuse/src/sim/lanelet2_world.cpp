@@ -38,6 +38,10 @@ std::optional<double> heightTag(const std::map<std::string, std::string>& tags) 
 // the Karlsruhe example map has about 30 km). One node 2700 km from the others made a single
 // lanelet take 30 s.
 constexpr double kMaxDrivableLength = 1e6;  // m
+// A drivable lanelet's bounds at most this far apart on average (lanes are 2.5-5 m wide, the
+// widest junction lanelets of real maps some 20 m). A fuzzed node 730 km from its neighbour made
+// a lanelet 365 km wide whose centreline ran far from every bound.
+constexpr double kMaxLaneWidth = 100.0;  // m
 
 bool isDrivable(const std::string& subtype) {
   return subtype.empty() || subtype == "road" || subtype == "highway" || subtype == "exit" ||
@@ -140,6 +144,12 @@ World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin
       width += (L[k] - R[k]).norm() / n;
     }
     lane.width = width;
+    if (width > kMaxLaneWidth)
+      throw InputError(map.file + ": lanelet " + std::to_string(ll.id) + ": its left way " +
+                       std::to_string(ll.left) + " and right way " + std::to_string(ll.right) +
+                       " are " + io::bounds::numberText(std::round(width)) +
+                       " m apart on average, more than " + io::bounds::numberText(kMaxLaneWidth) +
+                       " m (a bound with a misplaced node?)");
     // The left bound must lie left of the driving direction.
     const int m = n / 2;
     const Eigen::Vector3d dir =

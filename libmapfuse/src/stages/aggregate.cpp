@@ -112,8 +112,11 @@ AggregateRun runAggregate(const std::vector<std::string>& inputs,
   validateParams(params);
   if (inputs.empty()) throw InputError("no input LSM given");
   io::OutputTransaction outputs(out_dir);  // locked and writable before the work
-  const std::vector<Lsm> lsms = io::readLsmInputs(inputs);
+  std::vector<Lsm> lsms = io::readLsmInputs(inputs, /*covariances=*/false);
   const auto set = aggregate::collectObservations(lsms, inputs);
+  // From here on only the trajectories are read (road length, drive directions, pictures): the
+  // elements, copied into the observations, are freed before the aggregation's own peak.
+  for (Lsm& lsm : lsms) std::vector<Element>().swap(lsm.elements);
   const auto t1 = Clock::now();
   MAPFUSE_INFO("aggregate: " << set.items.size() << " observations from " << lsms.size()
                              << " drives");

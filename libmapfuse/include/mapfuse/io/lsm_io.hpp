@@ -23,7 +23,9 @@ Lsm readLsm(const std::filesystem::path& path);
 /// @brief Reads the input LSMs of one run. The same file given twice (by path or by identity,
 /// e.g. through a link) or one drive (drive_id) under two file names would count its data twice:
 /// both are refused with a ConfigError (exit 2) naming the two inputs.
-std::vector<Lsm> readLsmInputs(const std::vector<std::string>& files);
+/// @param covariances false: each element's per-point covariances are dropped once its file is
+/// read and checked (aggregate never uses them; they are three quarters of a decoded LSM).
+std::vector<Lsm> readLsmInputs(const std::vector<std::string>& files, bool covariances = true);
 /// @brief Atomic write (temp file + rename).
 void writeLsm(const std::filesystem::path& path, const Lsm& lsm);
 

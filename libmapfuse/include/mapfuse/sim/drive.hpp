@@ -137,7 +137,7 @@ struct Drive {
 };
 
 /// @brief Random walks on the lane graph: `count` routes of about `length` m (shorter at dead
-/// ends), each the concatenated centreline of its lanes.
+/// ends), each the concatenated centreline of its lanes, cut 1 km past `length` at the most.
 std::vector<Polyline> planRoutes(const World& world, int count, double length, uint64_t seed);
 
 /// @brief Simulates one traversal of `route`. @param seed this traversal's own seed.
