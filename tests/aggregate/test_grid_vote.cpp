@@ -131,7 +131,7 @@ TEST_CASE("grid voting recovers the lines of a three-line road with their attrib
   CHECK(covered <= 1.05 * 3 * o.length);
 }
 
-TEST_CASE("grid voting finds the stop line and arrows; elevated classes as the default method",
+TEST_CASE("grid voting finds the stop line and arrows, elevated classes as the default method",
           "[aggregate][grid_vote]") {
   test::SynthOptions o;
   const auto w = test::makeSynthWorld(o);

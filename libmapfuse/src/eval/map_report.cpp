@@ -171,7 +171,7 @@ void writeErrorVsTraversalsPng(const std::filesystem::path& path,
   rel.ymax = vmax * 1.15;
   rel.frame("Relative precision vs traversals", "m");
   comp.ymax = 1.0;
-  comp.frame("Completeness vs traversals", "share of truth");
+  comp.frame("Completeness vs traversals", "share");
   auto xOf = [&](const Axes& ax, int t) {
     return ax.area.x + int(double(t) / tmax * (ax.area.width - 10));
   };
