@@ -52,7 +52,8 @@ nlohmann::json toJson(const AggregateRun& run) {
                                                 {"instances", stats.instances[c]},
                                                 {"noise", stats.noise[c]}};
   const double kb_per_km = run.road_km > 0 ? run.cbor_kb / run.road_km : 0.0;
-  return {
+  nlohmann::json out = {
+      {"method", run.method},
       {"inputs", {{"drives", run.drives}, {"observations", run.observations}}},
       {"instances", run.instances},
       {"classes", per_class},
@@ -91,6 +92,19 @@ nlohmann::json toJson(const AggregateRun& run) {
         {"aggregate", run.seconds_aggregate},
         {"write", run.seconds_write}}},
       {"converged", true}};
+  if (run.method == "grid_vote") {
+    const auto& g = stats.grid;
+    nlohmann::json won = nlohmann::json::object();
+    for (int c = 0; c < kNumCrowdClasses; ++c)
+      if (g.class_cells[c] > 0) won[crowdClassName(CrowdClass(c))] = g.class_cells[c];
+    out["grid_vote"] = {{"cells", g.cells},
+                        {"votes", g.painted},
+                        {"voted_cells", g.voted_cells},
+                        {"conflict_cells", g.conflict_cells},
+                        {"min_votes", g.min_votes_used},
+                        {"cells_per_class", won}};
+  }
+  return out;
 }
 
 AggregateRun runAggregate(const std::vector<std::string>& inputs,
@@ -116,6 +130,7 @@ AggregateRun runAggregate(const std::vector<std::string>& inputs,
   writeMap(out_dir, map, set, lsms, params, &run.lanelet2);
   const auto t3 = Clock::now();
 
+  run.method = params.aggregator.method;
   run.drives = lsms.size();
   run.observations = set.items.size();
   run.instances = map.instances.size();
