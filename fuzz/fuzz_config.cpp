@@ -4,9 +4,6 @@
 // --config (paramsFromFile on a file). The first byte chooses the stage, the rest is the file.
 // Every refusal must be a configuration error (exit 2), an empty or truncated file included.
 // Accepted parameters are written as the tool's <stage>.config.json and read back equal.
-#include <type_traits>
-#include <utility>
-
 #include "fuzz_support.hpp"
 #include "mapfuse/cli/params.hpp"
 #include "mapfuse/stages/aggregate.hpp"
@@ -27,29 +24,13 @@ using namespace mapfuse;
 
 namespace {
 
-/// Stages whose Params still validate themselves (transitional, cli/app.hpp) use validate();
-/// the others have their rules declared in visit (validateParams).
-template <class P, class = void>
-struct HasValidate : std::false_type {};
-template <class P>
-struct HasValidate<P, std::void_t<decltype(std::declval<const P&>().validate())>> : std::true_type {
-};
-
-template <class Params>
-void validate(const Params& params) {
-  if constexpr (HasValidate<Params>::value)
-    params.validate();
-  else
-    validateParams(params);
-}
-
 template <class Params>
 void apply(const std::filesystem::path& file) {
   Params params;
   if (!fuzz::accepts(
           [&] {
             paramsFromFile(params, file.string());
-            validate(params);
+            validateParams(params);
           },
           {ExitCode::kUsage}))
     return;
@@ -57,7 +38,7 @@ void apply(const std::filesystem::path& file) {
   const nlohmann::json written = paramsToJson(params);
   Params again;
   paramsFromJson(again, written, "again.config.json");
-  validate(again);
+  validateParams(again);
   MAPFUSE_FUZZ_CHECK(paramsToJson(again) == written);
 }
 

@@ -105,6 +105,8 @@ if [ -d "$shared" ]; then
     seed fuzz_kitti_calib odometry.txt < "$odo/sequences/00/calib.txt"
   osm=$shared/maps/lanelet2_karlsruhe_mapping_example.osm
   [ -f "$osm" ] && shrink osm "$osm" 4 | seed fuzz_lanelet2_osm karlsruhe.osm
+  xodr=$shared/maps/MONAEast.xodr
+  [ -f "$xodr" ] && seed fuzz_opendrive monaeast.xodr < "$xodr"
 fi
 
 echo "fuzz: seeds for $(ls "$seeds" | wc -l) targets, $(find "$seeds" -type f | wc -l) files," \

@@ -7,7 +7,8 @@
 
 static const char* const kAbout =
     "Fuse LSMs in ENU (georef or align output, one shared origin) into a light vector HD map:\n"
-    "two-stage DBSCAN lane instantiation, Bezier vectorization, discrete element merging.\n"
+    "two-stage DBSCAN lane instantiation, Bezier vectorization, discrete element merging\n"
+    "(--method grid_vote: the Qin et al. 2021 grid-vote baseline for the ground classes).\n"
     "Outputs below --out: map.cbor (compact), map.json, map.geojson (WGS84), map.osm\n"
     "(Lanelet2-style), map.png, aggregate.config.json, aggregate.summary.json.\n"
     "Exit codes: 0 ok, 2 usage/config, 3 bad input (malformed LSM, frame odom, origin\n"

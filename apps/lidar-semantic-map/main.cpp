@@ -6,50 +6,41 @@
 #include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/lidar_semantic_map.hpp"
 
+static const char* const kAbout =
+    "Build a semantic voxel map from a KITTI raw drive or a KITTI odometry / SemanticKITTI\n"
+    "sequence folder: poses (OXTS, poses file or LiDAR odometry), per-pixel semantics (ENet or\n"
+    "precomputed semantics_02), projection onto image_02, cluster error minimisation (optional\n"
+    "forests), Bayesian voxel fusion, batch refinement. Outputs below --out: map.ply, map.pcd,\n"
+    "labels/<frame>.label, topdown.png, poses.txt (KITTI T_world_cam0), poses_velo.txt\n"
+    "(T_map_velo), lidar-semantic-map.{config,summary}.json. Untrusted odometry steps are\n"
+    "listed on stderr and in the summary; more than --odom-max-untrusted stop the run (exit 3).\n"
+    "A failed run leaves the previous outputs in the folder unchanged.\n"
+    "`train DRIVE... -o DIR` fits rtrees_<label>.yml from drives with labels/<frame>.label.\n"
+    "Exit codes: 0 ok, 2 usage/config, 3 bad input, 4 I/O.";
+static const char* const kDrive =
+    "KITTI raw drive (<date>/<date>_drive_<name>_sync) or sequence (sequences/NN)";
+
 int main(int argc, char** argv) {
   using namespace mapfuse;
-  CLI::App app{
-      "Build a semantic voxel map from a KITTI raw drive or a KITTI odometry / SemanticKITTI\n"
-      "sequence folder: poses (OXTS, poses file or LiDAR odometry), per-pixel semantics (ENet or\n"
-      "precomputed semantics_02), projection onto image_02, cluster error minimisation (optional\n"
-      "forests), Bayesian voxel fusion, batch refinement. Outputs below --out: map.ply, map.pcd,\n"
-      "labels/<frame>.label, topdown.png, poses.txt (KITTI T_world_cam0), poses_velo.txt\n"
-      "(T_map_velo), lidar-semantic-map.{config,summary}.json. Untrusted odometry steps are\n"
-      "listed on stderr and in the summary; more than --odom-max-untrusted stop the run (exit 3).\n"
-      "A failed run leaves the previous outputs in the folder unchanged.\n"
-      "`train DRIVE... -o DIR` fits rtrees_<label>.yml from drives with labels/<frame>.label.\n"
-      "Exit codes: 0 ok, 2 usage/config, 3 bad input, 4 I/O.",
-      "lidar-semantic-map"};
-  stages::LidarSemanticMapParams params;
-  cli::CommonOptions common;
+  cli::StageTool<stages::LidarSemanticMapParams> tool("lidar-semantic-map", kAbout);
   std::string drive, out, train_out;
   std::vector<std::string> train_drives;
-  app.add_option("drive", drive,
-                 "KITTI raw drive (<date>/<date>_drive_<name>_sync) or sequence (sequences/NN)");
-  app.add_option("-o,--out", out, "Output folder");
-  CLI::App* train = app.add_subcommand("train", "Fit the per-label cluster classifiers");
+  tool.app().add_option("drive", drive, kDrive);
+  tool.app().add_option("-o,--out", out, "Output folder");
+  CLI::App* train = tool.app().add_subcommand("train", "Fit the per-label cluster classifiers");
   train->add_option("drives", train_drives, "Labelled drives, @list.txt or -")->required();
   train->add_option("-o,--out", train_out, "Classifier folder")->required();
   train->fallthrough();
-  cli::addCommonOptions(app, common);
-  try {
-    cli::preloadConfig(argc, argv, params);  // file values become the defaults
-  } catch (const Error& e) {
-    std::cerr << "lidar-semantic-map: error: " << e.what() << "\n";
-    return static_cast<int>(e.exitCode());
-  }
-  cli::addParamOptions(app, params);
-  return cli::runStage(app, argc, argv, params, [&] {
-    cli::applyCommonOptions(common);
+  return tool.run(argc, argv, [&](const stages::LidarSemanticMapParams& params) {
     if (train->parsed()) {
       const auto list = cli::expandInputList(train_drives);
       stages::runLidarSemanticMapTrain({list.begin(), list.end()}, train_out, params);
       std::cout << train_out << '\n';
-      return;
-    }
-    if (drive.empty() || out.empty())
+    } else if (drive.empty() || out.empty()) {
       throw ConfigError("a drive folder and -o/--out are required (or the train subcommand)");
-    stages::runLidarSemanticMap(drive, out, params);
-    std::cout << out << '\n';
+    } else {
+      stages::runLidarSemanticMap(drive, out, params);
+      std::cout << out << '\n';
+    }
   });
 }

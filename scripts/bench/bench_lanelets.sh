@@ -54,8 +54,10 @@ project's Lanelet2 reader).
 | **... inside a lanelet with both bounds** | **{100 * c['share']:.1f} %** (target >= 95 %) |
 | ... inside a one-way lanelet driven the lane's way | {100 * c['directed_share']:.1f} % |
 | ... inside one-way lanelets of the opposite direction only | {100 * c['reversed_m'] / max(c['marked_m'], 1e-9):.1f} % |
-| lanelets (road) / one-way (direction from drives or a stop line) | {c['lanelets']} / {c['lanelets_one_way']} |
-| crosswalk lanelets / regulatory elements | {ll['crosswalk_lanelets']} / {ll['regulatory_elements']} |
+| lanelets (road) / one-way (direction from drives, a stop line or a neighbour) | {c['lanelets']} / {c['lanelets_one_way']} |
+| ... one-way by a neighbour (right-hand traffic, docs/formats.md) | {ll['lanelets_oriented_by_neighbours']} |
+| crosswalk lanelets / traffic light and sign regulatory elements | {ll['crosswalk_lanelets']} / {ll['regulatory_elements']} |
+| right_of_way / all_way_stop elements | {ll['right_of_way_elements']} / {ll['all_way_stop_elements']} |
 | lane-line length that bounds a lanelet | {100 * ll['lane_line_bound_share']:.1f} % |
 | osmium fileinfo -e / check-refs -r failures | {osmium_errors} (nodes {count('nodes')}, ways {count('ways')}, relations {count('relations')}) |
 | ogrinfo -al -so lines with "error" or "warning" | {ogr_problems} |

@@ -19,10 +19,11 @@
 
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/io/velodyne.hpp"
+#include "mapfuse/lidar/classifier_training.hpp"
 #include "mapfuse/lidar/drive_poses.hpp"
 #include "mapfuse/lidar/refinement.hpp"
 #include "mapfuse/lidar/scan_odometry.hpp"
-#include "mapfuse/stages/lidar_semantic_map_detail.hpp"
+#include "mapfuse/lidar/semantic_mapper.hpp"
 
 using namespace mapfuse;
 using Clock = std::chrono::steady_clock;
@@ -133,7 +134,7 @@ int main(int argc, char** argv) {
   std::printf("| measurement | target | measured | met? |\n|---|---|---|---|\n");
 
   // (b) + (c) first, so that the peak-RSS baseline is the small process itself.
-  const stages::LidarSemanticMapParams p;
+  const lidar::SemanticMapSettings p;  // lidar-semantic-map's defaults
   {
     const double rss0 = rssBytes(), peak0 = peakRssBytes();
     auto t = Clock::now();
@@ -154,7 +155,7 @@ int main(int argc, char** argv) {
             (peak_built - peak0) / n, (peak_shrunk - peak0) / n, (rss_shrunk - rss0) / n),
         (peak_built - peak0) / n <= 64 ? "yes" : "**no**");
     t = Clock::now();
-    lidar::KnnFilterSettings ks = stages::detail::knnSettings(p);
+    lidar::KnnFilterSettings ks = p.refinement.knn;
     ks.num_threads = 1;
     const std::size_t before = map.size();
     map.filter(lidar::knnMeanDistanceFilter(map, ks));
@@ -162,7 +163,7 @@ int main(int argc, char** argv) {
     const std::size_t knn_removed = before - map.size();
     t = Clock::now();
     lidar::VehicleTraceStats ts;
-    map.filter(lidar::vehicleTraceFilter(map, stages::detail::traceSettings(p), &ts));
+    map.filter(lidar::vehicleTraceFilter(map, p.refinement.traces, &ts));
     const double t_tr = since(t);
     row("refinement: K-nearest filter (K = 6, 0.20 m) + vehicle-trace removal", "&le; 10 s",
         fmt("%.2f s (KNN %.2f s, traces %.2f s)", t_knn + t_tr, t_knn, t_tr),
@@ -178,8 +179,8 @@ int main(int argc, char** argv) {
   const io::KittiRawDrive drive = io::openKittiRawDrive(drive_dir, {});
   auto poses = lidar::oxtsVeloPoses(drive, false);
   lidar::recenter(poses);
-  const auto fset = stages::detail::fusionSettings(p, drive);
-  lidar::FrameSemantics semantics(drive, stages::detail::semanticsSettings(p, ""));
+  const auto fset = lidar::fusionForDrive(p.fusion, drive);
+  lidar::FrameSemantics semantics(drive, p.semantics);
   std::vector<io::VelodyneScan> scans;
   std::vector<io::SemanticImage> sems;
   double points = 0;
@@ -194,9 +195,10 @@ int main(int argc, char** argv) {
   if (!train_drives.empty() && !classifier_dir.empty()) {
     const auto t = Clock::now();
     std::vector<fs::path> td(train_drives.begin(), train_drives.end());
-    const auto s = stages::runLidarSemanticMapTrain(td, classifier_dir, p);
+    const auto tr = lidar::trainClusterClassifier(td, {}, p, lidar::RTreesSettings{}, "");
+    tr.classifier.save(classifier_dir);
     em_note = fmt("forests trained in the bench on %.0f labelled frames of another seed (%.1f s)",
-                  s["frames_used"].get<double>(), since(t));
+                  static_cast<double>(tr.frames_used), since(t));
   }
   if (!classifier_dir.empty()) {
     forests = lidar::ClusterClassifier::load(classifier_dir);
@@ -273,13 +275,12 @@ int main(int argc, char** argv) {
     row("with ENet", "-", "skipped: KITTI drive or ENet model absent", "-");
     return 0;
   }
-  stages::LidarSemanticMapParams pk;
-  pk.last_frame = kitti_frames - 1;
-  pk.segmenter = "enet";
-  pk.model = model;
-  const io::KittiRawDrive kd = io::openKittiRawDrive(kitti, stages::detail::frameRange(pk));
-  lidar::FrameSemantics enet(kd, stages::detail::semanticsSettings(pk, ""));
-  const auto kset = stages::detail::fusionSettings(pk, kd);
+  lidar::SemanticMapSettings pk;
+  pk.semantics.segmenter = "enet";
+  pk.semantics.model = model;
+  const io::KittiRawDrive kd = io::openKittiRawDrive(kitti, io::FrameRange{0, kitti_frames - 1, 1});
+  lidar::FrameSemantics enet(kd, pk.semantics);
+  const auto kset = lidar::fusionForDrive(pk.fusion, kd);
   lidar::SemanticVoxelMap kmap(pk.voxel_size, static_cast<float>(pk.min_log_prob));
   double t_net = 0, t_lab = 0;
   for (const auto& f : kd.frames) {

@@ -133,6 +133,30 @@ TEST_CASE("aggregate app: exit codes, lists and intact outputs after a failure",
   CHECK(fs::exists(dir / "out2" / "map.cbor"));
 }
 
+TEST_CASE("aggregate app: --method grid_vote runs the Qin baseline and says so",
+          "[aggregate][app][grid_vote]") {
+  const auto dir = test::tempDir("agg-grid");
+  test::SynthOptions o;
+  o.drives = 4;
+  o.length = 100;
+  const auto files = writeLsms(test::makeSynthWorld(o), dir);
+  std::string inputs;
+  for (const auto& f : files) inputs += " " + quoted(fs::path(f));
+  REQUIRE(runAggregateApp("--method grid_vote -o " + quoted(dir / "grid") + inputs) == 0);
+  const auto summary = io::readDocument(dir / "grid" / "aggregate.summary.json");
+  CHECK(summary["method"] == "grid_vote");
+  CHECK(summary["grid_vote"]["voted_cells"].get<int>() > 0);
+  CHECK(summary["grid_vote"]["min_votes"] == 3);
+  CHECK(summary["classes"]["lane_line"]["instances"] == 3);
+  CHECK(io::readDocument(dir / "grid" / "aggregate.config.json")["method"] == "grid_vote");
+  // the default is the paper's method, without a grid block; an unknown method: exit 2
+  REQUIRE(runAggregateApp("-o " + quoted(dir / "ours") + inputs) == 0);
+  const auto ours = io::readDocument(dir / "ours" / "aggregate.summary.json");
+  CHECK(ours["method"] == "dbscan_bezier");
+  CHECK_FALSE(ours.contains("grid_vote"));
+  CHECK(runAggregateApp("--method voting -o " + quoted(dir / "bad") + inputs) == 2);
+}
+
 TEST_CASE("aggregate app: values that would exhaust memory or overflow are refused by name",
           "[aggregate][app][config]") {
   const auto dir = test::tempDir("agg-bounds");

@@ -9,6 +9,7 @@ using namespace mapfuse;
 
 namespace {
 struct DemoParams {
+  static constexpr const char* kName = "DemoParams";
   double voxel_size = 0.25;  ///< m
   int max_iterations = 30;
   bool use_labels = true;
@@ -17,14 +18,11 @@ struct DemoParams {
 
   template <class V>
   void visit(V& v) {
-    v("voxel_size", voxel_size, "m", "voxel edge");
+    v("voxel_size", voxel_size, "m", "voxel edge", param::gt(0));
     v("max_iterations", max_iterations, "", "iterations");
     v("use_labels", use_labels, "", "match within a class only");
     v("method", method, "", "icp|sgicp");
     v("seed", seed, "", "random seed");
-  }
-  void validate() const {
-    requireParam(voxel_size > 0, "DemoParams", "voxel_size", voxel_size, "voxel_size > 0");
   }
 };
 
@@ -36,7 +34,7 @@ int runWith(std::vector<std::string> args, DemoParams& params, const std::functi
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   return cli::run(app, int(argv.size()), argv.data(), [&] {
-    params.validate();
+    validateParams(params);
     body();
   });
 }
@@ -68,10 +66,10 @@ TEST_CASE("params serialise to JSON and back, and unknown keys are config errors
 
 TEST_CASE("validation names the field, the value and the rule", "[core][params]") {
   DemoParams p;
-  p.validate();  // defaults are valid
+  validateParams(p);  // defaults are valid
   p.voxel_size = -1;
   try {
-    p.validate();
+    validateParams(p);
     FAIL("invalid value accepted");
   } catch (const ConfigError& e) {
     CHECK(std::string(e.what()) ==

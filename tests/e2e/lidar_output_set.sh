@@ -7,15 +7,7 @@
 # each leaving every earlier output byte-identical and no temporary file; an output folder below
 # a regular file is refused before any work (exit 4).
 set -euo pipefail
-BIN="${MAPFUSE_BIN_DIR:?}"
-SHARED="${MAPFUSE_SHARED:-${MAPFUSE_SOURCE_DIR:?}/../shared}"
-DATE="$SHARED/data/kitti_raw/2011_09_26"
-DRIVE="$DATE/2011_09_26_drive_sfnd_sync"
-MODEL="$SHARED/models/enet-cityscapes/enet-model.net"
-if [[ ! -d "$DRIVE" || ! -f "$MODEL" ]]; then echo "SKIP: shared data absent ($DRIVE)"; exit 77; fi
-TMP="$(mktemp -d)"
-trap 'rm -rf "$TMP"' EXIT
-cd "$TMP"
+source "$(cd "$(dirname "$0")" && pwd)/lib/kitti_sfnd.sh"  # BIN, DATE, DRIVE, MODEL; cd TMP
 fail() { echo "FAIL: $*"; exit 1; }
 snapshot() { (cd "$1" && find . -type f ! -name '.mapfuse.lock' -print0 | sort -z | xargs -0 sha1sum); }
 run() {  # run DRIVE OUT [LAST]: frames 0, 2, ... LAST (default 8) of DRIVE

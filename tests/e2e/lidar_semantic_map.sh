@@ -3,13 +3,8 @@
 # LiDAR-odometry poses; a second run must take the semantics from the ENet cache and produce
 # byte-identical maps (determinism).
 set -euo pipefail
-BIN="${MAPFUSE_BIN_DIR:?}"
-SHARED="${MAPFUSE_SHARED:-${MAPFUSE_SOURCE_DIR:?}/../shared}"
-DRIVE="$SHARED/data/kitti_raw/2011_09_26/2011_09_26_drive_sfnd_sync"
-MODEL="$SHARED/models/enet-cityscapes/enet-model.net"
-if [[ ! -d "$DRIVE" || ! -f "$MODEL" ]]; then echo "SKIP: shared data absent ($DRIVE)"; exit 77; fi
-OUT="$(mktemp -d)"
-trap 'rm -rf "$OUT"' EXIT
+source "$(cd "$(dirname "$0")" && pwd)/lib/kitti_sfnd.sh"  # BIN, DRIVE, MODEL, TMP or skip
+OUT="$TMP"
 run() {
   "$BIN/lidar-semantic-map" "$DRIVE" -o "$1" --segmenter enet --model "$MODEL" \
     --pose-source odometry --first-frame 0 --last-frame 8 --stride 2 --quiet

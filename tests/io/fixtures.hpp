@@ -1,5 +1,8 @@
 #pragma once
-/// @file Small hand-made LSM and vector map used by the io tests.
+/// @file Small hand-made LSM and vector map used by the io tests, and the element comparison
+/// of their round trips.
+#include <catch2/catch.hpp>
+
 #include "mapfuse/core/lsm.hpp"
 #include "mapfuse/core/vector_map.hpp"
 
@@ -69,6 +72,29 @@ inline VectorMap makeVectorMap() {
   pole.note = "placed by simulator";
   map.instances = {lane, sign, pole};
   return map;
+}
+
+/// @brief The LSM elements of `a` and `b` agree: ids, classes, attributes, anchors, scores, and
+/// every point and covariance within `tolerance` (0: bit-exact).
+inline void checkSameElements(const Lsm& a, const Lsm& b, double tolerance) {
+  REQUIRE(a.elements.size() == b.elements.size());
+  for (std::size_t i = 0; i < a.elements.size(); ++i) {
+    const auto &x = a.elements[i], &y = b.elements[i];
+    CHECK(x.id == y.id);
+    CHECK(x.cls == y.cls);
+    CHECK(x.attributes == y.attributes);
+    CHECK(x.anchor == y.anchor);
+    CHECK(x.confidence == y.confidence);
+    CHECK(x.observations == y.observations);
+    CHECK(x.height == y.height);
+    CHECK(x.truth_id == y.truth_id);
+    REQUIRE(x.points_body.size() == y.points_body.size());
+    REQUIRE(x.covariances.size() == y.covariances.size());
+    for (std::size_t k = 0; k < x.points_body.size(); ++k) {
+      CHECK((x.points_body[k] - y.points_body[k]).norm() <= tolerance);
+      CHECK((x.covariances[k] - y.covariances[k]).norm() <= tolerance);
+    }
+  }
 }
 
 }  // namespace mapfuse::test

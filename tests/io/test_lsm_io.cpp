@@ -4,6 +4,7 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/lsm_io.hpp"
+#include "support/error_matchers.hpp"
 #include "support/test_support.hpp"
 
 using namespace mapfuse;
@@ -27,23 +28,7 @@ void requireSameLsm(const Lsm& a, const Lsm& b) {
   REQUIRE(a.gps.size() == b.gps.size());
   CHECK(a.gps[0].position.lon == b.gps[0].position.lon);
   CHECK(a.gps[0].sigma_v == b.gps[0].sigma_v);
-  REQUIRE(a.elements.size() == b.elements.size());
-  for (std::size_t i = 0; i < a.elements.size(); ++i) {
-    const auto &x = a.elements[i], &y = b.elements[i];
-    CHECK(x.id == y.id);
-    CHECK(x.cls == y.cls);
-    CHECK(x.attributes == y.attributes);
-    CHECK(x.anchor == y.anchor);
-    CHECK(x.confidence == y.confidence);
-    CHECK(x.observations == y.observations);
-    CHECK(x.height == y.height);
-    CHECK(x.truth_id == y.truth_id);
-    REQUIRE(x.points_body.size() == y.points_body.size());
-    for (std::size_t k = 0; k < x.points_body.size(); ++k) {
-      CHECK((x.points_body[k] - y.points_body[k]).norm() < kExact);
-      CHECK((x.covariances[k] - y.covariances[k]).norm() < kExact);
-    }
-  }
+  test::checkSameElements(a, b, kExact);
 }
 
 std::string messageOf(const std::function<void()>& f) {
@@ -147,13 +132,8 @@ TEST_CASE("NaN and Inf are refused", "[io][lsm]") {
   d["elements"][0]["points"][1][0] = std::numeric_limits<double>::infinity();
   // CBOR can carry Inf/NaN (JSON text cannot): the reader must catch it.
   io::writeDocument(dir / "inf.cbor", d);
-  try {
-    io::readLsm(dir / "inf.cbor");
-    FAIL("accepted Inf");
-  } catch (const ParseError& e) {
-    CHECK(e.field() == "elements[0].points[1][0]");
-    CHECK_THAT(e.problem(), Catch::Contains("not finite"));
-  }
+  CHECK_THROWS_MATCHES(io::readLsm(dir / "inf.cbor"), ParseError,
+                       test::ParseErrorAt("elements[0].points[1][0]", "", "not finite"));
   test::writeText(dir / "nan.json", R"({"format": "mapfuse.lsm", "version": 1, "x": NaN})");
   CHECK_THROWS_AS(io::readLsm(dir / "nan.json"), ParseError);
 }

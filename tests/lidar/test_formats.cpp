@@ -7,6 +7,7 @@
 #include "mapfuse/io/pcd.hpp"
 #include "mapfuse/io/ply.hpp"
 #include "mapfuse/io/semantic_kitti.hpp"
+#include "support/error_matchers.hpp"
 #include "support/test_support.hpp"
 
 using namespace mapfuse;
@@ -48,12 +49,7 @@ TEST_CASE("PLY round-trip keeps points, labels, confidence and count", "[lidar][
   CHECK(kitti == 40);
   // truncated body
   test::writeText(dir / "t.ply", text.substr(0, text.size() - 7));
-  try {
-    io::readPly(dir / "t.ply");
-    FAIL("no throw");
-  } catch (const ParseError& e) {
-    CHECK(e.field() == "vertex");
-  }
+  CHECK_THROWS_MATCHES(io::readPly(dir / "t.ply"), ParseError, test::ParseErrorAt("vertex"));
   test::writeText(dir / "a.ply", "ply\nformat ascii 1.0\nelement vertex 0\nend_header\n");
   CHECK_THROWS_AS(io::readPly(dir / "a.ply"), ParseError);
 }
@@ -81,12 +77,7 @@ TEST_CASE("PCD round-trip keeps points, labels, confidence and count", "[lidar][
   std::string ascii = text;
   ascii.replace(ascii.find("DATA binary"), 11, "DATA ascii");
   test::writeText(dir / "a.pcd", ascii);
-  try {
-    io::readPcd(dir / "a.pcd");
-    FAIL("no throw");
-  } catch (const ParseError& e) {
-    CHECK(e.field() == "DATA");
-  }
+  CHECK_THROWS_MATCHES(io::readPcd(dir / "a.pcd"), ParseError, test::ParseErrorAt("DATA"));
 }
 
 TEST_CASE("SemanticKITTI .label round-trip and truncation", "[lidar][io]") {
@@ -113,10 +104,6 @@ TEST_CASE("KITTI poses file reads the odometry ground truth", "[lidar][io]") {
   REQUIRE(back.size() == 6);
   CHECK((back[5].matrix() - poses[5].matrix()).cwiseAbs().maxCoeff() < 1e-8);
   test::writeText(dir / "bad.txt", "1 0 0 0 0 1 0 0 0 0 1\n");
-  try {
-    io::readKittiOdometryPoses(dir / "bad.txt");
-    FAIL("no throw");
-  } catch (const ParseError& e) {
-    CHECK(e.field() == "line 1");
-  }
+  CHECK_THROWS_MATCHES(io::readKittiOdometryPoses(dir / "bad.txt"), ParseError,
+                       test::ParseErrorAt("line 1"));
 }

@@ -6,6 +6,7 @@
 #include "mapfuse/io/kitti_raw.hpp"
 #include "mapfuse/io/semantic_image.hpp"
 #include "mapfuse/io/velodyne.hpp"
+#include "support/error_matchers.hpp"
 #include "support/test_support.hpp"
 
 using namespace mapfuse;
@@ -46,20 +47,11 @@ TEST_CASE("semantic label png and prob images round-trip", "[lidar][io]") {
 TEST_CASE("malformed prob and label images throw ParseError naming the field", "[lidar][io]") {
   const auto dir = test::tempDir("semimg-bad");
   test::writeText(dir / "a.prob", "mapfuse-prob 1 2 2 8\n" + std::string(31, 'x'));
-  try {
-    io::readSemanticImage(dir / "a.prob");
-    FAIL("no throw");
-  } catch (const ParseError& e) {
-    CHECK(e.field() == "data");
-    CHECK(e.file() == (dir / "a.prob").string());
-  }
+  CHECK_THROWS_MATCHES(io::readSemanticImage(dir / "a.prob"), ParseError,
+                       test::ParseErrorAt("data", (dir / "a.prob").string()));
   test::writeText(dir / "b.prob", "mapfuse-prob 1 2 2 20\n" + std::string(80, 'x'));
-  try {
-    io::readSemanticImage(dir / "b.prob");
-    FAIL("no throw");
-  } catch (const ParseError& e) {
-    CHECK(e.field() == "channels");
-  }
+  CHECK_THROWS_MATCHES(io::readSemanticImage(dir / "b.prob"), ParseError,
+                       test::ParseErrorAt("channels"));
   test::writeText(dir / "c.prob", "P5 2 2 255\n....");
   CHECK_THROWS_AS(io::readSemanticImage(dir / "c.prob"), ParseError);
   test::writeText(dir / "d.png", "not a png");
@@ -101,24 +93,14 @@ TEST_CASE("calibration: missing key and bad number name file and field", "[lidar
     if (line.rfind("R_rect_00", 0) != 0) no_rect += line + "\n";
   test::writeText(dir / "calib_cam_to_cam.txt", no_rect);
   test::writeText(dir / "calib_velo_to_cam.txt", velo);
-  try {
-    io::readKittiCalibration(dir);
-    FAIL("no throw");
-  } catch (const ParseError& e) {
-    CHECK(e.field() == "R_rect_00");
-    CHECK(e.file() == (dir / "calib_cam_to_cam.txt").string());
-  }
+  CHECK_THROWS_MATCHES(io::readKittiCalibration(dir), ParseError,
+                       test::ParseErrorAt("R_rect_00", (dir / "calib_cam_to_cam.txt").string()));
   test::writeText(dir / "calib_cam_to_cam.txt", cam);
   std::string bad = velo;
   bad.replace(bad.find("T: ") + 3, 1, "x");
   test::writeText(dir / "calib_velo_to_cam.txt", bad);
-  try {
-    io::readKittiCalibration(dir);
-    FAIL("no throw");
-  } catch (const ParseError& e) {
-    CHECK(e.field() == "T");
-    CHECK(e.file() == (dir / "calib_velo_to_cam.txt").string());
-  }
+  CHECK_THROWS_MATCHES(io::readKittiCalibration(dir), ParseError,
+                       test::ParseErrorAt("T", (dir / "calib_velo_to_cam.txt").string()));
   fs::remove(dir / "calib_velo_to_cam.txt");
   CHECK_THROWS_AS(io::readKittiCalibration(dir), IoError);
 }
@@ -155,8 +137,8 @@ TEST_CASE("KITTI raw drive lists frames present, ranges and strides", "[lidar][i
   REQUIRE(sub.frames.size() == 4);
   CHECK(sub.frames[0].index == 5);
   CHECK(sub.frames[3].index == 14);
-  CHECK_THROWS_AS(
-      io::openKittiRawDrive(sfnd, {static_cast<int>(scans_on_disk) + 10, -1, 1}), InputError);
+  CHECK_THROWS_AS(io::openKittiRawDrive(sfnd, {static_cast<int>(scans_on_disk) + 10, -1, 1}),
+                  InputError);
   CHECK_THROWS_AS(io::openKittiRawDrive(sfnd, {0, -1, 0}), InputError);
 
   const auto d5 = io::openKittiRawDrive(

@@ -140,7 +140,8 @@ TEST_CASE("lidar-semantic-map on a sequence folder: odometry, then the sequence'
                            io::SemanticImage::fromLabels(1241, 376, labels));
   }
   stages::LidarSemanticMapParams p;
-  const auto a = stages::runLidarSemanticMap(seq, root / "a", p);
+  stages::runLidarSemanticMap(seq, root / "a", p);
+  const auto a = test::readSummary(root / "a", "lidar-semantic-map");
   CHECK(a["poses"]["source"] == "odometry");
   CHECK(a["poses"]["untrusted_steps"].empty());
   CHECK(a["frames"] == 6);
@@ -157,7 +158,8 @@ TEST_CASE("lidar-semantic-map on a sequence folder: odometry, then the sequence'
   CHECK(cam[5].translation().z() == Approx(3.6).margin(0.2));
   // With the odometry's poses.txt beside the scans, auto uses it (SemanticKITTI layout).
   fs::copy_file(root / "a/poses.txt", seq / "poses.txt");
-  const auto b = stages::runLidarSemanticMap(seq, root / "b", p);
+  stages::runLidarSemanticMap(seq, root / "b", p);
+  const auto b = test::readSummary(root / "b", "lidar-semantic-map");
   CHECK(b["poses"]["source"] == "poses_file");
   CHECK(b["voxels"].get<double>() == Approx(a["voxels"].get<double>()).epsilon(0.001));
 }

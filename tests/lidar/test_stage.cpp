@@ -6,6 +6,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/kitti_poses.hpp"
@@ -54,26 +55,27 @@ fs::path makeDrive(const fs::path& root, int frames = 3, int replaced = -1) {
 
 TEST_CASE("lidar-semantic-map defaults are valid and configs/ mirrors them", "[lidar][stage]") {
   stages::LidarSemanticMapParams p;
-  CHECK_NOTHROW(p.validate());
+  CHECK_NOTHROW(validateParams(p));
   const auto file =
       io::readDocument(fs::path(MAPFUSE_SOURCE_DIR) / "configs/lidar-semantic-map.json");
   CHECK(file == paramsToJson(p));
-  p.knn_k = 0;
-  CHECK_THROWS_AS(p.validate(), ConfigError);
+  p.map.refinement.knn.k = 0;
+  CHECK_THROWS_AS(validateParams(p), ConfigError);
   p = {};
-  p.seen_through_vote_radius = -0.5;
-  CHECK_THROWS_WITH(p.validate(), Catch::Contains("seen_through_vote_radius"));
+  p.map.refinement.through.vehicle_vote_radius = -0.5;
+  CHECK_THROWS_WITH(validateParams(p), Catch::Contains("seen_through_vote_radius"));
   p = {};
-  p.seen_through_vote_share = 0.0;
-  CHECK_THROWS_WITH(p.validate(), Catch::Contains("seen_through_vote_share"));
+  p.map.refinement.through.vehicle_vote_share = 0.0;
+  CHECK_THROWS_WITH(validateParams(p), Catch::Contains("seen_through_vote_share"));
 }
 
 TEST_CASE("lidar-semantic-map builds a map from precomputed label images", "[lidar][stage]") {
   const auto root = test::tempDir("stage");
   const fs::path drive = makeDrive(root);
   stages::LidarSemanticMapParams p;
-  p.pose_source = "odometry";
-  const auto summary = stages::runLidarSemanticMap(drive, root / "out", p);
+  p.map.poses.source = "odometry";
+  stages::runLidarSemanticMap(drive, root / "out", p);
+  const auto summary = test::readSummary(root / "out", "lidar-semantic-map");
   CHECK(summary["semantics"]["source"] == "precomputed");
   CHECK(summary["error_minimization"]["skipped"] == true);
   CHECK(summary["poses"]["converged_scans"].get<int>() == 2);  // 3 frames: 2 steps
@@ -159,9 +161,10 @@ TEST_CASE("lidar-semantic-map: its own poses.txt fed back reproduces the map wit
   const auto root = test::tempDir("stage-roundtrip");
   const fs::path drive = makeDrive(root, 10);
   stages::LidarSemanticMapParams p;
-  p.pose_source = "odometry";
-  p.stride = 3;  // frames 0, 3, 6, 9: poses.txt has one line per selected frame
-  const auto a = stages::runLidarSemanticMap(drive, root / "a", p);
+  p.map.poses.source = "odometry";
+  p.frames.stride = 3;  // frames 0, 3, 6, 9: poses.txt has one line per selected frame
+  stages::runLidarSemanticMap(drive, root / "a", p);
+  const auto a = test::readSummary(root / "a", "lidar-semantic-map");
   REQUIRE(a["poses"]["untrusted_steps"].empty());
   // poses.txt is KITTI's T_world_cam0: rotations orthonormal, the first pose the identity.
   const auto cam = io::readKittiOdometryPoses(root / "a/poses.txt");
@@ -169,16 +172,17 @@ TEST_CASE("lidar-semantic-map: its own poses.txt fed back reproduces the map wit
   CHECK((cam[0].matrix() - Eigen::Matrix4d::Identity()).cwiseAbs().maxCoeff() < 1e-12);
   // Camera 0 looks along +z: driving forward moves the camera along its z axis.
   CHECK(cam[3].translation().z() > 0.9 * cam[3].translation().norm());
-  p.pose_source = "auto";
-  p.poses_file = (root / "a/poses.txt").string();
-  const auto b = stages::runLidarSemanticMap(drive, root / "b", p);
+  p.map.poses.source = "auto";
+  p.map.poses.poses_file = (root / "a/poses.txt").string();
+  stages::runLidarSemanticMap(drive, root / "b", p);
+  const auto b = test::readSummary(root / "b", "lidar-semantic-map");
   CHECK(b["poses"]["source"] == "poses_file");
   const auto map_a = io::readPly(root / "a/map.ply"), map_b = io::readPly(root / "b/map.ply");
   CHECK(std::abs(double(map_a.size()) - double(map_b.size())) <= 0.001 * double(map_a.size()));
   double same = 0;
-  CHECK(maxNearestDistance(map_a, map_b, p.voxel_size, &same) <= kRoundTripTol);
+  CHECK(maxNearestDistance(map_a, map_b, p.map.voxel_size, &same) <= kRoundTripTol);
   CHECK(same >= kMinSameVoxels);
-  CHECK(maxNearestDistance(map_b, map_a, p.voxel_size, &same) <= kRoundTripTol);
+  CHECK(maxNearestDistance(map_b, map_a, p.map.voxel_size, &same) <= kRoundTripTol);
   CHECK(same >= kMinSameVoxels);
 }
 
@@ -187,7 +191,7 @@ TEST_CASE("lidar-semantic-map: a diverging drive stops before any output is repl
   const auto root = test::tempDir("stage-diverge");
   const fs::path good = makeDrive(root / "good", 8);
   stages::LidarSemanticMapParams p;
-  p.pose_source = "odometry";
+  p.map.poses.source = "odometry";
   stages::runLidarSemanticMap(good, root / "out", p);
   std::map<fs::path, std::string> before;
   for (const auto& e : fs::recursive_directory_iterator(root / "out"))
@@ -211,8 +215,9 @@ TEST_CASE("lidar-semantic-map: a diverging drive stops before any output is repl
                          " --pose-source odometry --quiet 2> " + (root / "err.txt").string()) == 3);
   CHECK_THAT(test::readText(root / "err.txt"), Catch::Contains("frame 5"));
   // One untrusted step tolerated: exit 0, the step listed in the summary.
-  p.odom_max_untrusted = 1;
-  const auto s = stages::runLidarSemanticMap(bad, root / "tolerant", p);
+  p.map.poses.odometry.max_untrusted = 1;
+  stages::runLidarSemanticMap(bad, root / "tolerant", p);
+  const auto s = test::readSummary(root / "tolerant", "lidar-semantic-map");
   REQUIRE(s["poses"]["untrusted_steps"].size() == 1);
   CHECK(s["poses"]["untrusted_steps"][0]["frame"] == 5);
 }

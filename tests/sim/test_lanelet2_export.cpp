@@ -160,9 +160,13 @@ TEST_CASE("Lanelet2 export: Lanelet2's file conventions", "[sim][osm][export]") 
   const pugi::xml_node osm = doc.child("osm");
   std::map<std::string, int> way_types, relation_subtypes, member_roles;
   int elements = 0;
+  std::map<std::string, long long> last_id;  // per element kind
   for (const pugi::xml_node e : osm.children()) {
     ++elements;
     CHECK(e.attribute("id").as_llong() < 0);  // new elements, as Lanelet2 and JOSM write them
+    // In id order within each kind (|id| rising), as osmium check-refs expects.
+    CHECK(e.attribute("id").as_llong() < last_id.emplace(e.name(), 0).first->second);
+    last_id[e.name()] = e.attribute("id").as_llong();
     CHECK_FALSE(e.attribute("version"));
     CHECK_FALSE(e.attribute("visible"));
     std::map<std::string, std::string> tags;
@@ -232,4 +236,109 @@ TEST_CASE("Lanelet2 export: simulate --map loads an aggregated map.osm with its 
   CHECK(plate_loss < 0.5);
   const double worst = compareMaps(agg_plates, back);
   CHECK(worst < kRoundTripTolerance);
+}
+
+namespace {
+/// Intersections without traffic lights, counted from the true map alone: stop lines whose
+/// middles lie within 45 m of each other (single linkage) are one intersection; it is lit when a
+/// traffic light stands within 25 m of one of them.
+int unlitIntersections(const VectorMap& truth) {
+  std::vector<Eigen::Vector3d> mids, lights;
+  for (const auto& m : truth.instances) {
+    if (m.cls == CrowdClass::kStopLine) mids.push_back(0.5 * (m.points.front() + m.points.back()));
+    if (m.cls == CrowdClass::kTrafficLight) lights.push_back(m.points.front());
+  }
+  std::vector<int> group(mids.size(), -1);
+  int groups = 0;
+  for (std::size_t i = 0; i < mids.size(); ++i) {
+    if (group[i] >= 0) continue;
+    group[i] = groups;
+    for (std::vector<std::size_t> todo = {i}; !todo.empty();) {
+      const std::size_t a = todo.back();
+      todo.pop_back();
+      for (std::size_t b = 0; b < mids.size(); ++b)
+        if (group[b] < 0 && (mids[a] - mids[b]).head<2>().norm() < 45.0)
+          group[b] = groups, todo.push_back(b);
+    }
+    ++groups;
+  }
+  std::vector<bool> lit(groups, false);
+  for (std::size_t i = 0; i < mids.size(); ++i)
+    for (const auto& l : lights)
+      lit[group[i]] = lit[group[i]] || (l - mids[i]).head<2>().norm() < 25.0;
+  return static_cast<int>(std::count(lit.begin(), lit.end(), false));
+}
+
+/// |dx| > |dy| of a lanelet's left bound: it runs east-west.
+bool eastWest(const io::Lanelet2Map& osm, int64_t lanelet, const geo::GeoOrigin& origin) {
+  const geo::EnuConverter enu(origin);
+  for (const auto& ll : osm.lanelets)
+    if (ll.id == lanelet) {
+      const auto& pts = osm.way(ll.left)->points;
+      const Eigen::Vector3d d = enu.toEnu(pts.back()) - enu.toEnu(pts.front());
+      return std::abs(d.x()) > std::abs(d.y());
+    }
+  FAIL("lanelet " << lanelet << " not in the file");
+  return false;
+}
+
+/// Every lanelet a regulatory element names refers back to it.
+void checkReferredBack(const io::Lanelet2Map& osm, const io::Lanelet2Regulatory& re) {
+  for (const auto* ids : {&re.yield, &re.right_of_way})
+    for (int64_t id : *ids) {
+      const auto ll = std::find_if(osm.lanelets.begin(), osm.lanelets.end(),
+                                   [&](const io::Lanelet2Lanelet& x) { return x.id == id; });
+      REQUIRE(ll != osm.lanelets.end());
+      CHECK(std::count(ll->regulatory_elements.begin(), ll->regulatory_elements.end(), re.id) == 1);
+    }
+}
+}  // namespace
+
+TEST_CASE("Lanelet2 export: stop lines without lights give all_way_stop or right_of_way",
+          "[sim][osm][export]") {
+  const sim::World world = proceduralWorld();
+  const int unlit = unlitIntersections(world.truth);
+  REQUIRE(unlit > 0);  // the default world has intersections with and without lights
+  SECTION("every approach has a stop line: one all_way_stop per unlit intersection") {
+    io::Lanelet2ExportStats stats;
+    const io::Lanelet2Map osm = io::parseLanelet2Osm(
+        io::vectorMapToOsm(world.truth, lanePaths(world), &stats), "export.osm");
+    CHECK(stats.all_way_stop_elements == unlit);
+    CHECK(stats.right_of_way_elements == 0);
+    for (const auto& re : osm.regulatory_elements) {
+      if (re.subtype != "all_way_stop") continue;
+      CHECK(re.yield.size() >= 2);
+      CHECK(re.ref_lines.size() == re.yield.size());  // one stop line per lanelet, in order
+      CHECK(re.right_of_way.empty());
+      checkReferredBack(osm, re);
+    }
+  }
+  SECTION("stop lines on the north-south approaches only: they yield to east-west traffic") {
+    // A stop line runs across its road: one running north-south stands on an east-west road.
+    VectorMap minor = world.truth;
+    minor.instances.erase(
+        std::remove_if(minor.instances.begin(), minor.instances.end(),
+                       [](const MapInstance& m) {
+                         const Eigen::Vector3d d = m.points.back() - m.points.front();
+                         return m.cls == CrowdClass::kStopLine && std::abs(d.y()) > std::abs(d.x());
+                       }),
+        minor.instances.end());
+    io::Lanelet2ExportStats stats;
+    const io::Lanelet2Map osm =
+        io::parseLanelet2Osm(io::vectorMapToOsm(minor, lanePaths(world), &stats), "export.osm");
+    CHECK(stats.right_of_way_elements == unlit);
+    CHECK(stats.all_way_stop_elements == 0);
+    int yield = 0, priority = 0;
+    for (const auto& re : osm.regulatory_elements) {
+      if (re.subtype != "right_of_way") continue;
+      CHECK(re.ref_lines.size() == re.yield.size());
+      for (int64_t id : re.yield) CHECK_FALSE(eastWest(osm, id, minor.origin));
+      for (int64_t id : re.right_of_way) CHECK(eastWest(osm, id, minor.origin));
+      yield += static_cast<int>(re.yield.size());
+      priority += static_cast<int>(re.right_of_way.size());
+      checkReferredBack(osm, re);
+    }
+    CHECK(yield >= unlit);
+    CHECK(priority >= unlit);
+  }
 }

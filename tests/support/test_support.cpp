@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "mapfuse/core/paths.hpp"
+#include "mapfuse/io/document.hpp"
 
 namespace mapfuse::test {
 
@@ -51,6 +52,10 @@ std::string readText(const std::filesystem::path& path) {
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+nlohmann::json readSummary(const std::filesystem::path& dir, const std::string& stage) {
+  return io::readDocument(dir / (stage + ".summary.json"));
 }
 
 }  // namespace mapfuse::test

@@ -1,6 +1,7 @@
 #pragma once
 /// @file Helpers shared by the Catch2 tests: shared-data lookup, temp folders, running apps.
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 
 namespace mapfuse::test {
@@ -27,5 +28,8 @@ void writeText(const std::filesystem::path& path, const std::string& text);
 
 /// @brief Reads a whole file as bytes.
 std::string readText(const std::filesystem::path& path);
+
+/// @brief `<dir>/<stage>.summary.json`, parsed.
+nlohmann::json readSummary(const std::filesystem::path& dir, const std::string& stage);
 
 }  // namespace mapfuse::test

@@ -6,6 +6,7 @@
 
 #include "bezier_fit.hpp"
 #include "discrete_merge.hpp"
+#include "grid_instances.hpp"
 #include "lane_instantiation.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
 
@@ -55,24 +56,32 @@ VectorMap aggregateObservations(const ObservationSet& set, const AggregatorParam
   map.source = "aggregate";
   for (const auto& o : set.items) ++stats.observations[std::size_t(o.cls)];
 
-  // lane lines: two-stage DBSCAN, then Bezier vectorization
-  const auto lane_idx = indicesOfClass(set, CrowdClass::kLaneLine);
-  const LaneInstantiation lanes =
-      instantiateLanes(set.items, lane_idx, params.lanes, set.num_drives);
-  stats.lanes = lanes.stats;
-  stats.noise[std::size_t(CrowdClass::kLaneLine)] = lanes.stats.noise_pieces;
-  double sum_sq = 0;
-  std::size_t count = 0;
-  std::vector<MapInstance> lane_instances(lanes.instances.size());
-  for (std::size_t i = 0; i < lanes.instances.size(); ++i)
-    lane_instances[i] = vectorizeLane(set, lanes.instances[i], params, stats, sum_sq, count);
-  stats.bezier_rms_deviation = count ? std::sqrt(sum_sq / double(count)) : 0.0;
-  for (auto& inst : lane_instances) map.instances.push_back(std::move(inst));
+  const bool grid_vote = params.method == "grid_vote";
+  if (grid_vote) {
+    // the Qin et al. 2021 baseline: the ground classes by grid voting (grid_vote.hpp)
+    for (auto& inst : gridVoteInstances(set.items, params, set.num_drives, stats))
+      map.instances.push_back(std::move(inst));
+  } else {
+    // lane lines: two-stage DBSCAN, then Bezier vectorization
+    const auto lane_idx = indicesOfClass(set, CrowdClass::kLaneLine);
+    const LaneInstantiation lanes =
+        instantiateLanes(set.items, lane_idx, params.lanes, set.num_drives);
+    stats.lanes = lanes.stats;
+    stats.noise[std::size_t(CrowdClass::kLaneLine)] = lanes.stats.noise_pieces;
+    double sum_sq = 0;
+    std::size_t count = 0;
+    std::vector<MapInstance> lane_instances(lanes.instances.size());
+    for (std::size_t i = 0; i < lanes.instances.size(); ++i)
+      lane_instances[i] = vectorizeLane(set, lanes.instances[i], params, stats, sum_sq, count);
+    stats.bezier_rms_deviation = count ? std::sqrt(sum_sq / double(count)) : 0.0;
+    for (auto& inst : lane_instances) map.instances.push_back(std::move(inst));
+  }
 
-  // every other class: discrete clustering and weighted merging
+  // every other class (with grid_vote: the elevated ones): discrete clustering and weighted
+  // merging
   for (int c = 0; c < kNumCrowdClasses; ++c) {
     const CrowdClass cls = CrowdClass(c);
-    if (cls == CrowdClass::kLaneLine) continue;
+    if (cls == CrowdClass::kLaneLine || (grid_vote && isGridClass(cls))) continue;
     const auto idx = indicesOfClass(set, cls);
     if (idx.empty()) continue;
     std::size_t noise = 0;

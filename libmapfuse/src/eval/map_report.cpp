@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <set>
 #include <sstream>
@@ -87,22 +88,30 @@ std::string markdownReport(const std::vector<MapReportEntry>& maps,
     std::set<CrowdClass> classes;
     for (const auto& e : maps)
       for (const auto& c : e.metrics.classes) classes.insert(c.cls);
-    md << "## Relative precision (m) versus traversals\n\n| Traversals |";
-    for (auto c : classes) md << " " << crowdClassName(c) << " |";
-    md << "\n|---|";
-    for (std::size_t i = 0; i < classes.size(); ++i) md << "---|";
-    md << "\n";
-    for (const auto& e : maps) {
-      md << "| " << (e.traversals > 0 ? std::to_string(e.traversals) : e.name) << " |";
-      for (auto cls : classes) {
-        std::string cell = " – |";
-        for (const auto& c : e.metrics.classes)
-          if (c.cls == cls) cell = " " + orDash(c.relative, c.relative.mean) + " |";
-        md << cell;
+    for (const bool completeness : {false, true}) {
+      md << (completeness ? "## Completeness versus traversals"
+                          : "## Relative precision (m) versus traversals")
+         << "\n\n| Traversals |";
+      for (auto c : classes) md << " " << crowdClassName(c) << " |";
+      md << "\n|---|";
+      for (std::size_t i = 0; i < classes.size(); ++i) md << "---|";
+      md << "\n";
+      for (const auto& e : maps) {
+        md << "| " << (e.traversals > 0 ? std::to_string(e.traversals) : e.name) << " |";
+        for (auto cls : classes) {
+          std::string cell = " – |";
+          for (const auto& c : e.metrics.classes)
+            if (c.cls == cls)
+              cell = " " +
+                     (completeness ? (c.truth_count ? num(c.completeness) : std::string("–"))
+                                   : orDash(c.relative, c.relative.mean)) +
+                     " |";
+          md << cell;
+        }
+        md << "\n";
       }
       md << "\n";
     }
-    md << "\n";
   }
   if (!trajectories.empty()) {
     md << "## Trajectories\n\n| Drive | Keyframes | ATE mean (m) | ATE RMS (m) | ATE rot. RMS "
@@ -147,7 +156,7 @@ void writeErrorPerClassPng(const std::filesystem::path& path, const MapReportEnt
 
 void writeErrorVsTraversalsPng(const std::filesystem::path& path,
                                const std::vector<MapReportEntry>& maps) {
-  Axes ax;
+  // Fig. 9 of Song et al. 2023: relative precision (top) and completeness (bottom) per class
   std::vector<MapReportEntry> sorted = maps;
   std::stable_sort(sorted.begin(), sorted.end(),
                    [](const auto& a, const auto& b) { return a.traversals < b.traversals; });
@@ -158,32 +167,46 @@ void writeErrorVsTraversalsPng(const std::filesystem::path& path,
     for (const auto& c : e.metrics.classes)
       if (c.relative.count) vmax = std::max(vmax, c.relative.mean);
   }
-  ax.ymax = vmax * 1.15;
-  ax.frame("Relative precision vs traversals", "m");
-  auto xOf = [&](int t) { return ax.area.x + int(double(t) / tmax * (ax.area.width - 10)); };
-  for (int k = 0; k <= 5; ++k) {
-    const int t = int(std::lround(tmax * k / 5.0));
-    cv::putText(ax.img, std::to_string(t), {xOf(t) - 6, ax.area.y + ax.area.height + 18},
-                cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 0));
+  Axes rel, comp;
+  rel.ymax = vmax * 1.15;
+  rel.frame("Relative precision vs traversals", "m");
+  comp.ymax = 1.0;
+  comp.frame("Completeness vs traversals", "share");
+  auto xOf = [&](const Axes& ax, int t) {
+    return ax.area.x + int(double(t) / tmax * (ax.area.width - 10));
+  };
+  for (Axes* ax : {&rel, &comp}) {
+    for (int k = 0; k <= 5; ++k) {
+      const int t = int(std::lround(tmax * k / 5.0));
+      cv::putText(ax->img, std::to_string(t), {xOf(*ax, t) - 6, ax->area.y + ax->area.height + 18},
+                  cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 0));
+    }
+    cv::putText(ax->img, "traversals", {ax->area.x + ax->area.width - 80, ax->img.rows - 30},
+                cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(60, 60, 60));
   }
-  int legend_y = ax.area.y + 15;
+  int legend_y = rel.area.y + 15;
   for (int c = 0; c < kNumCrowdClasses; ++c) {
-    std::vector<cv::Point> pts;
+    std::vector<cv::Point> pr, pc;
     for (const auto& e : sorted)
       for (const auto& m : e.metrics.classes)
-        if (int(m.cls) == c && m.relative.count)
-          pts.push_back({xOf(e.traversals), ax.y(m.relative.mean)});
-    if (pts.empty()) continue;
+        if (int(m.cls) == c) {
+          if (m.relative.count) pr.push_back({xOf(rel, e.traversals), rel.y(m.relative.mean)});
+          if (m.truth_count > 0) pc.push_back({xOf(comp, e.traversals), comp.y(m.completeness)});
+        }
+    if (pr.empty() && pc.empty()) continue;
     const cv::Scalar col = bgr(CrowdClass(c));
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-      cv::circle(ax.img, pts[i], 3, col, cv::FILLED);
-      if (i) cv::line(ax.img, pts[i - 1], pts[i], col, 2, cv::LINE_AA);
-    }
-    cv::putText(ax.img, crowdClassName(CrowdClass(c)), {ax.area.x + ax.area.width - 120, legend_y},
-                cv::FONT_HERSHEY_SIMPLEX, 0.4, col);
+    for (auto [ax, pts] : {std::pair{&rel, &pr}, std::pair{&comp, &pc}})
+      for (std::size_t i = 0; i < pts->size(); ++i) {
+        cv::circle(ax->img, (*pts)[i], 3, col, cv::FILLED);
+        if (i) cv::line(ax->img, (*pts)[i - 1], (*pts)[i], col, 2, cv::LINE_AA);
+      }
+    cv::putText(rel.img, crowdClassName(CrowdClass(c)),
+                {rel.area.x + rel.area.width - 120, legend_y}, cv::FONT_HERSHEY_SIMPLEX, 0.4, col);
     legend_y += 15;
   }
-  io::writePng(path, ax.img);
+  cv::Mat both;
+  cv::vconcat(rel.img, comp.img, both);
+  io::writePng(path, both);
 }
 
 }  // namespace mapfuse::eval

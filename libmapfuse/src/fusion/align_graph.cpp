@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <unordered_map>
 
 #include "mapfuse/core/log.hpp"
@@ -87,11 +88,18 @@ struct ElementPoint {
   double weight;  // sqrt of the number of line points it stands for (thinned lines)
 };
 
+// What the association reads of an element point: its pose and its point in the body frame.
+struct AnchoredPoint {
+  int lsm, kf;
+  Eigen::Vector3d body;
+};
+
 // Every `line_stride`-th point of a line element (its neighbours add little to a point-to-line
 // constraint), weighted so that the line keeps its information; all points of other elements.
-std::vector<ElementPoint> elementPoints(const std::vector<Lsm>& lsms, CrowdClass cls,
-                                        int line_stride) {
-  std::vector<ElementPoint> out;
+// Calls visit(ElementPoint) for each, in a fixed order.
+template <class Visit>
+void forEachElementPoint(const std::vector<Lsm>& lsms, CrowdClass cls, int line_stride,
+                         Visit&& visit) {
   for (int l = 0; l < int(lsms.size()); ++l)
     for (const Element& e : lsms[l].elements) {
       if (e.cls != cls || e.points_body.empty()) continue;
@@ -121,10 +129,9 @@ std::vector<ElementPoint> elementPoints(const std::vector<Lsm>& lsms, CrowdClass
         } else if (kind == GeometryKind::kPlanar) {
           ep.dir = normal;
         }  // pole / light: vertical line through the base point
-        out.push_back(ep);
+        visit(ep);
       }
     }
-  return out;
 }
 
 // GBA association of one class (eq. (12)): each point is tied to the nearest point of at most
@@ -136,8 +143,8 @@ std::vector<ElementPoint> elementPoints(const std::vector<Lsm>& lsms, CrowdClass
 // stays coupled). Each try is one lookup in one traversal's index: O(partners) per point,
 // whatever the number of traversals there.
 template <int D>
-void associate(PoseProblem<D>& P, const std::vector<ElementPoint>& pts, const std::vector<int>& ids,
-               int lsms, const AlignSettings& s) {
+void associate(PoseProblem<D>& P, const std::vector<AnchoredPoint>& pts,
+               const std::vector<int>& ids, int lsms, const AlignSettings& s) {
   constexpr double kCell = 16.0;  // m, presence cells
   constexpr int kProbes = 3;      // traversals tried per partner slot
   const int n = int(pts.size());
@@ -216,14 +223,23 @@ GraphSolve gba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const Ali
   PoseProblem<D> P(chainSizes(lsms), posesOf(lsms));
   addPriorsAndOdometry(P, priors, s);
   P.setElementHuber(s.gba_huber);
-  // Element points (anchor body frames) and their problem ids, per class.
-  std::vector<std::vector<ElementPoint>> pts(kNumCrowdClasses);
+  // Element points (anchor body frames) and their problem ids, per class; of each point the
+  // association keeps only its pose and body point (held through every round).
+  std::vector<std::vector<AnchoredPoint>> pts(kNumCrowdClasses);
   std::vector<std::vector<int>> ids(kNumCrowdClasses);
+  std::vector<std::size_t> count(kNumCrowdClasses, 0);  // first pass: sizes, for exact vectors
+  for (int c = 0; c < kNumCrowdClasses; ++c)
+    forEachElementPoint(lsms, CrowdClass(c), s.gba_line_stride,
+                        [&](const ElementPoint&) { ++count[c]; });
+  P.reserveElementPoints(std::accumulate(count.begin(), count.end(), std::size_t(0)));
   for (int c = 0; c < kNumCrowdClasses; ++c) {
-    pts[c] = elementPoints(lsms, CrowdClass(c), s.gba_line_stride);
-    for (const auto& p : pts[c])
+    ids[c].reserve(count[c]);
+    pts[c].reserve(count[c]);
+    forEachElementPoint(lsms, CrowdClass(c), s.gba_line_stride, [&](const ElementPoint& p) {
       ids[c].push_back(P.addElementPoint(P.poseIndex(p.lsm, p.kf), p.body, p.dir, p.plane,
                                          p.weight / s.gba_point_sigma));
+      pts[c].push_back({p.lsm, p.kf, p.body});
+    });
   }
   GraphSolve out;
   for (int round = 0; round < std::max(1, s.gba_rounds); ++round) {

@@ -53,6 +53,8 @@ class PoseProblem {
                       double inv_sigma);
   /// @brief Eq. (12)-(14): point a lies on the line / plane of point b (Huber `element_huber`).
   void addElementPair(int a, int b);
+  /// @brief Room for `n` element points in all (the GBA knows their number before adding them).
+  void reserveElementPoints(std::size_t n) { points_.reserve(n); }
   void setElementHuber(double delta) { element_huber_ = delta; }
   std::size_t elementPairs() const { return pairs_.size(); }
   /// @brief Drops every element pair (the next association round adds its own).

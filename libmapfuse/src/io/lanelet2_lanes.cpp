@@ -500,7 +500,7 @@ LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& dri
     }
   }
   // Decide, then orient: the left bound lies left of the travel direction.
-  for (auto& ll : plan.lanelets) {
+  auto orient = [&](LaneletPlan::Lanelet& ll) {
     ll.direction_known = ll.votes_for > 2 * ll.votes_against || ll.votes_against > 2 * ll.votes_for;
     if (ll.direction_known && ll.votes_against > ll.votes_for) {
       std::reverse(ll.centre.begin(), ll.centre.end());
@@ -522,6 +522,19 @@ LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& dri
         std::reverse(r2.begin(), r2.end());
       ll.ring = l2;
       ll.ring.insert(ll.ring.end(), r2.rbegin(), r2.rend());
+    }
+  };
+  for (auto& ll : plan.lanelets) orient(ll);
+  // Lanelets no drive or stop line oriented, from their oriented neighbours (right-hand traffic:
+  // io/lanelet2_direction.cpp), round by round.
+  for (int round = 0; round < kMaxPropagation; ++round) {
+    const auto inferred = neighbourDirections(plan, map);
+    if (inferred.empty()) break;
+    for (const auto& [l, along] : inferred) {
+      auto& ll = plan.lanelets[l];
+      (along ? ll.votes_for : ll.votes_against) = 1;
+      ++plan.lanelets_oriented_by_neighbours;
+      orient(ll);
     }
   }
   addConnectors(plan, drives);

@@ -237,7 +237,13 @@ Lanelet2Map parseLanelet2Osm(const std::string& xml, const std::string& file) {
       re.subtype = tagOr(tags, "subtype", "");
       for (const pugi::xml_node m : r.children("member")) {
         const std::string role = m.attribute("role").value();
-        if (std::string(m.attribute("type").value()) != "way") continue;
+        const std::string mtype = m.attribute("type").value();
+        if (mtype == "relation" && (role == "yield" || role == "right_of_way")) {
+          const int64_t ref = parseId(m, "ref", file, where + " member");
+          (role == "yield" ? re.yield : re.right_of_way).push_back(ref);
+          continue;
+        }
+        if (mtype != "way") continue;
         const int64_t ref = parseId(m, "ref", file, where + " member");
         if (role == "refers") re.refers.push_back(ref);
         if (role == "ref_line") re.ref_lines.push_back(ref);

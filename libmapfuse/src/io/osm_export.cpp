@@ -10,6 +10,7 @@
 
 #include "mapfuse/geo/origin.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/lanelet2_right_of_way.hpp"
 
 namespace mapfuse::io {
 namespace {
@@ -81,9 +82,13 @@ class OsmBuilder {
     return way(ids, tags);
   }
 
-  int64_t relation(const std::vector<Member>& members, const Tags& tags) {
+  /// An id for an element written later (relations that refer to each other).
+  int64_t reserve() { return next_--; }
+
+  /// A relation; `id` 0: a new id, else one from reserve().
+  int64_t relation(const std::vector<Member>& members, const Tags& tags, int64_t id = 0) {
     auto r = osm_.append_child("relation");
-    const int64_t id = next_--;
+    if (id == 0) id = next_--;
     r.append_attribute("id") = static_cast<long long>(id);
     for (const auto& m : members) {
       auto x = r.append_child("member");
@@ -347,19 +352,61 @@ std::string vectorMapToOsm(const VectorMap& map, const std::vector<DrivePath>& d
     }
   }
 
+  // Right of way at intersections with stop lines (io/lanelet2_right_of_way.hpp). Lanelets and
+  // these elements refer to each other, so both ids are reserved first: lanelets, then the
+  // elements, written in that order (osmium expects relations in id order).
+  std::vector<int64_t> lanelet_id(plan.lanelets.size());
+  for (auto& id : lanelet_id) id = osm.reserve();
+  // A stop line is signalled when a light stands within reach of it, whether or not the light
+  // was tied to it above (that needs a lanelet across the stop line).
+  std::vector<RightOfWayStop> stops;
+  for (const auto& st : stop_lines) {
+    bool lit = !st.lights.empty();
+    for (const MapInstance& m : map.instances)
+      lit |= m.cls == CrowdClass::kTrafficLight &&
+             (m.points.front() - st.mid).head<2>().norm() <= kRegulatoryReach;
+    stops.push_back({map.instances[st.instance].points, lit});
+  }
+  const std::vector<RightOfWayRule> rules = deriveRightOfWay(plan, stops, drives);
+  std::vector<int64_t> rule_id(rules.size());
+  for (std::size_t k = 0; k < rules.size(); ++k) {
+    rule_id[k] = osm.reserve();
+    for (const auto* group : {&rules[k].yield, &rules[k].right_of_way})
+      for (std::size_t l : *group) lanelet_regs[l].push_back(rule_id[k]);
+  }
+
   // Road lanelets.
   for (std::size_t l = 0; l < plan.lanelets.size(); ++l) {
     const auto& ll = plan.lanelets[l];
     std::vector<Member> members = {{"way", piece_way[ll.left], "left"},
                                    {"way", piece_way[ll.right], "right"}};
     for (int64_t r : lanelet_regs[l]) members.push_back({"relation", r, "regulatory_element"});
-    osm.relation(members, {{"type", "lanelet"},
-                           {"subtype", "road"},
-                           {"location", "urban"},
-                           {"one_way", ll.direction_known ? "yes" : "no"}});
+    osm.relation(members,
+                 {{"type", "lanelet"},
+                  {"subtype", "road"},
+                  {"location", "urban"},
+                  {"one_way", ll.direction_known ? "yes" : "no"}},
+                 lanelet_id[l]);
     ++stats.lanelets;
     stats.lanelets_direction_known += ll.direction_known;
     stats.lanelets_with_regulatory += !lanelet_regs[l].empty();
+  }
+  for (std::size_t k = 0; k < rules.size(); ++k) {
+    const RightOfWayRule& rule = rules[k];
+    std::vector<Member> members;
+    for (std::size_t l : rule.yield) members.push_back({"relation", lanelet_id[l], "yield"});
+    for (std::size_t l : rule.right_of_way)
+      members.push_back({"relation", lanelet_id[l], "right_of_way"});
+    if (rule.all_way_stop)  // the signs at the stop lines constitute the rule
+      for (std::size_t s : rule.yield_stop)
+        for (int64_t w : stop_lines[s].signs) members.push_back({"way", w, "refers"});
+    for (std::size_t s : rule.yield_stop)  // in the order of the yield lanelets
+      members.push_back({"way", stop_way.at(stop_lines[s].instance), "ref_line"});
+    osm.relation(members,
+                 {{"type", "regulatory_element"},
+                  {"subtype", rule.all_way_stop ? "all_way_stop" : "right_of_way"}},
+                 rule_id[k]);
+    ++(rule.all_way_stop ? stats.all_way_stop_elements : stats.right_of_way_elements);
   }
   // Connectors across intersections: `virtual` bounds sharing the end nodes of the lanelets they
   // join, so that Lanelet2's routing finds the way through.
@@ -382,6 +429,7 @@ std::string vectorMapToOsm(const VectorMap& map, const std::vector<DrivePath>& d
     ++stats.connector_lanelets;
   }
   stats.unmatched_pieces = plan.unmatched_pieces;
+  stats.lanelets_oriented_by_neighbours = plan.lanelets_oriented_by_neighbours;
   if (stats_out) *stats_out = stats;
   return osm.xml();
 }

@@ -7,6 +7,7 @@
 #include "mapfuse/lidar/scan_odometry.hpp"
 
 namespace mapfuse::lidar {
+namespace fs = std::filesystem;
 
 std::vector<Pose3> oxtsVeloPoses(const io::KittiRawDrive& drive, bool enu) {
   if (!drive.calib.has_imu)
@@ -75,6 +76,33 @@ Eigen::Vector3d recenter(std::vector<Pose3>& T_w_velo) {
   const Eigen::Vector3d t0 = T_w_velo[0].translation();
   for (Pose3& T : T_w_velo) T.translation() -= t0;
   return t0;
+}
+
+DrivePoses drivePoses(const io::KittiRawDrive& drive, const DrivePoseSettings& s) {
+  DrivePoses out;
+  out.source = s.source;
+  if (out.source == "auto")
+    out.source = (drive.has_oxts && drive.calib.has_imu)              ? "oxts"
+                 : !s.poses_file.empty() || !drive.poses_file.empty() ? "poses_file"
+                                                                      : "odometry";
+  if (out.source == "oxts" || out.source == "oxts_enu") {
+    if (!drive.has_oxts) throw InputError(drive.dir.string() + ": not every frame has OXTS");
+    out.T_map_velo = oxtsVeloPoses(drive, out.source == "oxts_enu");
+    out.origin_translation = recenter(out.T_map_velo);
+    out.origin_fix = io::readOxts(drive.frames.front());
+  } else if (out.source == "poses_file") {
+    out.file = !s.poses_file.empty() ? fs::path(s.poses_file) : drive.poses_file;
+    if (out.file.empty())
+      throw ConfigError("pose_source poses_file needs --poses-file (or a sequence's poses.txt)");
+    out.T_map_velo = veloPosesFromFile(drive, out.file);
+  } else if (out.source == "odometry") {
+    out.odometry = runDriveOdometry(drive, s.odometry);
+    out.T_map_velo = out.odometry->T_odom_velo;
+  } else {
+    throw ConfigError("pose_source = \"" + s.source +
+                      "\". Violated constraint: one of auto, oxts, oxts_enu, poses_file, odometry");
+  }
+  return out;
 }
 
 }  // namespace mapfuse::lidar

@@ -5,13 +5,15 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
+#include "mapfuse/core/paths.hpp"
 
 namespace mapfuse::lidar {
 namespace fs = std::filesystem;
 
-FrameSemantics::FrameSemantics(const io::KittiRawDrive& drive, const FrameSemanticsSettings& s)
-    : s_(s) {
-  pre_dir_ = s.precomputed_dir.empty() ? io::semanticsDir(drive.dir) : s.precomputed_dir;
+FrameSemantics::FrameSemantics(const io::KittiRawDrive& drive, const FrameSemanticsSettings& s,
+                               const fs::path& cache_dir)
+    : s_(s), cache_dir_(s.cache ? cache_dir : fs::path()) {
+  pre_dir_ = s.semantics_dir.empty() ? io::semanticsDir(drive.dir) : fs::path(s.semantics_dir);
   if (s.segmenter == "auto") {
     bool any = false;
     for (const char* ext : {".prob", ".png"})
@@ -25,7 +27,9 @@ FrameSemantics::FrameSemantics(const io::KittiRawDrive& drive, const FrameSemant
   }
   if (source_ == "precomputed" && !fs::is_directory(pre_dir_))
     throw IoError(pre_dir_.string(), "precomputed semantics folder not found");
-  if (source_ == "enet") enet_ = std::make_unique<EnetSegmenter>(s.model, s.enet);
+  const fs::path model =
+      s.model.empty() ? sharedRoot() / "models/enet-cityscapes/enet-model.net" : fs::path(s.model);
+  if (source_ == "enet") enet_ = std::make_unique<EnetSegmenter>(model, s.enet);
   MAPFUSE_INFO("semantics: " << source_
                              << (source_ == "precomputed" ? " from " + pre_dir_.string() : ""));
 }
@@ -45,8 +49,8 @@ io::SemanticImage FrameSemantics::get(const io::KittiRawFrame& frame) {
     throw IoError((dir / (frame.name + ".png")).string(),
                   "no precomputed semantics (.prob or .png) for frame " + frame.name);
   }
-  if (!s_.cache_dir.empty()) {
-    const fs::path cached = s_.cache_dir / (frame.name + ".prob");
+  if (!cache_dir_.empty()) {
+    const fs::path cached = cache_dir_ / (frame.name + ".prob");
     if (fs::exists(cached)) {
       ++n_cache_;
       return io::readSemanticImage(cached);
@@ -60,7 +64,7 @@ io::SemanticImage FrameSemantics::get(const io::KittiRawFrame& frame) {
   io::SemanticImage sem = enet_->segment(bgr);
   t_net_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ++n_net_;
-  if (!s_.cache_dir.empty()) io::writeSemanticImage(s_.cache_dir / (frame.name + ".prob"), sem);
+  if (!cache_dir_.empty()) io::writeSemanticImage(cache_dir_ / (frame.name + ".prob"), sem);
   return sem;
 }
 

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 
 #include "mapfuse/core/classes.hpp"
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/io/picture_key.hpp"
 
 namespace mapfuse::lidar {
 
@@ -79,6 +81,24 @@ cv::Mat renderTopDown(const SemanticVoxelMap& map, double resolution, Eigen::Vec
   }
   if (origin_xy) *origin_xy = Eigen::Vector2d(lo.x(), hi.y() + resolution);
   return img;
+}
+
+TopDownPicture renderTopDownPicture(const SemanticVoxelMap& map,
+                                    const std::vector<Pose3>& T_map_velo, double resolution) {
+  TopDownPicture out;
+  cv::Mat img = renderTopDown(map, resolution, &out.origin_xy);
+  out.width = img.cols;
+  out.height = img.rows;
+  const std::array<uint8_t, 3> path_rgb{230, 0, 0};
+  std::vector<Eigen::Vector3d> path;
+  for (const Pose3& T : T_map_velo) path.push_back(T.translation());
+  const int path_shown = io::drawPath(img, path, out.origin_xy, resolution, path_rgb);
+  std::set<LidarClass> present;
+  for (const auto& v : map.voxels()) present.insert(static_cast<LidarClass>(v.label));
+  io::PictureKey key{io::lidarLegend(present), resolution, true, "top down"};
+  if (path_shown > 0) key.legend.push_back({"trajectory", path_rgb, true});
+  out.image = io::withPictureKey(img, key);
+  return out;
 }
 
 }  // namespace mapfuse::lidar

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "mapfuse/core/error.hpp"
+#include "setting_check.hpp"
 
 namespace mapfuse::lidar {
 namespace {
@@ -23,11 +24,7 @@ void addReason(std::string& r, const char* fmt, double a, double b) {
 }  // namespace
 
 void TrustSettings::validate() const {
-  auto need = [](bool ok, const char* field, double v, const char* rule) {
-    if (!ok)
-      throw ConfigError(std::string("TrustSettings::") + field + " = " + std::to_string(v) +
-                        ". Violated constraint: " + rule);
-  };
+  const detail::SettingCheck need{"TrustSettings"};
   need(min_inlier_share >= 0 && min_inlier_share <= 1, "min_inlier_share", min_inlier_share,
        "in [0, 1]");
   need(min_constraint >= 0 && min_constraint <= 1.0 / 3, "min_constraint", min_constraint,

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "mapfuse/core/error.hpp"
+#include "setting_check.hpp"
 
 namespace mapfuse::lidar {
 namespace {
@@ -64,11 +65,7 @@ GroundGrid groundGrid(const std::vector<Eigen::Vector3d>& pts, double cell, int 
 }  // namespace
 
 void SceneGeometrySettings::validate() const {
-  auto need = [](bool ok, const char* field, double v, const char* rule) {
-    if (!ok)
-      throw ConfigError(std::string("SceneGeometrySettings::") + field + " = " + std::to_string(v) +
-                        ". Violated constraint: " + rule);
-  };
+  const detail::SettingCheck need{"SceneGeometrySettings"};
   need(ground_cell > 0, "ground_cell", ground_cell, "> 0");
   need(ground_window >= 0 && ground_window <= 50, "ground_window", ground_window, "in 0..50");
   need(ground_tolerance >= 0, "ground_tolerance", ground_tolerance, ">= 0");

@@ -4,6 +4,7 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/lidar/scan_normals.hpp"
+#include "setting_check.hpp"
 #include "voxel_key.hpp"
 
 namespace mapfuse::lidar {
@@ -74,11 +75,7 @@ Pose3 scaleMotion(const Pose3& T, double alpha) {
 }
 
 void OdometrySettings::validate() const {
-  auto need = [](bool ok, const char* field, double v, const char* rule) {
-    if (!ok)
-      throw ConfigError(std::string("OdometrySettings::") + field + " = " + std::to_string(v) +
-                        ". Violated constraint: " + rule);
-  };
+  const detail::SettingCheck need{"OdometrySettings"};
   need(min_range >= 0, "min_range", min_range, ">= 0");
   need(max_range > min_range, "max_range", max_range, "> min_range");
   need(voxel_size > 0, "voxel_size", voxel_size, "> 0");

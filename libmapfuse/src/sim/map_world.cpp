@@ -5,7 +5,9 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/io/lanelet2_osm.hpp"
+#include "mapfuse/io/opendrive.hpp"
 #include "mapfuse/sim/lanelet2_world.hpp"
+#include "mapfuse/sim/opendrive_world.hpp"
 
 namespace mapfuse::sim {
 
@@ -22,13 +24,21 @@ int trueMarkings(const World& world) {
 World loadMapWorld(const std::string& path, bool map_origin, const MapWorldSettings& settings,
                    geo::GeoOrigin* origin) {
   if (!std::filesystem::exists(path)) throw IoError(path, "map file does not exist");
-  const io::Lanelet2Map osm = io::readLanelet2Osm(path);
-  if (map_origin) {
-    if (!osm.first_node) throw InputError(path + ": the map has no nodes");
-    *origin = {osm.first_node->lat, osm.first_node->lon, origin->alt};
+  World world;
+  int untyped = 0;
+  if (std::filesystem::path(path).extension() == ".xodr") {
+    const io::OdrMap odr = io::readOpenDrive(path);
+    if (map_origin) *origin = openDriveOrigin(odr, origin->alt);
+    world = worldFromOpenDrive(odr, *origin);
+  } else {
+    const io::Lanelet2Map osm = io::readLanelet2Osm(path);
+    if (map_origin) {
+      if (!osm.first_node) throw InputError(path + ": the map has no nodes");
+      *origin = {osm.first_node->lat, osm.first_node->lon, origin->alt};
+    }
+    world = worldFromLanelet2(osm, *origin);
+    untyped = osm.untyped_ways;
   }
-  World world = worldFromLanelet2(osm, *origin);
-  const int untyped = osm.untyped_ways;
   if (world.lanes.empty()) throw InputError(path + ": the map has no drivable lanes");
   const int markings = trueMarkings(world);
   world.stats["true_markings"] = markings;

@@ -52,7 +52,8 @@ nlohmann::json toJson(const AggregateRun& run) {
                                                 {"instances", stats.instances[c]},
                                                 {"noise", stats.noise[c]}};
   const double kb_per_km = run.road_km > 0 ? run.cbor_kb / run.road_km : 0.0;
-  return {
+  nlohmann::json out = {
+      {"method", run.method},
       {"inputs", {{"drives", run.drives}, {"observations", run.observations}}},
       {"instances", run.instances},
       {"classes", per_class},
@@ -78,9 +79,12 @@ nlohmann::json toJson(const AggregateRun& run) {
       {"lanelet2",
        {{"lanelets", run.lanelet2.lanelets},
         {"lanelets_direction_known", run.lanelet2.lanelets_direction_known},
+        {"lanelets_oriented_by_neighbours", run.lanelet2.lanelets_oriented_by_neighbours},
         {"connector_lanelets", run.lanelet2.connector_lanelets},
         {"crosswalk_lanelets", run.lanelet2.crosswalk_lanelets},
         {"regulatory_elements", run.lanelet2.regulatory_elements},
+        {"right_of_way_elements", run.lanelet2.right_of_way_elements},
+        {"all_way_stop_elements", run.lanelet2.all_way_stop_elements},
         {"lane_line_bound_share",
          run.lanelet2.lane_line_m > 0 ? run.lanelet2.bound_m / run.lanelet2.lane_line_m : 0.0}}},
       {"timings_s",
@@ -88,6 +92,19 @@ nlohmann::json toJson(const AggregateRun& run) {
         {"aggregate", run.seconds_aggregate},
         {"write", run.seconds_write}}},
       {"converged", true}};
+  if (run.method == "grid_vote") {
+    const auto& g = stats.grid;
+    nlohmann::json won = nlohmann::json::object();
+    for (int c = 0; c < kNumCrowdClasses; ++c)
+      if (g.class_cells[c] > 0) won[crowdClassName(CrowdClass(c))] = g.class_cells[c];
+    out["grid_vote"] = {{"cells", g.cells},
+                        {"votes", g.painted},
+                        {"voted_cells", g.voted_cells},
+                        {"conflict_cells", g.conflict_cells},
+                        {"min_votes", g.min_votes_used},
+                        {"cells_per_class", won}};
+  }
+  return out;
 }
 
 AggregateRun runAggregate(const std::vector<std::string>& inputs,
@@ -113,6 +130,7 @@ AggregateRun runAggregate(const std::vector<std::string>& inputs,
   writeMap(out_dir, map, set, lsms, params, &run.lanelet2);
   const auto t3 = Clock::now();
 
+  run.method = params.aggregator.method;
   run.drives = lsms.size();
   run.observations = set.items.size();
   run.instances = map.instances.size();

@@ -60,7 +60,9 @@ fusion::AlignResult runAlign(const std::vector<std::string>& inputs,
   validateParams(params);
   io::OutputTransaction outputs(out_dir);  // locked and writable before the work
   if (inputs.empty()) throw InputError("align: no input LSM");
-  std::vector<Lsm> lsms = io::readLsmInputs(inputs);
+  // Without the per-point covariances (align does not read them; three quarters of a decoded
+  // LSM): each input is read whole again when its output is written.
+  std::vector<Lsm> lsms = io::readLsmInputs(inputs, /*covariances=*/false);
   for (std::size_t i = 0; i < lsms.size(); ++i) {
     const Lsm& l = lsms[i];
     const std::string& in = inputs[i];
@@ -72,8 +74,12 @@ fusion::AlignResult runAlign(const std::vector<std::string>& inputs,
     if (l.keyframes.empty()) throw InputError(in + ": LSM has no keyframes");
   }
   const fusion::AlignResult result = fusion::alignLsms(lsms, params.align);
-  for (std::size_t i = 0; i < lsms.size(); ++i)
-    io::writeLsm(out_dir / std::filesystem::path(inputs[i]).filename(), lsms[i]);
+  for (std::size_t i = 0; i < lsms.size(); ++i) {  // the input with the aligned keyframes
+    Lsm aligned = io::readLsm(inputs[i]);
+    aligned.keyframes = std::move(lsms[i].keyframes);
+    std::vector<Element>().swap(lsms[i].elements);
+    io::writeLsm(out_dir / std::filesystem::path(inputs[i]).filename(), aligned);
+  }
   nlohmann::json summary = toJson(result);
   summary["inputs"] = inputs;
   summary["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -24,9 +24,20 @@ struct LaneInstantiationStats {
   std::size_t dropped_short = 0;  ///< instances below min_instance_length
 };
 
+/// What the grid-vote baseline did (method grid_vote, grid_vote.hpp).
+struct GridVoteStats {
+  std::size_t cells = 0;           ///< cells holding at least one vote
+  std::size_t painted = 0;         ///< votes cast (one per observation and cell)
+  std::size_t voted_cells = 0;     ///< cells that took a class (>= min_votes)
+  std::size_t conflict_cells = 0;  ///< cells with votes of more than one class
+  std::size_t min_votes_used = 0;  ///< min_votes after capping by the number of drives
+  std::array<std::size_t, kNumCrowdClasses> class_cells{};  ///< cells each class won
+};
+
 /// What aggregation did, per class and per step.
 struct AggregatorStats {
   LaneInstantiationStats lanes;
+  GridVoteStats grid;                                        ///< method grid_vote only
   std::array<std::size_t, kNumCrowdClasses> observations{};  ///< input count per class
   std::array<std::size_t, kNumCrowdClasses> instances{};     ///< output count per class
   std::array<std::size_t, kNumCrowdClasses> noise{};         ///< observations dropped as noise
@@ -35,8 +46,10 @@ struct AggregatorStats {
   double bezier_rms_deviation = 0.0;  ///< m, over all fitted centreline points
 };
 
-/// @brief Aggregates observations into a vector map (ENU of set.origin, ids 1..N in class
-/// order, source "aggregate").
+/// @brief Aggregates observations into a vector map with params.method: "dbscan_bezier" (the
+/// above) or "grid_vote" (Qin et al. 2021: the ground classes by grid voting, grid_vote.hpp; the
+/// elevated ones, which that system does not map, by the same discrete merging). The map is in
+/// the ENU of set.origin, ids 1..N in class order, source "aggregate".
 VectorMap aggregateObservations(const ObservationSet& set, const AggregatorParams& params,
                                 AggregatorStats* stats = nullptr);
 

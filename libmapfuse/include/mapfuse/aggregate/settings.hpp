@@ -4,6 +4,8 @@
 /// `aggregate` stage composes them (stages/aggregate.hpp); aggregateObservations takes them.
 /// Bounds that a real map never reaches keep a typo from exhausting memory or time (a tile or a
 /// station of a micrometre, a DBSCAN radius of a kilometre).
+#include <string>
+
 #include "mapfuse/core/param.hpp"
 
 namespace mapfuse::aggregate {
@@ -89,27 +91,54 @@ struct DiscreteMergeParams {
     // every element within the radius is a neighbour: the lists grow with its square
     v("sign_radius", sign_radius, "m", "traffic signs: DBSCAN eps on 3D distance", gt(0) & le(20));
     v("point_radius", point_radius, "m", "poles/lights: DBSCAN eps on 3D distance", gt(0) & le(20));
-    v("stop_line_radius", stop_line_radius, "m", "stop lines: DBSCAN eps on the distance of a midpoint to the other line",
-      gt(0) & le(20));
+    v("stop_line_radius", stop_line_radius, "m",
+      "stop lines: DBSCAN eps on the distance of a midpoint to the other line", gt(0) & le(20));
     v("discrete_min_pts", min_pts, "", "discrete MinPts (capped by the number of drives)",
       in(1, 1000000));
   }
 };
 
+/// The grid-vote baseline of Qin et al. 2021 (grid_vote.cpp): the ground classes rasterised into
+/// square cells holding per-class vote counts, the best class per cell.
+struct GridVoteParams {
+  double cell_size = 0.1;    ///< m, cell edge (Qin et al. 2021: 0.1 m)
+  int min_votes = 3;         ///< fewest votes for a cell to take a class (capped by the drives)
+  double line_width = 0.15;  ///< m, width lane and stop lines are painted into the grid with
+
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    // cells are hashed, so memory grows with the painted area / cell_size^2
+    v("grid_cell_size", cell_size, "m", "grid_vote: cell edge", in(0.02, 2));
+    v("grid_min_votes", min_votes, "",
+      "grid_vote: fewest votes for a cell to take a class (capped by the number of drives)",
+      in(1, 1000000));
+    v("grid_line_width", line_width, "m", "grid_vote: width lines are painted into the grid with",
+      in(0, 2));
+  }
+};
+
 /// Everything aggregateObservations takes.
 struct AggregatorParams {
+  /// "dbscan_bezier": §4.3 of Song et al. 2023; "grid_vote": the Qin et al. 2021 baseline
+  std::string method = "dbscan_bezier";
   LaneInstantiationParams lanes;
   BezierFitParams bezier;
   DiscreteMergeParams discrete;
+  GridVoteParams grid;
   double sample_step = 0.5;  ///< m, spacing of the sampled "points" of lane lines
 
   template <class V>
   void visit(V& v) {
+    v("method", method, "",
+      "dbscan_bezier (Song et al. 2023) | grid_vote (Qin et al. 2021 baseline, ground classes)",
+      param::oneOf({"dbscan_bezier", "grid_vote"}));
     lanes.visit(v);
     bezier.visit(v);
     v("sample_step", sample_step, "m", "spacing of the sampled lane-line points",
       param::in(0.01, 100));
     discrete.visit(v);
+    grid.visit(v);
   }
 };
 

@@ -116,25 +116,6 @@ void preloadConfig(int argc, char** argv, Params& params) {
 /// ("<tool>: error: ...") and the documented exit code. --help exits 0.
 int run(CLI::App& app, int argc, char** argv, const std::function<void()>& body);
 
-/// @brief Like run(), but first loads --config into `params` (config values become defaults,
-/// command-line options override them) and calls `params.validate()` before `body`.
-/// Transitional: for tools whose Params still validate themselves; the others are StageTools.
-template <class Params>
-int runStage(CLI::App& app, int argc, char** argv, Params& params,
-             const std::function<void()>& body) {
-  preloadConfig(argc, argv, params);
-  return run(app, argc, argv, [&] {
-    try {
-      params.validate();
-    } catch (const ConfigError& e) {  // the value may come from the file: name it
-      const std::string file = configArgument(argc, argv);
-      if (file.empty()) throw;
-      throw ConfigError(file + " (or the command line): " + e.what());
-    }
-    body();
-  });
-}
-
 /// @brief Splits "a,b" or a list file ("@list.txt" or "-" for stdin, one path per line) into paths.
 std::vector<std::string> expandInputList(const std::vector<std::string>& args);
 

@@ -166,8 +166,8 @@ struct ValidateVisitor {
 /// Where and how a parameter is declared (for the "declared once" test and the docs).
 struct ParamDeclaration {
   std::string key, unit, help;
-  std::string kind;   ///< "integer", "number", "bool", "text" or "choice"
-  std::string rule;   ///< "" for bool and free text
+  std::string kind;    ///< "integer", "number", "bool", "text" or "choice"
+  std::string rule;    ///< "" for bool and free text
   param::Range range;  ///< numbers: the declared range
   std::string file;    ///< source file of the `v(...)` line
   int line = 0;
@@ -272,16 +272,6 @@ nlohmann::json readConfigFile(const std::string& file);
 template <class Params>
 void paramsFromFile(Params& params, const std::string& file) {
   paramsFromJson(params, readConfigFile(file), file);
-}
-
-/// @brief Throws ConfigError "<Stage>::<field> = <value>. Violated constraint: <rule>" unless `ok`
-/// holds. Transitional: stages whose Params still have a validate() of their own use it; declared
-/// rules (validateParams) replace it.
-template <class T>
-void requireParam(bool ok, const char* stage, const char* field, const T& value, const char* rule) {
-  if (ok) return;
-  throw ConfigError(std::string(stage) + "::" + field + " = " + detail::showValue(value) +
-                    ". Violated constraint: " + rule);
 }
 
 }  // namespace mapfuse

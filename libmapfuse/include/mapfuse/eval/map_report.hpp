@@ -20,8 +20,9 @@ struct MapReportEntry {
   MapMetrics metrics;
 };
 
-/// @brief Markdown: one per-class table per map, a relative-precision-versus-traversals table
-/// when there are several maps, and a trajectory table when `trajectories` is not empty.
+/// @brief Markdown: one per-class table per map, relative-precision- and
+/// completeness-versus-traversals tables when there are several maps, and a trajectory table
+/// when `trajectories` is not empty.
 std::string markdownReport(const std::vector<MapReportEntry>& maps,
                            const std::vector<TrajectoryMetrics>& trajectories);
 
@@ -32,7 +33,8 @@ std::array<uint8_t, 3> chartColor(CrowdClass c);
 /// @brief Bar chart: relative precision and mean absolute error per class (m).
 void writeErrorPerClassPng(const std::filesystem::path& path, const MapReportEntry& entry);
 
-/// @brief Line chart: relative precision (m) of each class versus the number of traversals.
+/// @brief Line charts (Fig. 9, Song et al. 2023), one above the other: relative precision (m) and
+/// completeness of each class versus the number of traversals.
 void writeErrorVsTraversalsPng(const std::filesystem::path& path,
                                const std::vector<MapReportEntry>& maps);
 

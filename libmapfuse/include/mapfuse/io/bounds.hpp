@@ -57,6 +57,13 @@ constexpr double kMaxQuantum = 1e3;
 /// every 0.5 m (at most 2e6 and 2e7 points).
 constexpr double kMaxChainLength = 1e6;
 constexpr double kMaxChainLengthPerDocument = 1e7;
+/// OpenDRIVE (m): one road's length and every s along it; the sums over a map of road lengths,
+/// of plan-view record lengths and of lane lengths (lanes are sampled every 0.5 m); lanes per
+/// lane section; curvature of arcs and spirals (1/m; 1e3 is a 1 mm radius).
+constexpr double kMaxOdrRoadLength = 1e5;
+constexpr double kMaxOdrMapLength = 1e6;
+constexpr int kMaxOdrLanesPerSection = 64;
+constexpr double kMaxCurvature = 1e3;
 
 /// @brief a * b when the product fits in int64 and both are non-negative, else nullopt.
 inline std::optional<int64_t> checkedMultiply(int64_t a, int64_t b) {

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/geo/oxts.hpp"
 #include "mapfuse/io/kitti_calib.hpp"
 
@@ -19,9 +20,18 @@ namespace mapfuse::io {
 /// Which frames to use: indices first..last (inclusive, last < 0 = up to the end), every
 /// `stride`-th frame present.
 struct FrameRange {
-  int first = 0;
-  int last = -1;
-  int stride = 1;
+  int first = 0;   ///< first frame index
+  int last = -1;   ///< last frame index (inclusive), -1 = all
+  int stride = 1;  ///< every stride-th frame present
+
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    v("first_frame", first, "", "first frame index", in(0, 1e9));
+    v("last_frame", last, "", "last frame index, inclusive (-1 = all)", in(-1, 1e9));
+    v.relation("last_frame", last, last < 0 || last >= first, "-1 or >= first_frame");
+    v("stride", stride, "", "use every stride-th frame present", in(1, 1e6));
+  }
 };
 
 /// One frame of a drive.

@@ -4,11 +4,11 @@
 /// across, 2-5 m apart and parallel; every line is cut where a neighbouring lane begins or ends
 /// so that side-by-side lanelets begin and end together and consecutive lanelets of one lane
 /// share their bounds' end nodes. The travel direction of a lanelet comes from the drives that
-/// pass through it (majority of their headings), else from a stop line across its end; without
-/// either it stays unknown (written `one_way=no`). Where a drive leaves one lanelet at its end
-/// and enters another at its start across an unmarked stretch (an intersection), a connector
-/// lanelet with `virtual` bounds joins their bounds' end points (cubic Hermite curves along
-/// both lanelets' directions).
+/// pass through it (majority of their headings), else from a stop line across its end, else from
+/// an oriented neighbour (neighbourDirections); without any it stays unknown (`one_way=no`). Where
+/// a drive leaves one lanelet at its end and enters another at its start across an unmarked stretch
+/// (an intersection), a connector lanelet with `virtual` bounds joins their bounds' end points
+/// (cubic Hermite curves along both lanelets' directions).
 #include <Eigen/Core>
 #include <cstddef>
 #include <vector>
@@ -51,10 +51,20 @@ struct LaneletPlan {
   std::vector<Lanelet> lanelets;
   std::vector<Connector> connectors;
   int unmatched_pieces = 0;  ///< piece pairs skipped because their cuts did not line up
+  int lanelets_oriented_by_neighbours = 0;  ///< direction from a neighbour (neighbourDirections)
 };
 
 /// @brief Pairs the lane lines of `map` into lanelets; `drives` give travel directions.
 LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& drives);
+
+/// @brief Directions of lanelets without one, from oriented lanelets sharing a bound
+/// (right-hand traffic): a lanelet on the right of an oriented one drives its way; one on its
+/// left across a solid or yellow line drives the other way (a centre line); across a dashed
+/// white line nothing follows (lanes of one direction, or a dashed centre line). Lanelets whose
+/// neighbours disagree stay unknown. @return (lanelet, true when its travel direction runs
+/// along its `centre` as stored).
+std::vector<std::pair<std::size_t, bool>> neighbourDirections(const LaneletPlan& plan,
+                                                              const VectorMap& map);
 
 /// @brief The end point of a lanelet's left (or right) bound in the travel direction (`at_end`)
 /// or at its start: (piece, true when it is the piece's last point).

@@ -6,8 +6,8 @@
 /// conversions write them) is read as `virtual` and counted in `untyped_ways`; way types outside
 /// the Lanelet2 tagging spec and unknown relation types are kept as geometry but counted as
 /// skipped. Structural faults (XML syntax, truncation, a reference to a missing node or way, a
-/// bad coordinate, an id beyond +-(2^63 - 2^32), a lanelet without a bound) are ParseErrors naming the
-/// file and the element.
+/// bad coordinate, an id beyond +-(2^63 - 2^32), a lanelet without a bound) are ParseErrors naming
+/// the file and the element.
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -53,8 +53,10 @@ struct Lanelet2Lanelet {
 struct Lanelet2Regulatory {
   int64_t id = 0;
   std::string subtype;
-  std::vector<int64_t> refers;     ///< way ids (role "refers")
-  std::vector<int64_t> ref_lines;  ///< way ids (role "ref_line", e.g. stop lines)
+  std::vector<int64_t> refers;        ///< way ids (role "refers")
+  std::vector<int64_t> ref_lines;     ///< way ids (role "ref_line", e.g. stop lines)
+  std::vector<int64_t> yield;         ///< lanelet relation ids (role "yield")
+  std::vector<int64_t> right_of_way;  ///< lanelet relation ids (role "right_of_way")
 };
 
 struct Lanelet2Map {

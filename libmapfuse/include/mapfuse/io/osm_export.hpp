@@ -10,7 +10,9 @@
 /// `type=pole` nodes with `height`; ground arrows closed `arrow` ways; crosswalks
 /// `subtype=crosswalk` lanelets bounded by two `zebra_marking` ways. Lights and signs near a stop
 /// line become `traffic_light` / `traffic_sign` regulatory elements (refers = the light or sign,
-/// ref_line = the stop line) referenced by the lanelets the stop line crosses. Where drives cross
+/// ref_line = the stop line) referenced by the lanelets the stop line crosses; intersections
+/// with stop lines and no lights get `right_of_way` or `all_way_stop` elements
+/// (io/lanelet2_right_of_way.hpp). Where drives cross
 /// an unmarked stretch (an intersection) from one lanelet to another, a connector lanelet with
 /// `virtual` bounds shares their end nodes.
 #include <filesystem>
@@ -24,11 +26,14 @@ namespace mapfuse::io {
 
 /// What the export derived (for the summary and the docs' figures).
 struct Lanelet2ExportStats {
-  int lanelets = 0;                  ///< road lanelets (both bounds)
-  int lanelets_direction_known = 0;  ///< oriented by drives or a stop line (one_way=yes)
-  int connector_lanelets = 0;        ///< across unmarked stretches, `virtual` bounds
+  int lanelets = 0;                         ///< road lanelets (both bounds)
+  int lanelets_direction_known = 0;         ///< oriented by drives, a stop line or a neighbour
+  int lanelets_oriented_by_neighbours = 0;  ///< ... of them by a neighbour (right-hand traffic)
+  int connector_lanelets = 0;               ///< across unmarked stretches, `virtual` bounds
   int crosswalk_lanelets = 0;
   int regulatory_elements = 0;       ///< traffic_light + traffic_sign relations
+  int right_of_way_elements = 0;     ///< right_of_way relations (io/lanelet2_right_of_way.hpp)
+  int all_way_stop_elements = 0;     ///< all_way_stop relations
   int lanelets_with_regulatory = 0;  ///< lanelets referring to at least one
   int unmatched_pieces = 0;          ///< piece pairs whose cuts did not line up
   double lane_line_m = 0.0;          ///< total lane-line length

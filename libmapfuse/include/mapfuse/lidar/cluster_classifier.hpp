@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mapfuse/core/classes.hpp"
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/lidar/cluster_features.hpp"
 
 namespace mapfuse::lidar {
@@ -19,6 +20,17 @@ struct RTreesSettings {
   int num_trees = 100;            ///< forest size
   int min_samples_per_class = 5;  ///< a label needs this many correct and wrong clusters
   uint64_t seed = 42;             ///< OpenCV RNG seed (deterministic training)
+
+  /// The training parameters of lidar-semantic-map (min_sample_count keeps its value).
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    v("rtrees_max_depth", max_depth, "", "train: tree depth", in(1, 64));
+    v("rtrees_trees", num_trees, "", "train: trees per forest", in(1, 10000));
+    v("rtrees_min_samples", min_samples_per_class, "",
+      "train: correct and wrong clusters a label needs", in(1, 1e9));
+    v("seed", seed, "", "train: random seed", in(0, 4294967295.0));
+  }
 };
 
 /// Training samples of one label: features and whether the cluster's label was correct.

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/io/kitti_raw.hpp"
 #include "mapfuse/lidar/scan_odometry.hpp"
 
@@ -15,6 +16,21 @@ struct DriveOdometrySettings {
   OdometrySettings odometry;
   int max_untrusted = 0;      ///< untrusted steps tolerated; one more stops the run
   double frame_period = 0.1;  ///< s between consecutive frame indices without timestamps
+
+  /// The odometry parameters of lidar-semantic-map (the others keep OdometrySettings' values).
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    v("odom_voxel_size", odometry.voxel_size, "m",
+      "odometry local-map voxel (its nearest-neighbour reach; docs/lidar.md)", in(0.01, 10));
+    v("odom_deskew", odometry.deskew, "", "constant-velocity de-skew of each sweep");
+    v("odom_exclude_road_users", odometry.exclude_road_users, "",
+      "leave low objects (road users) out of the odometry (geometric rule, docs/lidar.md; off: "
+      "measured no better, and it drops nearby walls)");
+    v("odom_max_untrusted", max_untrusted, "",
+      "untrusted odometry steps tolerated (listed in the summary); one more stops the run, exit 3",
+      in(0, 1e9));
+  }
 };
 
 struct DriveOdometryResult {

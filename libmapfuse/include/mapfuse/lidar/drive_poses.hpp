@@ -1,13 +1,54 @@
 #pragma once
-/// @file Velodyne poses of a KITTI raw drive from OXTS (Jeong et al. 2018, eq. 1) or from a
-/// KITTI-odometry poses file.
+/// @file Velodyne poses of a KITTI raw drive from OXTS (Jeong et al. 2018, eq. 1), from a
+/// KITTI-odometry poses file or from LiDAR odometry, and the choice between them.
 #include <filesystem>
+#include <optional>
+#include <string>
 #include <vector>
 
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/core/se3.hpp"
+#include "mapfuse/geo/oxts.hpp"
 #include "mapfuse/io/kitti_raw.hpp"
+#include "mapfuse/lidar/drive_odometry.hpp"
 
 namespace mapfuse::lidar {
+
+/// Where the poses of a drive come from (docs/lidar.md, "Poses").
+struct DrivePoseSettings {
+  std::string source = "auto";  ///< auto | oxts | oxts_enu | poses_file | odometry
+  std::string poses_file;       ///< KITTI poses file, T_world_cam0 (docs/kitti.md, "Poses files")
+  DriveOdometrySettings odometry;
+
+  template <class V>
+  void visit(V& v) {
+    v("pose_source", source, "",
+      "auto|oxts|oxts_enu|poses_file|odometry (auto: OXTS when every frame has it, else the poses "
+      "file if given or the sequence's poses.txt, else odometry)",
+      param::oneOf({"auto", "oxts", "oxts_enu", "poses_file", "odometry"}));
+    v("poses_file", poses_file, "",
+      "KITTI poses file, T_world_cam0 (line i = frame i, or one line per selected frame; "
+      "docs/kitti.md)");
+    odometry.visit(v);
+  }
+};
+
+/// The poses of the selected frames and where they came from.
+struct DrivePoses {
+  std::vector<Pose3> T_map_velo;  ///< one per selected frame; the first at the origin
+  std::string source;             ///< oxts | oxts_enu | poses_file | odometry (auto resolved)
+  Eigen::Vector3d origin_translation = Eigen::Vector3d::Zero();  ///< m, OXTS: removed by recenter
+  std::optional<geo::OxtsRecord> origin_fix;    ///< OXTS: the first selected frame's fix
+  std::filesystem::path file;                   ///< poses_file: the file read
+  std::optional<DriveOdometryResult> odometry;  ///< odometry: steps and trust
+};
+
+/// @brief Poses of the selected frames in the map frame (first selected frame at the origin).
+/// `auto` takes OXTS when every frame has it (and the calibration has IMU), else the poses file
+/// (settings or the sequence's poses.txt) when there is one, else LiDAR odometry.
+/// @throws InputError when OXTS is asked for but missing, or odometry is not trusted (see
+/// runDriveOdometry); ConfigError when poses_file is asked for but none is known.
+DrivePoses drivePoses(const io::KittiRawDrive& drive, const DrivePoseSettings& settings);
 
 /// @brief T_w_velo = T_w_imu * inv(T_velo_imu) for every selected frame, with T_w_imu the
 /// KITTI devkit pose (Mercator scaled by cos(lat of the first selected frame)) or, with

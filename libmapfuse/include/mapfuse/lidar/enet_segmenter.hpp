@@ -8,6 +8,7 @@
 #include <memory>
 #include <opencv2/core.hpp>
 
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/io/semantic_image.hpp"
 
 namespace mapfuse::lidar {
@@ -15,6 +16,12 @@ namespace mapfuse::lidar {
 struct EnetSettings {
   double scale = 1.0;     ///< input scale (1.0 native; 1.5 also works; never stretch the aspect)
   int pad_multiple = 16;  ///< reflect padding to a multiple of this (px)
+
+  template <class V>
+  void visit(V& v) {
+    v("enet_scale", scale, "", "ENet input scale (1.0 native, 1.5 also fine)",
+      param::gt(0.1) & param::le(4));
+  }
 };
 
 class EnetSegmenter {

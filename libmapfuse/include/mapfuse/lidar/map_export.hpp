@@ -8,10 +8,25 @@
 #include <vector>
 
 #include "mapfuse/core/labeled_cloud.hpp"
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/core/se3.hpp"
 #include "mapfuse/lidar/voxel_map.hpp"
 
 namespace mapfuse::lidar {
+
+/// The views lidar-semantic-map writes besides the map.
+struct MapExportSettings {
+  double topdown_resolution = 0.1;  ///< m/px
+  bool write_scan_labels = true;    ///< labels/<frame>.label for every input scan
+
+  template <class V>
+  void visit(V& v) {
+    v("topdown_resolution", topdown_resolution, "m", "top-down PNG pixel size",
+      param::in(0.001, 100));
+    v("write_scan_labels", write_scan_labels, "",
+      "write labels/<frame>.label for every input scan");
+  }
+};
 
 /// @brief Voxel centres with their argmax label and its posterior probability.
 LabeledCloud toLabeledCloud(const SemanticVoxelMap& map);
@@ -38,5 +53,16 @@ std::vector<uint32_t> scanLabels(const SemanticVoxelMap& map, const Pose3& T_map
 /// voxel in its column; `resolution` m per pixel; white where the map is empty.
 /// @param[out] origin_xy map (x, y) of the top-left pixel corner, m
 cv::Mat renderTopDown(const SemanticVoxelMap& map, double resolution, Eigen::Vector2d* origin_xy);
+
+/// The top-down picture with its key (classes drawn, trajectory, scale bar, north arrow).
+struct TopDownPicture {
+  cv::Mat image;              ///< BGR, with the key (io/picture_key.hpp)
+  Eigen::Vector2d origin_xy;  ///< m, map (x, y) of the top-left corner of the map part
+  int width = 0, height = 0;  ///< px, the map part
+};
+
+/// @brief renderTopDown with the trajectory of `T_map_velo` drawn in red and the picture key.
+TopDownPicture renderTopDownPicture(const SemanticVoxelMap& map,
+                                    const std::vector<Pose3>& T_map_velo, double resolution);
 
 }  // namespace mapfuse::lidar

@@ -1,14 +1,25 @@
 #pragma once
 /// @file Per-pixel class distributions from a semantics image (label or probability image,
 /// io/semantic_image.hpp) as measurement likelihoods P(z_t | l) for the voxel fusion.
+#include "mapfuse/core/classes.hpp"
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/io/semantic_image.hpp"
 #include "mapfuse/lidar/voxel_map.hpp"
 
 namespace mapfuse::lidar {
 
 struct PixelSemanticsSettings {
-  float label_confidence = 0.7f;  ///< probability given to the label of a label image
-  float min_probability = 0.02f;  ///< floor of every class probability (then renormalised)
+  double label_confidence = 0.7;  ///< probability given to the label of a label image
+  double min_probability = 0.02;  ///< floor of every class probability (then renormalised)
+
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    v("label_confidence", label_confidence, "", "probability given to the label of a label image",
+      gt(1.0 / kNumLidarClasses) & le(1));
+    v("min_probability", min_probability, "", "floor of every class probability of a measurement",
+      gt(0) & lt(1.0 / kNumLidarClasses));
+  }
 };
 
 /// @brief Distribution at pixel (u, v): a label image gives label_confidence to its label and

@@ -6,13 +6,22 @@
 #include <cstdint>
 #include <vector>
 
+#include "mapfuse/core/param.hpp"
+
 namespace mapfuse::lidar {
 
 struct ProjectionSettings {
   double min_range = 5.0;   ///< m, Euclidean distance from the Velodyne origin
   double max_range = 50.0;  ///< m
-  int image_width = 0;      ///< px
-  int image_height = 0;     ///< px
+  int image_width = 0;      ///< px (the drive's calibration, not a parameter)
+  int image_height = 0;     ///< px (the drive's calibration, not a parameter)
+
+  template <class V>
+  void visit(V& v) {
+    v("min_range", min_range, "m", "nearest point used for labelling", param::in(0, 1000));
+    v("max_range", max_range, "m", "farthest point used for labelling", param::in(0, 1000));
+    v.relation("max_range", max_range, max_range > min_range, "> min_range");
+  }
 };
 
 /// Points of a scan that see the image, with their pixels.

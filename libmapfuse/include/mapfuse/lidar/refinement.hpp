@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "mapfuse/core/param.hpp"
+
 #include "mapfuse/lidar/voxel_map.hpp"
 
 namespace mapfuse::lidar {
@@ -14,6 +16,14 @@ struct KnnFilterSettings {
   double max_mean_distance =
       0.20;             ///< delta_d, m: voxels whose K nearest are farther on average go
   int num_threads = 1;  ///< OpenMP threads (results do not depend on it)
+
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    v("knn_k", k, "", "K of the K-nearest-voxel filter", in(1, 32));
+    v("knn_max_mean_distance", max_mean_distance, "m", "delta_d of the K-nearest-voxel filter",
+      gt(0) & le(100));
+  }
 };
 
 /// @brief Keep mask: 1 when the mean distance from the voxel centre to its K nearest other voxel
@@ -25,10 +35,23 @@ struct KnnFilterSettings {
 std::vector<uint8_t> knnMeanDistanceFilter(const SemanticVoxelMap& map, const KnnFilterSettings& s);
 
 struct VehicleTraceSettings {
-  double eps = 0.25;             ///< DBSCAN radius on the (x, y) plane, m
-  int min_points = 5;            ///< DBSCAN core threshold (2D cells, including the cell itself)
-  std::size_t max_voxels = 500;  ///< eta_d: clusters with more vehicle voxels are traces
+  double eps = 0.25;   ///< DBSCAN radius on the (x, y) plane, m
+  int min_points = 5;  ///< DBSCAN core threshold (2D cells, including the cell itself)
+  /// eta_d: clusters with more vehicle voxels are traces (paper: 500, for its coarser voxels;
+  /// docs/lidar.md)
+  std::size_t max_voxels = 100000;
   double max_length = 10.0;  ///< eta_l, m: clusters longer than this (principal axis) are traces
+
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    v("trace_eps", eps, "m", "DBSCAN radius on the 2D vehicle projection", gt(0) & le(100));
+    v("trace_min_points", min_points, "", "DBSCAN minimum points (2D cells)", in(1, 1e9));
+    v("trace_max_voxels", max_voxels, "", "eta_d: clusters with more vehicle voxels are traces",
+      in(1, 1e9));
+    v("trace_max_length", max_length, "m", "eta_l: clusters longer than this are traces",
+      gt(0) & le(10000));
+  }
 };
 
 struct VehicleTraceStats {

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/core/se3.hpp"
 #include "mapfuse/lidar/voxel_map.hpp"
 
@@ -40,6 +41,30 @@ struct SeenThroughSettings {
   double vehicle_vote_radius = 0.5;  ///< m, (x, y) neighbourhood of the vehicle vote; 0: per voxel
   double vehicle_vote_share = 0.6;   ///< share of seen-through vehicle voxels that removes them all
   int num_threads = 1;               ///< OpenMP threads (results do not depend on it)
+
+  /// The parameters of lidar-semantic-map (min_range, max_range and num_threads are passed on
+  /// from the projection and the run; the range-image geometry keeps its values).
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    v("seen_through_margin", margin, "m",
+      "a return this far beyond a voxel means the ray passed it", gt(0) & le(100));
+    v("seen_through_window", window, "px",
+      "half size of the range-image window whose nearest return must lie beyond", in(0, 5));
+    v("seen_through_window_thin", window_thin, "px",
+      "the same for road, sidewalk, fence, pole and vegetation voxels", in(0, 5));
+    v("seen_through_min_scans", min_seen_through, "",
+      "scans that must see through a voxel before it goes", in(1, 65535));
+    v("seen_through_min_ratio", min_free_ratio, "",
+      "and their share among the scans that saw the voxel", in(0, 1));
+    v("seen_through_vote_radius", vehicle_vote_radius, "m",
+      "vehicle voxels go by the vote of the vehicle voxels within this (x, y) radius; 0: each "
+      "alone",
+      in(0, 5));
+    v("seen_through_vote_share", vehicle_vote_share, "",
+      "share of seen-through vehicle voxels in that neighbourhood that removes them",
+      gt(0) & le(1));
+  }
 };
 
 struct SeenThroughStats {

@@ -1,6 +1,7 @@
 #pragma once
 /// @file A simulator World read from a map file (docs/simulate.md "Worlds"): a Lanelet2 `.osm`
-/// map, and the check that the world has true markings to observe.
+/// or an OpenDRIVE `.xodr` map, chosen by the file's extension, and the check that the world
+/// has true markings to observe.
 #include <string>
 
 #include "mapfuse/core/param.hpp"
@@ -27,9 +28,10 @@ struct MapWorldSettings {
 /// come from the map itself, not placed by the simulator.
 int trueMarkings(const World& world);
 
-/// @brief Reads `path` (Lanelet2 OSM) into a World in ENU of `*origin`.
-/// @param map_origin true: the map's own origin (the first node) replaces `*origin`'s lat/lon,
-/// keeping its altitude.
+/// @brief Reads `path` (.xodr: OpenDRIVE; anything else: Lanelet2 OSM) into a World in ENU of
+/// `*origin`.
+/// @param map_origin true: the map's own origin replaces `*origin`'s lat/lon (Lanelet2: the
+/// first node; OpenDRIVE: the georeference's origin), keeping its altitude.
 /// @throws IoError (missing file), ParseError (malformed map), InputError (no drivable lane, or
 /// no true marking without settings.allow_no_markings).
 World loadMapWorld(const std::string& path, bool map_origin, const MapWorldSettings& settings,

@@ -41,6 +41,7 @@ struct AggregateParams {
 
 /// What one aggregate run did.
 struct AggregateRun {
+  std::string method;            ///< the aggregation method (dbscan_bezier, grid_vote)
   std::size_t drives = 0;        ///< input LSMs
   std::size_t observations = 0;  ///< their elements
   std::size_t instances = 0;     ///< map instances
@@ -54,7 +55,8 @@ struct AggregateRun {
 };
 
 /// @brief The summary aggregate.summary.json holds (map size in KB/km against the paper's
-/// 20 KB/km target, per-class counts, lane instantiation and vectorization figures).
+/// 20 KB/km target, per-class counts, lane instantiation and vectorization figures; with
+/// method grid_vote the grid's figures).
 nlohmann::json toJson(const AggregateRun& run);
 
 /// @brief Runs the stage: reads `inputs` (LSM files, JSON or CBOR), aggregates and writes into

@@ -19,7 +19,7 @@ struct SimulateParams {
   static constexpr const char* kName = "SimulateParams";
   std::string level = "lsm";              ///< lsm | frames | truth
   std::string format = "cbor";            ///< LSM encoding: cbor | json
-  std::string map;                        ///< Lanelet2 .osm file; empty = procedural world
+  std::string map;                        ///< Lanelet2 .osm / OpenDRIVE .xodr; empty = procedural
   std::string osm_origin = "first_node";  ///< first_node | config (origin_lat/lon/alt)
   double origin_lat = 49.0;               ///< deg
   double origin_lon = 8.4;                ///< deg
@@ -32,8 +32,10 @@ struct SimulateParams {
     using namespace param;
     v("level", level, "", "output level", oneOf({"lsm", "frames", "truth"}));
     v("format", format, "", "LSM encoding", oneOf({"cbor", "json"}));
-    v("map", map, "", "Lanelet2 OSM map; empty = the procedural world");
-    v("osm_origin", osm_origin, "", "ENU origin of a Lanelet2 map (config: origin_lat/lon/alt)",
+    v("map", map, "", "Lanelet2 .osm or OpenDRIVE .xodr map; empty = the procedural world");
+    v("osm_origin", osm_origin, "",
+      "ENU origin of a map (first_node: .osm first node, .xodr georeference; config: "
+      "origin_lat/lon/alt)",
       oneOf({"first_node", "config"}));
     map_world.visit(v);
     v("origin_lat", origin_lat, "deg", "ENU origin latitude (procedural world, osm_origin=config)",

@@ -1,0 +1,111 @@
+// The summaries of lidar-semantic-map and its train subcommand, from the area results.
+#include "mapfuse/core/classes.hpp"
+#include "mapfuse/stages/lidar_semantic_map.hpp"
+
+namespace mapfuse::stages {
+using json = nlohmann::json;
+
+namespace {
+json posesJson(const lidar::DrivePoses& p, const lidar::DriveOdometrySettings& odometry) {
+  json j = {{"source", p.source}};
+  if (p.origin_fix) {
+    const Eigen::Vector3d& t = p.origin_translation;
+    j["origin_translation"] = {t.x(), t.y(), t.z()};
+    j["origin_wgs84"] = {
+        {"lat", p.origin_fix->lat}, {"lon", p.origin_fix->lon}, {"alt", p.origin_fix->alt}};
+  }
+  if (!p.file.empty()) j["file"] = p.file.string();
+  if (p.odometry) j.update(lidar::odometryReport(*p.odometry, odometry));
+  return j;
+}
+
+json refinementJson(const lidar::MapRefinementResult& r) {
+  json j = {{"enabled", r.ran}};
+  if (!r.ran) return j;
+  j["knn_removed_voxels"] = r.knn_removed_voxels;
+  if (r.ran_seen_through) {
+    j["seen_through_tested_voxels"] = r.seen_through.tested_voxels;
+    j["seen_through_removed_voxels"] = r.seen_through.removed_voxels;
+  }
+  if (r.ran_traces) {
+    j["vehicle_voxels"] = r.traces.vehicle_voxels;
+    j["vehicle_clusters"] = r.traces.clusters;
+    j["trace_clusters_removed"] = r.traces.removed_clusters;
+    j["trace_voxels_removed"] = r.traces.removed_voxels;
+  }
+  return j;
+}
+
+json timingsJson(const lidar::SemanticMapResult& r, std::size_t frames) {
+  const auto& t = r.timings;
+  json j = {{"open", t.open},
+            {"poses", t.poses},
+            {"load_scans", t.load_scans},
+            {"semantics", t.semantics},
+            {"projection", t.projection},
+            {"error_minimization", t.error_minimization},
+            {"fusion", t.fusion},
+            {"per_frame_labelling_excluding_network",
+             (t.projection + t.error_minimization + t.fusion) / static_cast<double>(frames)}};
+  if (r.refinement.ran) j["refinement_knn"] = r.refinement.seconds_knn;
+  if (r.refinement.ran_seen_through)
+    j["refinement_seen_through"] = r.refinement.seconds_seen_through;
+  if (r.refinement.ran_traces) j["refinement_traces"] = r.refinement.seconds_traces;
+  return j;
+}
+}  // namespace
+
+json toJson(const lidar::SemanticMapResult& r, const lidar::DriveOdometrySettings& odometry) {
+  json s;
+  s["poses"] = posesJson(r.poses, odometry);
+  s["semantics"] = {{"source", r.semantics.source},
+                    {"from_precomputed", r.semantics.from_precomputed},
+                    {"from_cache", r.semantics.from_cache},
+                    {"from_network", r.semantics.from_network},
+                    {"network_seconds", r.semantics.network_seconds}};
+  json em = {{"clusters", r.error_min.clusters},
+             {"rejected_clusters", r.error_min.rejected_clusters},
+             {"rejected_points", r.error_min.rejected_points},
+             {"skipped", !r.error_min_skipped.empty()}};
+  if (r.error_min_skipped.empty())
+    em["labels"] = r.forest_labels;
+  else
+    em["reason"] = r.error_min_skipped;
+  s["error_minimization"] = em;
+  s["points_projected"] = r.points_projected;
+  s["points_fused"] = r.points_fused;
+  s["voxels_after_fusion"] = r.voxels_after_fusion;
+  s["voxels"] = r.map.size();
+  s["bytes_per_voxel"] = r.bytes_per_voxel;
+  s["bytes_per_voxel_before_shrink"] = r.bytes_per_voxel_before_shrink;
+  s["refinement"] = refinementJson(r.refinement);
+  s["timings_s"] = timingsJson(r, r.poses.T_map_velo.size());
+  return s;
+}
+
+json toJson(const lidar::ClassifierTrainingResult& r) {
+  json per_drive = json::array();
+  for (const auto& d : r.drives)
+    per_drive.push_back({{"drive", d.drive},
+                         {"frames_used", d.frames_used},
+                         {"frames_without_labels", d.frames_without_labels},
+                         {"clusters", d.clusters},
+                         {"semantics", d.semantics}});
+  json labels = json::object();
+  for (int l = 1; l < kNumLidarClasses; ++l) {
+    json j = {{"correct_clusters", r.report.positives[l]},
+              {"wrong_clusters", r.report.negatives[l]},
+              {"trained", r.report.trained[l]}};
+    if (r.report.trained[l])
+      j["training_accuracy"] = r.report.training_accuracy[l];
+    else
+      j["reason"] = "fewer than rtrees_min_samples correct or wrong clusters";
+    labels[lidarClassName(LidarClass(l))] = j;
+  }
+  return {{"drives", per_drive},
+          {"frames_used", r.frames_used},
+          {"labels", labels},
+          {"forests", r.classifier.labels()}};
+}
+
+}  // namespace mapfuse::stages
