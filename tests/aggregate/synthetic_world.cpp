@@ -1,6 +1,10 @@
 #include "synthetic_world.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "mapfuse/aggregate/geometry2d.hpp"
 
 namespace mapfuse::test {
 namespace {
@@ -159,6 +163,26 @@ SynthWorld makeSynthWorld(const SynthOptions& o) {
     w.lsms.push_back(std::move(lsm));
   }
   return w;
+}
+
+aggregate::ObservationSet observe(const SynthWorld& w) {
+  std::vector<std::string> names;
+  for (const auto& l : w.lsms) names.push_back(l.drive_id);
+  return aggregate::collectObservations(w.lsms, names);
+}
+
+std::vector<const MapInstance*> ofClass(const VectorMap& m, CrowdClass c) {
+  std::vector<const MapInstance*> out;
+  for (const auto& i : m.instances)
+    if (i.cls == c) out.push_back(&i);
+  return out;
+}
+
+double distanceToTruth(const Eigen::Vector3d& p, const VectorMap& truth, CrowdClass c) {
+  double best = 1e300;
+  for (const auto* t : ofClass(truth, c))
+    best = std::min(best, aggregate::distanceToPolyline2d(p, t->points));
+  return best;
 }
 
 }  // namespace mapfuse::test

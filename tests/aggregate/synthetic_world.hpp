@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "mapfuse/aggregate/observations.hpp"
 #include "mapfuse/core/lsm.hpp"
 #include "mapfuse/core/vector_map.hpp"
 
@@ -37,5 +38,12 @@ struct SynthWorld {
 };
 
 SynthWorld makeSynthWorld(const SynthOptions& options);
+
+/// @brief The world's LSMs as aggregate's observations (sources named by drive id).
+aggregate::ObservationSet observe(const SynthWorld& w);
+/// @brief The map's instances of class `c`.
+std::vector<const MapInstance*> ofClass(const VectorMap& m, CrowdClass c);
+/// @brief Distance in the xy plane from p to the nearest true instance of class `c`, m.
+double distanceToTruth(const Eigen::Vector3d& p, const VectorMap& truth, CrowdClass c);
 
 }  // namespace mapfuse::test

@@ -31,24 +31,9 @@ AggregatorParams gridVote() {
   return p;
 }
 
-ObservationSet observe(const test::SynthWorld& w) {
-  std::vector<std::string> names;
-  for (const auto& l : w.lsms) names.push_back(l.drive_id);
-  return collectObservations(w.lsms, names);
-}
-
-std::vector<const MapInstance*> ofClass(const VectorMap& m, CrowdClass c) {
-  std::vector<const MapInstance*> out;
-  for (const auto& i : m.instances)
-    if (i.cls == c) out.push_back(&i);
-  return out;
-}
-
-double distanceToTruth(const Vec3& p, const VectorMap& truth, CrowdClass c) {
-  double best = 1e300;
-  for (const auto* t : ofClass(truth, c)) best = std::min(best, distanceToPolyline2d(p, t->points));
-  return best;
-}
+using test::distanceToTruth;
+using test::observe;
+using test::ofClass;
 
 Vec3 centre(const MapInstance& m) {
   Vec3 c = Vec3::Zero();

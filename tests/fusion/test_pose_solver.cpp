@@ -200,19 +200,31 @@ TEST_CASE("pose solver: closed-form residuals and Jacobians match the Ceres func
 TEST_CASE("pose solver: the pose graph reaches the optimum of the Ceres formulation",
           "[fusion][solver]") {
   // 6 fixture traversals, their registrations and PCM as align makes them; the old solver
-  // (Ceres, sparse Cholesky, converged tightly) against align's default PCG LM.
-  constexpr double kMeanTol = 0.005;  // m, keyframe positions on average
-  constexpr double kMaxTol = 0.02;    // m, the worst keyframe
-  constexpr double kRotTol = 0.002;   // rad
+  // (Ceres, sparse Cholesky, converged tightly) against align's PCG LM. Stopped tightly, ours
+  // reaches Ceres' optimum; with align's defaults (stop at a 1 % relative cost change, PCG at a
+  // 1 % residual) it stops millimetres short, which the GBA after it re-solves anyway. The
+  // defaults' tolerances were 5 / 20 mm until georef's odometry became stiffer (the sigmas'
+  // growth, not the variances'): the georeferenced priors are then straighter and the stop
+  // comes earlier (6.7 / 23 mm measured).
+  constexpr double kOptimumTol = 1e-4;  // m, stopped tightly: the same optimum
+  constexpr double kMeanTol = 0.01;     // m, defaults: keyframe positions on average
+  constexpr double kMaxTol = 0.03;      // m, defaults: the worst keyframe
+  constexpr double kRotTol = 0.002;     // rad
   std::vector<Lsm> lsms = georeferenced(6, 3);
   const std::vector<Lsm> priors = keyframesOnly(lsms);
   AlignSettings s;
   std::vector<InterConstraint> cs = registerSubmaps(lsms, s);
   pcmSelect(lsms, cs, s);
   s.graph_rejection_rounds = 1;  // the same constraint set for both solvers
-  std::vector<Lsm> ours = lsms, ceres = lsms;
+  std::vector<Lsm> ours = lsms, ceres = lsms, tight = lsms;
   const GraphSolve r = solveMultiPoseGraph(ours, priors, cs, s);
   ceresPoseGraph(ceres, priors, cs, s);
+  AlignSettings stop_tightly = s;
+  stop_tightly.function_tolerance = 1e-8;
+  stop_tightly.pcg_tolerance = 1e-6;
+  stop_tightly.pcg_iterations = 1000;
+  solveMultiPoseGraph(tight, priors, cs, stop_tightly);
+  CHECK(difference(tight, ceres).max_m < kOptimumTol);
   const PoseDifference d = difference(ours, ceres);
   WARN("pose graph vs Ceres: mean " << d.mean_m << " m, max " << d.max_m << " m, " << d.max_rad
                                     << " rad; " << r.iterations << " LM and " << r.pcg_iterations

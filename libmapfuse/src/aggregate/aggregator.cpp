@@ -8,7 +8,6 @@
 #include "discrete_merge.hpp"
 #include "grid_instances.hpp"
 #include "lane_instantiation.hpp"
-#include "mapfuse/io/vector_map_io.hpp"
 
 namespace mapfuse::aggregate {
 namespace {
@@ -16,15 +15,7 @@ namespace {
 MapInstance vectorizeLane(const ObservationSet& set, const LaneInstance& lane,
                           const AggregatorParams& params, AggregatorStats& stats, double& sum_sq,
                           std::size_t& count) {
-  MapInstance inst;
-  inst.cls = CrowdClass::kLaneLine;
-  const BezierFitResult fit = fitBezierChain(lane.centreline, params.bezier);
-  inst.bezier = fit.chain;
-  inst.points = io::sampleBezierChain(fit.chain, params.sample_step);
-  stats.bezier_segments += fit.chain.size();
-  stats.bezier_max_deviation = std::max(stats.bezier_max_deviation, fit.max_deviation);
-  sum_sq += fit.rms_deviation * fit.rms_deviation * double(lane.centreline.size());
-  count += lane.centreline.size();
+  MapInstance inst = fittedLaneLine(lane.centreline, params, stats, sum_sq, count);
   // dashed/solid and colour by (confidence-weighted) majority vote
   std::map<LineStyle, double> styles;
   std::map<LineColor, double> colors;

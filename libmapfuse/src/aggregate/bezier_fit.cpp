@@ -146,4 +146,19 @@ BezierFitResult fitBezierChain(const std::vector<Vec3>& points, const BezierFitP
   return result;
 }
 
+MapInstance fittedLaneLine(const std::vector<Eigen::Vector3d>& centreline,
+                           const AggregatorParams& params, AggregatorStats& stats, double& sum_sq,
+                           std::size_t& count) {
+  MapInstance inst;
+  inst.cls = CrowdClass::kLaneLine;
+  const BezierFitResult fit = fitBezierChain(centreline, params.bezier);  // eq. (15)
+  inst.bezier = fit.chain;
+  inst.points = io::sampleBezierChain(fit.chain, params.sample_step);
+  stats.bezier_segments += fit.chain.size();
+  stats.bezier_max_deviation = std::max(stats.bezier_max_deviation, fit.max_deviation);
+  sum_sq += fit.rms_deviation * fit.rms_deviation * double(centreline.size());
+  count += centreline.size();
+  return inst;
+}
+
 }  // namespace mapfuse::aggregate

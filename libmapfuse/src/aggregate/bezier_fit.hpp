@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "mapfuse/aggregate/aggregator.hpp"
 #include "mapfuse/aggregate/settings.hpp"
 #include "mapfuse/core/vector_map.hpp"
 
@@ -27,5 +28,13 @@ BezierSegment fitCubicBezier(const std::vector<Eigen::Vector3d>& p, std::vector<
 /// @brief Fits a G1 Bezier chain to an ordered polyline (at least 2 points).
 BezierFitResult fitBezierChain(const std::vector<Eigen::Vector3d>& points,
                                const BezierFitParams& params);
+
+/// @brief A lane-line instance (class and geometry only) from a lane's centreline: the fitted
+/// chain (eq. (15)) and its points every `params.sample_step`. The fit's segments and largest
+/// deviation go into `stats`; its squared deviation times the centreline's points into
+/// `sum_sq`, the points into `count` (for the RMS over all lanes).
+MapInstance fittedLaneLine(const std::vector<Eigen::Vector3d>& centreline,
+                           const AggregatorParams& params, AggregatorStats& stats, double& sum_sq,
+                           std::size_t& count);
 
 }  // namespace mapfuse::aggregate

@@ -9,7 +9,6 @@
 #include "lane_links.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
 #include "mapfuse/core/union_find.hpp"
-#include "mapfuse/io/vector_map_io.hpp"
 
 namespace mapfuse::aggregate {
 namespace {
@@ -105,15 +104,7 @@ std::vector<MapInstance> laneInstances(const VoteGrid& grid, const std::vector<i
   double sum_sq = 0;
   std::size_t count = 0;
   for (const LaneInstance& lane : lanes) {
-    MapInstance inst;
-    inst.cls = CrowdClass::kLaneLine;
-    const BezierFitResult fit = fitBezierChain(lane.centreline, params.bezier);  // eq. (15)
-    inst.bezier = fit.chain;
-    inst.points = io::sampleBezierChain(fit.chain, params.sample_step);
-    stats.bezier_segments += fit.chain.size();
-    stats.bezier_max_deviation = std::max(stats.bezier_max_deviation, fit.max_deviation);
-    sum_sq += fit.rms_deviation * fit.rms_deviation * double(lane.centreline.size());
-    count += lane.centreline.size();
+    MapInstance inst = fittedLaneLine(lane.centreline, params, stats, sum_sq, count);
     ComponentVotes sum;
     for (std::size_t c : lane.observations) {  // component indices (frags[i].obs above)
       for (std::size_t j = 0; j < 3; ++j) sum.style[j] += votes[c].style[j];

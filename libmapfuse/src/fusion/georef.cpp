@@ -18,8 +18,17 @@ Matrix6d relativeOdometryCovariance(const Keyframe& a, const Keyframe& b, double
   const double st = std::max(min_sigma_t, sigma_t_per_m * dist);
   const double sr = std::max(min_sigma_r, sigma_r_per_m * dist);
   Matrix6d cov = diagonalCovariance(st, sr);
-  const Vector6d growth = b.covariance.diagonal() - a.covariance.diagonal();
-  for (int i = 0; i < 6; ++i) cov(i, i) = std::max(cov(i, i), growth(i));
+  // The growth of the keyframes' absolute standard deviations between a and b bounds the drift
+  // between them. Odometry drift is systematic (a wheel scale error, a gyro bias: the error grows
+  // linearly along the drive), so the relative sigma is the difference of the sigmas. The
+  // difference of the variances (a random walk's increment) grows with the absolute sigma itself:
+  // late in a 20 km drive it made consecutive keyframes 5 m apart in sigma, and georef bent the
+  // odometry to the GPS noise (relative error 1.1 m per 16 m against the input's 0.08 m).
+  for (int i = 0; i < 6; ++i) {
+    const double growth =
+        std::sqrt(std::max(0.0, b.covariance(i, i))) - std::sqrt(std::max(0.0, a.covariance(i, i)));
+    cov(i, i) = std::max(cov(i, i), growth * growth);
+  }
   return cov;
 }
 

@@ -10,6 +10,7 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/bounds.hpp"
+#include "xml_root.hpp"
 
 namespace mapfuse::io {
 
@@ -126,13 +127,7 @@ const Lanelet2LineString* Lanelet2Map::way(int64_t id) const {
 
 Lanelet2Map parseLanelet2Osm(const std::string& xml, const std::string& file) {
   pugi::xml_document doc;
-  const pugi::xml_parse_result ok = doc.load_buffer(xml.data(), xml.size());
-  if (!ok)
-    throw ParseError(
-        file, "",
-        std::string("XML: ") + ok.description() + " at byte offset " + std::to_string(ok.offset));
-  const pugi::xml_node osm = doc.child("osm");
-  if (!osm) throw ParseError(file, "osm", "no <osm> root element");
+  const pugi::xml_node osm = detail::xmlRoot(doc, xml, file, "osm");
 
   Lanelet2Map map;
   map.file = file;

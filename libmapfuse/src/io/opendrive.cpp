@@ -9,6 +9,7 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/bounds.hpp"
+#include "xml_root.hpp"
 
 namespace mapfuse::io {
 
@@ -274,13 +275,7 @@ const OdrJunction* OdrMap::junction(const std::string& id) const {
 
 OdrMap parseOpenDrive(const std::string& xml, const std::string& file) {
   pugi::xml_document doc;
-  const pugi::xml_parse_result ok = doc.load_buffer(xml.data(), xml.size());
-  if (!ok)
-    throw ParseError(
-        file, "",
-        std::string("XML: ") + ok.description() + " at byte offset " + std::to_string(ok.offset));
-  const pugi::xml_node root = doc.child("OpenDRIVE");
-  if (!root) throw ParseError(file, "OpenDRIVE", "no <OpenDRIVE> root element");
+  const pugi::xml_node root = detail::xmlRoot(doc, xml, file, "OpenDRIVE");
   OdrMap map;
   map.file = file;
   const pugi::xml_node header = root.child("header");

@@ -86,7 +86,8 @@ std::vector<GeorefResult> georeferenceLsms(const std::vector<Lsm>& lsms,
                                            const std::vector<std::string>& sources, int threads);
 
 /// @brief Relative odometry covariance between two consecutive keyframes: the growth of their
-/// absolute covariances (diagonal), bounded below by the distance-proportional model.
+/// absolute standard deviations (diagonal; drift is systematic, so sigmas add, not variances),
+/// bounded below by the distance-proportional model.
 Matrix6d relativeOdometryCovariance(const Keyframe& a, const Keyframe& b, double sigma_t_per_m,
                                     double sigma_r_per_m, double min_sigma_t, double min_sigma_r);
 
