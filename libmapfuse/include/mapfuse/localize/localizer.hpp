@@ -20,7 +20,7 @@ namespace mapfuse::localize {
 
 struct LocalizeSettings {
   double window = 12.0;              ///< m travelled either side: observations of these keyframes
-  double window_sigma_per_m = 0.05;  ///< m/m, sigma added to a point per metre from keyframe k
+  double window_sigma_per_m = 0.02;  ///< m/m, sigma added to a point per metre from keyframe k
   int rounds = 4;                    ///< matching + solve rounds per keyframe
   double match_radius = 1.5;         ///< m, matching radius of the first round
   double final_match_radius = 0.5;   ///< m, of the last round (linear in between)
@@ -31,7 +31,7 @@ struct LocalizeSettings {
   double prior_sigma = 5.0;       ///< m, horizontal sigma of the georeferenced (GPS) prior
   double prior_sigma_yaw = 0.01;  ///< rad, its heading sigma
   double motion_sigma = 0.02;     ///< m, odometry noise added per prediction
-  double motion_sigma_per_m = 0.01;       ///< m/m, its growth with the distance predicted
+  double motion_sigma_per_m = 0.03;       ///< m/m, its growth with the distance predicted
   double motion_sigma_yaw_per_m = 0.001;  ///< rad/m, heading noise added per metre predicted
   double search_radius = 4.0;      ///< m, half-width of the acquisition grid around the prediction
   double search_step = 0.5;        ///< m, its spacing
