@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include "lsm_cbor.hpp"
 #include "mapfuse/core/error.hpp"
 
@@ -256,18 +257,48 @@ std::vector<Lsm> readLsmInputs(const std::vector<std::string>& files, bool covar
         throw ConfigError("inputs " + files[j] + " and " + files[i] +
                           " are the same file (its data would count twice)");
     }
-  std::vector<Lsm> lsms;
-  lsms.reserve(files.size());
+  // Decoded side by side (the files are independent); errors reported as a serial read would,
+  // the first file's first.
+  std::vector<Lsm> lsms(files.size());
+  std::vector<std::exception_ptr> failed(files.size());
+#pragma omp parallel for schedule(dynamic)
+  for (std::ptrdiff_t k = 0; k < std::ptrdiff_t(files.size()); ++k) {
+    const std::size_t i = std::size_t(k);
+    try {
+      lsms[i] = readLsm(files[i]);
+      if (!covariances)
+        for (Element& e : lsms[i].elements) std::vector<Eigen::Matrix3d>().swap(e.covariances);
+    } catch (...) {
+      failed[i] = std::current_exception();
+    }
+  }
   for (std::size_t i = 0; i < files.size(); ++i) {
-    lsms.push_back(readLsm(files[i]));
-    if (!covariances)
-      for (Element& e : lsms.back().elements) std::vector<Eigen::Matrix3d>().swap(e.covariances);
+    if (failed[i]) std::rethrow_exception(failed[i]);
     for (std::size_t j = 0; j < i; ++j)
       if (lsms[j].drive_id == lsms[i].drive_id)
         throw ConfigError("inputs " + files[j] + " and " + files[i] + " hold the same drive '" +
                           lsms[i].drive_id + "' (its data would count twice)");
   }
   return lsms;
+}
+
+void writeWithKeyframes(const std::vector<std::string>& inputs, std::vector<Lsm>& updated,
+                        const std::filesystem::path& out_dir) {
+  std::vector<std::exception_ptr> failed(inputs.size());
+#pragma omp parallel for schedule(dynamic)
+  for (std::ptrdiff_t k = 0; k < std::ptrdiff_t(inputs.size()); ++k) {
+    const std::size_t i = std::size_t(k);
+    try {
+      Lsm whole = readLsm(inputs[i]);
+      whole.keyframes = std::move(updated[i].keyframes);
+      std::vector<Element>().swap(updated[i].elements);
+      writeLsm(out_dir / std::filesystem::path(inputs[i]).filename(), whole);
+    } catch (...) {
+      failed[i] = std::current_exception();
+    }
+  }
+  for (const auto& f : failed)
+    if (f) std::rethrow_exception(f);
 }
 
 void writeLsm(const std::filesystem::path& path, const Lsm& lsm) {

@@ -74,12 +74,7 @@ fusion::AlignResult runAlign(const std::vector<std::string>& inputs,
     if (l.keyframes.empty()) throw InputError(in + ": LSM has no keyframes");
   }
   const fusion::AlignResult result = fusion::alignLsms(lsms, params.align);
-  for (std::size_t i = 0; i < lsms.size(); ++i) {  // the input with the aligned keyframes
-    Lsm aligned = io::readLsm(inputs[i]);
-    aligned.keyframes = std::move(lsms[i].keyframes);
-    std::vector<Element>().swap(lsms[i].elements);
-    io::writeLsm(out_dir / std::filesystem::path(inputs[i]).filename(), aligned);
-  }
+  io::writeWithKeyframes(inputs, lsms, out_dir);  // the inputs with the aligned keyframes
   nlohmann::json summary = toJson(result);
   summary["inputs"] = inputs;
   summary["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

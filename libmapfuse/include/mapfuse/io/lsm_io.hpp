@@ -28,5 +28,10 @@ Lsm readLsm(const std::filesystem::path& path);
 std::vector<Lsm> readLsmInputs(const std::vector<std::string>& files, bool covariances = true);
 /// @brief Atomic write (temp file + rename).
 void writeLsm(const std::filesystem::path& path, const Lsm& lsm);
+/// @brief Writes each input LSM again, whole, into `out_dir` under its file name, with the
+/// keyframes of `updated[i]` (moved out; its elements are freed): for a run that held the
+/// inputs without covariances. Files are done side by side; the first file's error is thrown.
+void writeWithKeyframes(const std::vector<std::string>& inputs, std::vector<Lsm>& updated,
+                        const std::filesystem::path& out_dir);
 
 }  // namespace mapfuse::io
