@@ -15,6 +15,7 @@
 #include "mapfuse/stages/evaluate_voxels.hpp"
 #include "mapfuse/stages/georef.hpp"
 #include "mapfuse/stages/lidar_semantic_map.hpp"
+#include "mapfuse/stages/localize.hpp"
 #include "mapfuse/stages/lsm_build.hpp"
 #include "mapfuse/stages/simulate.hpp"
 #include "mapfuse/stages/simulate_lidar.hpp"
@@ -120,5 +121,6 @@ TEST_CASE("every tool's parameters are declared once, bounded and refused outsid
   checkTool<stages::SimulateParams>("simulate");
   checkTool<stages::SimulateLidarParams>("simulate-lidar");
   checkTool<stages::EvaluateVoxelsParams>("evaluate-voxels");
+  checkTool<stages::LocalizeParams>("localize");
   checkTool<stages::LidarSemanticMapParams>("lidar-semantic-map");
 }

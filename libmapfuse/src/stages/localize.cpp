@@ -1,0 +1,144 @@
+#include "mapfuse/stages/localize.hpp"
+
+#include <exception>
+#include <map>
+#include <memory>
+
+#include "mapfuse/cli/params.hpp"
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/core/log.hpp"
+#include "mapfuse/core/progress.hpp"
+#include "mapfuse/eval/map_metrics.hpp"
+#include "mapfuse/geo/origin.hpp"
+#include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/document.hpp"
+#include "mapfuse/io/lsm_io.hpp"
+#include "mapfuse/io/output_transaction.hpp"
+#include "mapfuse/io/stage_report.hpp"
+#include "mapfuse/io/vector_map_io.hpp"
+#include "mapfuse/localize/report.hpp"
+
+namespace mapfuse::stages {
+
+nlohmann::json toJson(const LocalizeRun& run) {
+  nlohmann::json drives = nlohmann::json::array();
+  std::vector<localize::LocalizeErrors> errors;
+  for (const auto& d : run.drives) {
+    nlohmann::json j = localize::toJson(d.result);
+    j["drive_id"] = d.drive_id;
+    j["file"] = d.file;
+    if (d.errors) {
+      j["localized"] = localize::toJson(d.errors->localized);
+      j["prior"] = localize::toJson(d.errors->prior);
+      errors.push_back(*d.errors);
+    }
+    drives.push_back(j);
+  }
+  nlohmann::json s = {
+      {"drives", drives},
+      {"keyframes", run.keyframes},
+      {"lost", run.lost},
+      {"lost_share", run.lostShare()},
+      {"seconds_localize", run.seconds_localize},
+      {"localisations_per_second_per_core",
+       run.seconds_localize > 0 ? double(run.keyframes) / run.seconds_localize : 0.0}};
+  if (!errors.empty()) {  // the paper's three averages, over all drives' localised keyframes
+    s["localized"] = localize::toJson(localize::pooled(errors, false));
+    s["prior"] = localize::toJson(localize::pooled(errors, true));
+    // the drives share the map: their mean ENU error is the map's offset against the truth
+    const Eigen::Vector2d offset = localize::commonOffset(errors);
+    s["common_offset_enu_m"] = {offset.x(), offset.y()};
+    s["localized_without_common_offset"] =
+        localize::toJson(localize::pooledWithoutOffset(errors, offset));
+  }
+  return s;
+}
+
+LocalizeRun runLocalize(const LocalizeInputs& in, const std::filesystem::path& out_dir,
+                        const LocalizeParams& params) {
+  validateParams(params);
+  io::OutputTransaction outputs(out_dir);  // locked and writable before the work
+  if (in.lsms.empty()) throw InputError("localize: no drive (LSM) to localise");
+  const VectorMap file_map = io::readVectorMap(in.map);
+  std::map<std::string, eval::TrueTrajectory> truth;
+  if (!in.truth_trajectories.empty())
+    for (auto& [file, t] : eval::readTrueTrajectories(in.truth_trajectories))
+      truth[t.drive_id] = std::move(t);
+  const std::vector<Lsm> lsms = io::readLsmInputs(in.lsms);  // duplicates refused (exit 2)
+  const std::size_t n = lsms.size();
+  std::vector<localize::DriveObservations> obs;
+  std::vector<std::shared_ptr<const localize::MapIndex>> index(n);  // the map in each drive's ENU
+  std::vector<const eval::TrueTrajectory*> true_of(n, nullptr);
+  for (std::size_t i = 0; i < n; ++i) {  // every input checked before the work
+    obs.push_back(localize::observationsOf(lsms[i], params.localize.match_attributes, in.lsms[i]));
+    for (std::size_t j = 0; j < i && !index[i]; ++j)
+      if (geo::sameOrigin(*lsms[j].origin, *lsms[i].origin)) index[i] = index[j];
+    if (!index[i])
+      index[i] = std::make_shared<localize::MapIndex>(eval::inOrigin(file_map, *lsms[i].origin),
+                                                      params.localize.match_attributes);
+    if (in.truth_trajectories.empty()) continue;
+    const auto t = truth.find(lsms[i].drive_id);
+    if (t == truth.end())
+      throw IoError(in.truth_trajectories,
+                    "true trajectory of drive '" + lsms[i].drive_id + "' not found");
+    true_of[i] = &t->second;
+  }
+  LocalizeRun run;
+  run.drives.resize(n);
+  std::vector<std::exception_ptr> failed(n);
+  Progress progress("drives", n);
+#pragma omp parallel for schedule(dynamic)  // drives are independent
+  for (std::size_t i = 0; i < n; ++i) {
+    try {
+      LocalizedDrive& d = run.drives[i];
+      d.file = in.lsms[i];
+      d.drive_id = lsms[i].drive_id;
+      d.result = localize::localizeDrive(*index[i], obs[i], params.localize);
+      if (true_of[i])
+        d.errors = localize::localizeErrors(d.result, *true_of[i], *lsms[i].origin, d.file);
+    } catch (...) {
+      failed[i] = std::current_exception();
+    }
+    progress.advance();
+  }
+  for (const auto& e : failed)
+    if (e) std::rethrow_exception(e);
+  for (std::size_t i = 0; i < n; ++i) {
+    const LocalizedDrive& d = run.drives[i];
+    const Lsm& lsm = lsms[i];
+    const std::string name =
+        lsm.drive_id.empty() ? std::filesystem::path(d.file).stem().string() : lsm.drive_id;
+    io::writeDocument(
+        out_dir / (name + ".trajectory.json"),
+        localize::trajectoryJson(d.result, lsm.drive_id, lsm.vehicle_id, *lsm.origin));
+    if (d.errors) {
+      io::writeBytesAtomic(out_dir / (name + ".errors.csv"), localize::errorsCsv(*d.errors));
+      localize::writeErrorPlot(out_dir / (name + ".errors.png"), *d.errors,
+                               "localize " + name + ": error vs distance");
+    }
+    run.keyframes += d.result.keyframes.size();
+    run.lost += static_cast<std::size_t>(d.result.lost);
+    run.seconds_localize += d.result.seconds;
+  }
+  progress.finish();
+  const double share = run.lostShare();
+  if (share > params.lost.max_lost_share)  // before commit: the previous outputs stay
+    throw InputError("localize: map lost on " + std::to_string(run.lost) + " of " +
+                     std::to_string(run.keyframes) + " keyframes (share " + std::to_string(share) +
+                     " > max_lost_share " + std::to_string(params.lost.max_lost_share) + "): map " +
+                     in.map + " does not cover the drives");
+  if (share > params.lost.warn_lost_share)
+    MAPFUSE_WARN("localize: map lost on " << run.lost << " of " << run.keyframes
+                                          << " keyframes (share " << share << ")");
+  nlohmann::json summary = toJson(run);
+  summary["map"] = in.map;
+  summary["lost_warning"] = share > params.lost.warn_lost_share;
+  io::writeResolvedConfig(out_dir, "localize", paramsToJson(params));
+  io::writeSummary(out_dir, "localize", summary);
+  outputs.commit();
+  MAPFUSE_INFO("localize: " << run.drives.size() << " drive(s), " << run.keyframes << " keyframes, "
+                            << run.lost << " lost -> " << out_dir.string());
+  return run;
+}
+
+}  // namespace mapfuse::stages
