@@ -13,6 +13,18 @@ trap 'rm -rf "$TMP"' EXIT
 cd "$TMP"   # snakemake keeps its state in ./.snakemake
 shopt -s nullglob
 fail() { echo "FAIL: $*"; exit 1; }
+# Stops a batch started with setsid and waits until every process of its group has exited:
+# waiting for make alone let a killed tool finish or undo its output set after the checks
+# below had listed the outputs (a CI run saw a tile's align summary vanish between two lines).
+stop_batch() {
+  kill -TERM -- -"$1" 2>/dev/null || true
+  wait "$1" 2>/dev/null || true
+  for _ in $(seq 1 600); do
+    kill -0 -- -"$1" 2>/dev/null || return 0
+    sleep 0.05
+  done
+  fail "batch $1 still running 30 s after SIGTERM"
+}
 
 "$BIN/simulate" -q --traversals 6 --route-length 800 -o sim >/dev/null
 MK=(make -s -j2 -f "$SRC/scripts/crowd.mk" BIN="$BIN" LSM_DIR=sim/lsm
@@ -55,8 +67,7 @@ for _ in $(seq 1 600); do
   (( ${#done_drives[@]} == 6 )) && break
   sleep 0.05
 done
-kill -TERM -- -"$pid" 2>/dev/null || true
-wait "$pid" 2>/dev/null || true
+stop_batch "$pid"
 stage="finished"; [[ -f kill/aggregate/map.cbor ]] || stage="killed before aggregate"
 echo "kill: $stage"
 # Drives georeferenced before the kill (their summary, the file georef commits last and make
@@ -81,8 +92,7 @@ for _ in $(seq 1 1200); do
   (( ${#aligned_tiles[@]} >= 2 )) && break
   sleep 0.05
 done
-kill -TERM -- -"$pid" 2>/dev/null || true
-wait "$pid" 2>/dev/null || true
+stop_batch "$pid"
 aligned_tiles=(killt/tiles/*/align/align.summary.json)
 echo "kill tiled: ${#aligned_tiles[@]} tiles aligned before the kill"
 stamp_before=$(stamps "${aligned_tiles[@]}")
