@@ -69,6 +69,18 @@ void addPriorsAndOdometry(PoseProblem<D>& P, const std::vector<Lsm>& priors,
   }
 }
 
+// One solve's figures into the run's: the last cost and convergence, iterations summed.
+template <class SolveSummary>
+void addSolve(GraphSolve& out, const SolveSummary& r, int keyframes) {
+  out.cost = r.final_cost;
+  out.converged = r.converged;
+  out.iterations += r.iterations;
+  out.pcg_iterations += r.pcg_iterations;
+  out.blocks = r.blocks;
+  out.keyframes = keyframes;
+  ++out.rounds;
+}
+
 detail::PoseProblemSettings problemSettings(const AlignSettings& s, double function_tolerance) {
   detail::PoseProblemSettings p;
   p.max_iterations = s.solver_iterations;
@@ -251,13 +263,7 @@ GraphSolve gba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const Ali
     const bool last = round + 1 >= s.gba_rounds;
     const auto r =
         P.solve(problemSettings(s, last ? s.function_tolerance : s.gba_early_round_tolerance));
-    out.cost = r.final_cost;
-    out.converged = r.converged;
-    out.iterations += r.iterations;
-    out.pcg_iterations += r.pcg_iterations;
-    out.blocks = r.blocks;
-    out.keyframes = int(P.poses().size());
-    ++out.rounds;
+    addSolve(out, r, int(P.poses().size()));
     MAPFUSE_DEBUG("align: GBA round "
                   << round << ": " << P.elementPairs() << " residuals, " << r.blocks
                   << " blocks over " << P.poses().size() << " keyframes, " << r.iterations
@@ -283,13 +289,7 @@ GraphSolve solveMultiPoseGraph(std::vector<Lsm>& lsms, const std::vector<Lsm>& p
                     sqrtInformation(c.covariance), s.inter_huber);
     }
     const auto r = P.solve(problemSettings(s, s.function_tolerance));
-    out.cost = r.final_cost;
-    out.converged = r.converged;
-    out.iterations += r.iterations;
-    out.pcg_iterations += r.pcg_iterations;
-    out.blocks = r.blocks;
-    out.keyframes = int(P.poses().size());
-    ++out.rounds;
+    addSolve(out, r, int(P.poses().size()));
     MAPFUSE_DEBUG("align: pose graph round " << round << ": " << r.blocks << " blocks, "
                                              << r.iterations << " LM / " << r.pcg_iterations
                                              << " PCG iterations, cost " << r.initial_cost << " -> "

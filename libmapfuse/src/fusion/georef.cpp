@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <exception>
 
 #include "factors.hpp"
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/core/parallel_for.hpp"
 
 namespace mapfuse::fusion {
 
@@ -237,21 +237,16 @@ std::vector<GeorefResult> georeferenceLsms(const std::vector<Lsm>& lsms,
   using Clock = std::chrono::steady_clock;
   const int n = int(lsms.size());
   std::vector<GeorefResult> results(n);
-  std::vector<std::exception_ptr> errors(n);
   // One thread per input at most: a per-drive batch job (one LSM) must not start and spin an
   // idle OpenMP worker (it doubled the CPU time of such jobs).
-#pragma omp parallel for schedule(dynamic) num_threads(std::max(1, std::min(threads, n)))
-  for (int i = 0; i < n; ++i) {
-    try {
-      const auto t = Clock::now();
-      results[i] = georeferenceLsm(lsms[i], origin, settings, sources[i]);
-      results[i].seconds = std::chrono::duration<double>(Clock::now() - t).count();
-    } catch (...) {
-      errors[i] = std::current_exception();
-    }
-  }
-  for (auto& e : errors)
-    if (e) std::rethrow_exception(e);
+  parallelFor(
+      std::size_t(n),
+      [&](std::size_t i) {
+        const auto t = Clock::now();
+        results[i] = georeferenceLsm(lsms[i], origin, settings, sources[i]);
+        results[i].seconds = std::chrono::duration<double>(Clock::now() - t).count();
+      },
+      std::max(1, std::min(threads, n)));
   return results;
 }
 

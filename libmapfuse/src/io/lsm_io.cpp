@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include "lsm_cbor.hpp"
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/core/parallel_for.hpp"
 
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/document.hpp"
@@ -260,20 +260,12 @@ std::vector<Lsm> readLsmInputs(const std::vector<std::string>& files, bool covar
   // Decoded side by side (the files are independent); errors reported as a serial read would,
   // the first file's first.
   std::vector<Lsm> lsms(files.size());
-  std::vector<std::exception_ptr> failed(files.size());
-#pragma omp parallel for schedule(dynamic)
-  for (std::ptrdiff_t k = 0; k < std::ptrdiff_t(files.size()); ++k) {
-    const std::size_t i = std::size_t(k);
-    try {
-      lsms[i] = readLsm(files[i]);
-      if (!covariances)
-        for (Element& e : lsms[i].elements) std::vector<Eigen::Matrix3d>().swap(e.covariances);
-    } catch (...) {
-      failed[i] = std::current_exception();
-    }
-  }
+  parallelFor(files.size(), [&](std::size_t i) {
+    lsms[i] = readLsm(files[i]);
+    if (!covariances)
+      for (Element& e : lsms[i].elements) std::vector<Eigen::Matrix3d>().swap(e.covariances);
+  });
   for (std::size_t i = 0; i < files.size(); ++i) {
-    if (failed[i]) std::rethrow_exception(failed[i]);
     for (std::size_t j = 0; j < i; ++j)
       if (lsms[j].drive_id == lsms[i].drive_id)
         throw ConfigError("inputs " + files[j] + " and " + files[i] + " hold the same drive '" +
@@ -284,21 +276,12 @@ std::vector<Lsm> readLsmInputs(const std::vector<std::string>& files, bool covar
 
 void writeWithKeyframes(const std::vector<std::string>& inputs, std::vector<Lsm>& updated,
                         const std::filesystem::path& out_dir) {
-  std::vector<std::exception_ptr> failed(inputs.size());
-#pragma omp parallel for schedule(dynamic)
-  for (std::ptrdiff_t k = 0; k < std::ptrdiff_t(inputs.size()); ++k) {
-    const std::size_t i = std::size_t(k);
-    try {
-      Lsm whole = readLsm(inputs[i]);
-      whole.keyframes = std::move(updated[i].keyframes);
-      std::vector<Element>().swap(updated[i].elements);
-      writeLsm(out_dir / std::filesystem::path(inputs[i]).filename(), whole);
-    } catch (...) {
-      failed[i] = std::current_exception();
-    }
-  }
-  for (const auto& f : failed)
-    if (f) std::rethrow_exception(f);
+  parallelFor(inputs.size(), [&](std::size_t i) {
+    Lsm whole = readLsm(inputs[i]);
+    whole.keyframes = std::move(updated[i].keyframes);
+    std::vector<Element>().swap(updated[i].elements);
+    writeLsm(out_dir / std::filesystem::path(inputs[i]).filename(), whole);
+  });
 }
 
 void writeLsm(const std::filesystem::path& path, const Lsm& lsm) {

@@ -1,12 +1,12 @@
 #include "mapfuse/stages/localize.hpp"
 
-#include <exception>
 #include <map>
 #include <memory>
 
 #include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
+#include "mapfuse/core/parallel_for.hpp"
 #include "mapfuse/core/progress.hpp"
 #include "mapfuse/eval/map_metrics.hpp"
 #include "mapfuse/geo/origin.hpp"
@@ -85,24 +85,16 @@ LocalizeRun runLocalize(const LocalizeInputs& in, const std::filesystem::path& o
   }
   LocalizeRun run;
   run.drives.resize(n);
-  std::vector<std::exception_ptr> failed(n);
   Progress progress("drives", n);
-#pragma omp parallel for schedule(dynamic)  // drives are independent
-  for (std::size_t i = 0; i < n; ++i) {
-    try {
-      LocalizedDrive& d = run.drives[i];
-      d.file = in.lsms[i];
-      d.drive_id = lsms[i].drive_id;
-      d.result = localize::localizeDrive(*index[i], obs[i], params.localize);
-      if (true_of[i])
-        d.errors = localize::localizeErrors(d.result, *true_of[i], *lsms[i].origin, d.file);
-    } catch (...) {
-      failed[i] = std::current_exception();
-    }
+  parallelFor(n, [&](std::size_t i) {  // drives are independent
+    LocalizedDrive& d = run.drives[i];
+    d.file = in.lsms[i];
+    d.drive_id = lsms[i].drive_id;
+    d.result = localize::localizeDrive(*index[i], obs[i], params.localize);
+    if (true_of[i])
+      d.errors = localize::localizeErrors(d.result, *true_of[i], *lsms[i].origin, d.file);
     progress.advance();
-  }
-  for (const auto& e : failed)
-    if (e) std::rethrow_exception(e);
+  });
   for (std::size_t i = 0; i < n; ++i) {
     const LocalizedDrive& d = run.drives[i];
     const Lsm& lsm = lsms[i];
