@@ -29,6 +29,17 @@ double coveredFraction(const Fragment& a, const Fragment& b, double tol) {
   return double(inside) / double(a.centreline.size());
 }
 
+// Whether two fragments run within `max_angle` (rad, undirected) of each other: crossing lines
+// are not one line (crossing_lines.hpp). Fragments too short for a direction agree with any.
+bool sameDirection(const Fragment& a, const Fragment& b, double max_angle) {
+  constexpr double kMinSpan = 0.5;  // m, shorter centrelines have no reliable direction
+  if (polylineLength(a.centreline) < kMinSpan || polylineLength(b.centreline) < kMinSpan)
+    return true;
+  const Eigen::Vector2d da = principalAxis2d(a.samples.empty() ? a.centreline : a.samples);
+  const Eigen::Vector2d db = principalAxis2d(b.samples.empty() ? b.centreline : b.samples);
+  return std::abs(da.dot(db)) >= std::cos(max_angle);
+}
+
 // Pools fragments into the union-find roots of `parent`; centrelines recomputed.
 void poolFragments(std::vector<Fragment>& frags, std::vector<int>& parent, double station_step) {
   std::vector<Fragment> out;
@@ -59,6 +70,7 @@ bgi::rtree<BoxValue, bgi::rstar<16>> fragmentBoxes(const std::vector<Fragment>& 
 
 void mergeSideBySide(std::vector<Fragment>& frags, const LaneInstantiationParams& p) {
   const double tol = 2 * p.buffer_width;
+  const double max_angle = p.piece_angle_deg * M_PI / 180.0;
   const auto tree = fragmentBoxes(frags, tol);
   std::vector<int> parent(frags.size());
   std::iota(parent.begin(), parent.end(), 0);
@@ -70,7 +82,8 @@ void mergeSideBySide(std::vector<Fragment>& frags, const LaneInstantiationParams
       const std::size_t j = h.second;
       if (j <= i) continue;
       if (std::max(coveredFraction(frags[i], frags[j], tol),
-                   coveredFraction(frags[j], frags[i], tol)) >= 0.5) {
+                   coveredFraction(frags[j], frags[i], tol)) >= 0.5 &&
+          sameDirection(frags[i], frags[j], max_angle)) {
         parent[findRoot(parent, int(j))] = findRoot(parent, int(i));
         merged = true;
       }
@@ -81,6 +94,7 @@ void mergeSideBySide(std::vector<Fragment>& frags, const LaneInstantiationParams
 
 void absorbStubs(std::vector<Fragment>& frags, const LaneInstantiationParams& p) {
   const double tol = p.station_step;
+  const double max_angle = p.piece_angle_deg * M_PI / 180.0;
   std::vector<char> stub(frags.size());
   for (std::size_t i = 0; i < frags.size(); ++i)
     stub[i] = polylineLength(frags[i].centreline) < tol;
@@ -95,7 +109,8 @@ void absorbStubs(std::vector<Fragment>& frags, const LaneInstantiationParams& p)
     double best = tol;
     int target = -1;
     for (const auto& h : hits) {
-      if (h.second == i || stub[h.second]) continue;
+      if (h.second == i || stub[h.second] || !sameDirection(frags[i], frags[h.second], max_angle))
+        continue;
       for (const auto& q : frags[i].centreline) {
         const double d = distanceToPolyline2d(q, frags[h.second].centreline);
         if (d <= best) best = d, target = int(h.second);
