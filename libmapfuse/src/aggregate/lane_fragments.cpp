@@ -29,15 +29,29 @@ double coveredFraction(const Fragment& a, const Fragment& b, double tol) {
   return double(inside) / double(a.centreline.size());
 }
 
-// Whether two fragments run within `max_angle` (rad, undirected) of each other: crossing lines
-// are not one line (crossing_lines.hpp). Fragments too short for a direction agree with any.
+// Whether two fragments run within `max_angle` (rad, undirected) of each other where they meet:
+// crossing lines are not one line (crossing_lines.hpp). The shorter one's principal axis against
+// the other's centreline segment nearest to its centre (a long fragment may curve). Fragments too
+// short for a direction agree with any.
 bool sameDirection(const Fragment& a, const Fragment& b, double max_angle) {
   constexpr double kMinSpan = 0.5;  // m, shorter centrelines have no reliable direction
-  if (polylineLength(a.centreline) < kMinSpan || polylineLength(b.centreline) < kMinSpan)
-    return true;
-  const Eigen::Vector2d da = principalAxis2d(a.samples.empty() ? a.centreline : a.samples);
-  const Eigen::Vector2d db = principalAxis2d(b.samples.empty() ? b.centreline : b.samples);
-  return std::abs(da.dot(db)) >= std::cos(max_angle);
+  const double la = polylineLength(a.centreline), lb = polylineLength(b.centreline);
+  if (la < kMinSpan || lb < kMinSpan) return true;
+  const Fragment& s = la <= lb ? a : b;
+  const Fragment& l = la <= lb ? b : a;
+  const Eigen::Vector2d ds = principalAxis2d(s.samples.empty() ? s.centreline : s.samples);
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const auto& p : s.centreline) c += p;
+  c /= double(s.centreline.size());
+  double best = 1e300;
+  Eigen::Vector2d dl = ds;
+  for (std::size_t k = 1; k < l.centreline.size(); ++k) {
+    const Eigen::Vector2d d = (l.centreline[k] - l.centreline[k - 1]).head<2>();
+    if (d.norm() < 1e-9) continue;
+    const double dist = distanceToSegment2d(c, l.centreline[k - 1], l.centreline[k]);
+    if (dist < best) best = dist, dl = d.normalized();
+  }
+  return std::abs(ds.dot(dl)) >= std::cos(max_angle);
 }
 
 // Pools fragments into the union-find roots of `parent`; centrelines recomputed.
