@@ -150,7 +150,7 @@ TEST_CASE("VP gate: a straight road recovers a known mount pitch error") {
   }
 }
 
-TEST_CASE("VP gate: curves bias the vanishing points; the gate rejects them") {
+TEST_CASE("VP gate: curves bias the vanishing points, and the gate rejects them") {
   // A wide road (the car in its leftmost lane, four lines to its right) on a 400 m curve: the
   // lane lines still pass the straightness test in the image, the image edge cuts the lines on
   // either side at different ranges, and without the gate the median is biased (about 0.4/R rad;
