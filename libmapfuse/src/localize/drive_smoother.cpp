@@ -72,6 +72,7 @@ void smoothDrive(const MapIndex& map, const DriveObservations& d, const Localize
   for (std::size_t k = 0; k < n; ++k) T[k] = result.keyframes[k].T_enu_body;
   std::vector<int> matched(n, 0);
   std::vector<double> sum_sq(n, 0.0);
+  // eq. (L7): all keyframes' matches, GPS priors and relative motions in one problem
   for (int round = 0; round < sm.smoother_rounds; ++round) {
     std::vector<Eigen::Vector3d> x(n, Eigen::Vector3d::Zero());
     ceres::Problem::Options po;

@@ -17,81 +17,8 @@
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
 #include "mapfuse/localize/report.hpp"
-#include "mapfuse/stages/lsm_build.hpp"
 
 namespace mapfuse::stages {
-
-nlohmann::json toJson(const LocalizeRun& run) {
-  nlohmann::json drives = nlohmann::json::array();
-  std::vector<localize::LocalizeErrors> errors;
-  for (const auto& d : run.drives) {
-    nlohmann::json j = localize::toJson(d.result);
-    j["drive_id"] = d.drive_id;
-    j["file"] = d.file;
-    if (d.errors) {
-      j["localized"] = localize::toJson(d.errors->localized);
-      j["prior"] = localize::toJson(d.errors->prior);
-      if (d.map_to_truth) j["localized_in_map_frame"] = localize::toJson(d.errors->in_map);
-      errors.push_back(*d.errors);
-    }
-    drives.push_back(j);
-  }
-  nlohmann::json s = {
-      {"level", run.level},
-      {"solve", run.solve},
-      {"drives", drives},
-      {"keyframes", run.keyframes},
-      {"lost", run.lost},
-      {"lost_share", run.lostShare()},
-      {"seconds_localize", run.seconds_localize},
-      {"localisations_per_second_per_core",
-       run.seconds_localize > 0 ? double(run.keyframes) / run.seconds_localize : 0.0}};
-  if (!errors.empty()) {  // the paper's three averages, over all drives' localised keyframes
-    using localize::ErrorOf;
-    s["localized"] = localize::toJson(localize::pooled(errors, ErrorOf::kLocalized));
-    s["prior"] = localize::toJson(localize::pooled(errors, ErrorOf::kPrior));
-    // the drives share the map: their mean ENU error is the map's offset against the truth
-    const Eigen::Vector2d offset = localize::commonOffset(errors);
-    s["common_offset_enu_m"] = {offset.x(), offset.y()};
-    s["localized_without_common_offset"] =
-        localize::toJson(localize::pooledWithoutOffset(errors, offset));
-    if (!run.drives.empty() && run.drives.front().map_to_truth) {
-      // (b) the truth carried into the map's frame by the rigid map-to-truth transform
-      const localize::MapToTruth& m = *run.drives.front().map_to_truth;
-      s["map_to_truth"] = {{"dx_m", m.dx},
-                           {"dy_m", m.dy},
-                           {"yaw_deg", m.yaw_deg},
-                           {"points", m.points},
-                           {"matched", m.matched},
-                           {"rms_before_m", m.rms_before},
-                           {"rms_after_m", m.rms_after}};
-      s["localized_in_map_frame"] = localize::toJson(localize::pooled(errors, ErrorOf::kInMap));
-    }
-  }
-  return s;
-}
-
-namespace {
-
-/// Frames level: the raw drive of `lsm` read as lsm-build reads it (its lsm-build config when
-/// given), its markings ranged frame by frame (eq. 1), and the per-frame observations.
-localize::DriveObservations frameObservations(const LocalizeInputs& in, const Lsm& lsm,
-                                              const LocalizeParams& params) {
-  LsmBuildParams build;
-  if (!in.lsm_build_config.empty()) paramsFromFile(build, in.lsm_build_config);
-  LsmBuildInputs drive_in;
-  drive_in.drive = std::filesystem::path(in.frames_dir) / lsm.drive_id;
-  if (!std::filesystem::exists(drive_in.drive / "frames.json"))
-    throw IoError(drive_in.drive.string(), "raw drive of '" + lsm.drive_id + "' not found");
-  const LoadedDrive drive = loadDrive(drive_in, build);
-  vehicle::LsmBuildResult planes;
-  vehicle::calibrateGroundPlanes(drive, build.build, planes);
-  const auto markings = vehicle::rangeMarkings(drive, planes.planes, build.build.ranging);
-  return localize::frameObservationsOf(drive, markings, lsm, params.frames,
-                                       params.localize.match_attributes, drive_in.drive.string());
-}
-
-}  // namespace
 
 LocalizeRun runLocalize(const LocalizeInputs& in, const std::filesystem::path& out_dir,
                         const LocalizeParams& params) {
@@ -118,7 +45,7 @@ LocalizeRun runLocalize(const LocalizeInputs& in, const std::filesystem::path& o
       obs.push_back(
           localize::observationsOf(lsms[i], params.localize.match_attributes, in.lsms[i]));
     else
-      obs.push_back(frameObservations(in, lsms[i], params));
+      obs.push_back(frameLevelObservations(in, lsms[i], params));
     for (std::size_t j = 0; j < i && !index[i]; ++j)
       if (geo::sameOrigin(*lsms[j].origin, *lsms[i].origin)) {
         index[i] = index[j];

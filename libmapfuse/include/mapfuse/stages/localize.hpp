@@ -63,6 +63,13 @@ struct LocalizeRun {
   double lostShare() const { return keyframes ? double(lost) / double(keyframes) : 1.0; }
 };
 
+/// @brief Frames level: the raw drive of `lsm` (inputs.frames_dir / drive id) read as lsm-build
+/// reads it (inputs.lsm_build_config, else lsm-build's defaults), its ground markings ranged
+/// frame by frame (eq. 1) and localize::frameObservationsOf.
+/// @throws IoError when the drive folder is missing; InputError, ParseError, ConfigError.
+localize::DriveObservations frameLevelObservations(const LocalizeInputs& inputs, const Lsm& lsm,
+                                                   const LocalizeParams& params);
+
 /// @brief The summary localize.summary.json holds.
 nlohmann::json toJson(const LocalizeRun& run);
 
