@@ -111,11 +111,14 @@ TEST_CASE("thresholds.json round trip, a dropped label stays unfiltered", "[lida
   const fs::path dir = test::tempDir("forest_thresholds");
   std::array<LabelSamples, kNumLidarClasses> train;
   cv::RNG rng(7);
-  for (int l : {1, 4}) {  // road and fence: correct clusters long, wrong ones short
+  // Road and fence: every feature of a correct cluster in [5, 10), of a wrong one in [0, 2)
+  // (each tree draws a few features per split: all of them separate the two).
+  for (int l : {1, 4}) {
     for (int i = 0; i < 40; ++i) {
       const int ok = i % 2;
       ClusterFeatures f{};
-      f[0] = static_cast<float>(ok ? rng.uniform(5.0, 10.0) : rng.uniform(0.0, 2.0));
+      for (float& x : f)
+        x = static_cast<float>(ok ? rng.uniform(5.0, 10.0) : rng.uniform(0.0, 2.0));
       train[l].features.push_back(f);
       train[l].correct.push_back(ok);
     }
@@ -126,8 +129,8 @@ TEST_CASE("thresholds.json round trip, a dropped label stays unfiltered", "[lida
   REQUIRE(c.has(LidarClass::kRoad));
   REQUIRE(c.has(LidarClass::kFence));
   ClusterFeatures longf{}, shortf{};
-  longf[0] = 8.0f;
-  shortf[0] = 1.0f;
+  longf.fill(8.0f);
+  shortf.fill(1.0f);
   CHECK(c.correctVotes(LidarClass::kRoad, longf) > 0.9f);
   CHECK(c.correctVotes(LidarClass::kRoad, shortf) < 0.1f);
   c.setThreshold(LidarClass::kRoad, 0.05f);
