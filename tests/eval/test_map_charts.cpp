@@ -1,6 +1,7 @@
-// evaluate's charts show every class on their white paper (issue 20: lane lines were drawn white
-// on white).
+// evaluate's charts show every class on their white paper in a colour of its own (issue 20: lane
+// lines were drawn white on white, then lane lines and poles the same grey).
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <opencv2/imgcodecs.hpp>
 
 #include "mapfuse/eval/map_report.hpp"
@@ -9,7 +10,8 @@
 using namespace mapfuse;
 
 namespace {
-constexpr double kMinLumaContrast = 100.0;  // 0-255, chart colour against white paper
+constexpr double kMinLumaContrast = 100.0;   // 0-255, chart colour against white paper
+constexpr double kMinColourDistance = 60.0;  // RGB Euclidean distance between two classes
 
 double luma(const std::array<uint8_t, 3>& rgb) {
   return 0.299 * rgb[0] + 0.587 * rgb[1] + 0.114 * rgb[2];
@@ -45,13 +47,53 @@ TEST_CASE("error_per_class.png: every class's bar stands out from the white pape
   REQUIRE(!img.empty());
   for (int i = 0; i < kNumCrowdClasses; ++i) {
     const auto cls = static_cast<CrowdClass>(i);
-    const auto col = eval::chartColor(cls);
+    const auto col = crowdClassPaperColor(cls);
     INFO(crowdClassName(cls));
     CHECK(255.0 - luma(col) >= kMinLumaContrast);
     // The filled bar: at least a 10 x 30 px block of the class's chart colour.
     CHECK(pixelsOf(img, col) >= 300);
   }
-  // White lane lines become grey; dark colours stay as in the map.
-  CHECK(eval::chartColor(CrowdClass::kLaneLine)[0] == eval::chartColor(CrowdClass::kLaneLine)[2]);
-  CHECK(eval::chartColor(CrowdClass::kStopLine) == crowdClassColor(CrowdClass::kStopLine));
+  // Every class in a colour of its own: lane lines and poles no longer share a grey.
+  for (int i = 0; i < kNumCrowdClasses; ++i)
+    for (int j = i + 1; j < kNumCrowdClasses; ++j) {
+      const auto a = crowdClassPaperColor(static_cast<CrowdClass>(i));
+      const auto b = crowdClassPaperColor(static_cast<CrowdClass>(j));
+      double d2 = 0;
+      for (int k = 0; k < 3; ++k) d2 += (double(a[k]) - b[k]) * (double(a[k]) - b[k]);
+      INFO(crowdClassName(static_cast<CrowdClass>(i))
+           << " vs " << crowdClassName(static_cast<CrowdClass>(j)));
+      CHECK(std::sqrt(d2) >= kMinColourDistance);
+    }
+  // Colours that read on white stay in the map colour's family: stop lines red.
+  const auto stop = crowdClassPaperColor(CrowdClass::kStopLine);
+  CHECK(stop[0] > 2 * stop[1]);
+  CHECK(stop[0] > 2 * stop[2]);
+}
+
+TEST_CASE("error_vs_traversals.png: every class's line and legend in its own colour",
+          "[eval][report]") {
+  std::vector<eval::MapReportEntry> maps(2);
+  for (int m = 0; m < 2; ++m) {
+    maps[m].name = "map" + std::to_string(m);
+    maps[m].traversals = 5 + 10 * m;
+    for (int i = 0; i < kNumCrowdClasses; ++i) {
+      eval::ClassMetrics c;
+      c.cls = static_cast<CrowdClass>(i);
+      c.relative.count = 10;
+      c.relative.mean = 0.05 + 0.02 * i - 0.01 * m;
+      c.truth_count = 10;
+      c.completeness = 0.4 + 0.05 * i + 0.1 * m;
+      maps[m].metrics.classes.push_back(c);
+    }
+  }
+  const auto dir = test::tempDir("map_charts_traversals");
+  eval::writeErrorVsTraversalsPng(dir / "error_vs_traversals.png", maps);
+  const cv::Mat img = cv::imread((dir / "error_vs_traversals.png").string(), cv::IMREAD_COLOR);
+  REQUIRE(!img.empty());
+  for (int i = 0; i < kNumCrowdClasses; ++i) {
+    const auto cls = static_cast<CrowdClass>(i);
+    INFO(crowdClassName(cls));
+    // 4 filled dots of radius 3 (about 29 px each) besides the lines and the legend text.
+    CHECK(pixelsOf(img, crowdClassPaperColor(cls)) >= 100);
+  }
 }

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <set>
 
 #include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
@@ -109,6 +111,37 @@ TEST_CASE("lidar-semantic-map builds a map from precomputed label images", "[lid
   }
   CHECK(fs::exists(root / "out/topdown.png"));
   CHECK(summary["bytes_per_voxel"].get<double>() <= 64.0);
+}
+
+TEST_CASE("lidar-semantic-map --overlay-every writes the pictures of every N-th frame",
+          "[lidar][stage][overlay]") {
+  const auto root = test::tempDir("stage_overlay");
+  const fs::path drive = makeDrive(root, 5);
+  // image_02 for frames 0-3; frame 4 has none (skipped, named in the summary).
+  const fs::path photos = test::requireShared(kDate) / "2011_09_26_drive_sfnd_sync/image_02/data";
+  fs::create_directories(drive / "image_02/data");
+  for (const char* name : {"0000000000", "0000000001", "0000000002", "0000000003"})
+    fs::copy_file(photos / (std::string(name) + ".png"),
+                  drive / "image_02/data" / (std::string(name) + ".png"));
+  stages::LidarSemanticMapParams p;
+  p.map.poses.source = "odometry";
+  p.exports.write_scan_labels = false;
+  p.exports.overlay.every = 2;
+  stages::runLidarSemanticMap(drive, root / "out", p);
+  std::set<std::string> written;
+  for (const auto& e : fs::directory_iterator(root / "out/overlay"))
+    written.insert(e.path().filename().string());
+  CHECK(written == std::set<std::string>{"0000000000.png", "0000000002.png"});
+  const auto s = test::readSummary(root / "out", "lidar-semantic-map")["overlay"];
+  CHECK(s["files"] == nlohmann::json({"0000000000.png", "0000000002.png"}));
+  CHECK(s["frames_without_image"] == nlohmann::json({"0000000004"}));
+  // Label images: road below the horizon, building above; both pictures show both.
+  CHECK(s["pictures_with_class"]["road"] == 2);
+  CHECK(s["pictures_with_class"]["building"] == 2);
+  CHECK(s["pictures_with_class"]["vehicle"] == 0);
+  const cv::Mat png = cv::imread((root / "out/overlay/0000000002.png").string());
+  CHECK(png.cols == 1242 + 200);  // photo + key panel
+  CHECK(png.rows == 375);
 }
 
 TEST_CASE("lidar-semantic-map app: exit codes", "[lidar][stage]") {

@@ -6,16 +6,17 @@ namespace {
 struct CrowdInfo {
   const char* name;
   GeometryKind kind;
-  std::array<uint8_t, 3> color;
+  std::array<uint8_t, 3> color;  // on dark backgrounds (maps, camera frames)
+  std::array<uint8_t, 3> paper;  // on white paper (charts): luma <= 150, pairwise distinct
 };
 constexpr std::array<CrowdInfo, kNumCrowdClasses> kCrowd{{
-    {"lane_line", GeometryKind::kLine, {255, 255, 255}},
-    {"stop_line", GeometryKind::kLine, {255, 60, 60}},
-    {"ground_arrow", GeometryKind::kPlanar, {0, 200, 255}},
-    {"crosswalk", GeometryKind::kPlanar, {255, 200, 0}},
-    {"traffic_sign", GeometryKind::kPlanar, {220, 220, 0}},
-    {"traffic_light", GeometryKind::kPoint, {250, 170, 30}},
-    {"pole", GeometryKind::kPoint, {153, 153, 153}},
+    {"lane_line", GeometryKind::kLine, {255, 255, 255}, {40, 40, 40}},  // white -> ink
+    {"stop_line", GeometryKind::kLine, {255, 60, 60}, {220, 40, 40}},
+    {"ground_arrow", GeometryKind::kPlanar, {0, 200, 255}, {0, 150, 210}},
+    {"crosswalk", GeometryKind::kPlanar, {255, 200, 0}, {225, 135, 0}},
+    {"traffic_sign", GeometryKind::kPlanar, {220, 220, 0}, {150, 150, 0}},
+    {"traffic_light", GeometryKind::kPoint, {250, 170, 30}, {140, 70, 20}},
+    {"pole", GeometryKind::kPoint, {153, 153, 153}, {140, 80, 190}},  // grey -> violet
 }};
 
 struct LidarInfo {
@@ -69,6 +70,9 @@ GeometryKind geometryKind(CrowdClass c) {
 }
 std::array<uint8_t, 3> crowdClassColor(CrowdClass c) {
   return kCrowd[static_cast<int>(c)].color;
+}
+std::array<uint8_t, 3> crowdClassPaperColor(CrowdClass c) {
+  return kCrowd[static_cast<int>(c)].paper;
 }
 
 std::optional<CrowdClass> crowdClassFromName(const std::string& name) {

@@ -23,26 +23,8 @@ std::string orDash(const ErrorStats& s, double v, int decimals = 3) {
   return s.count ? num(v, decimals) : "–";
 }
 
-constexpr double kMaxChartLuma = 150.0;  // 0-255; brighter class colours vanish on white
-
-}  // namespace
-
-std::array<uint8_t, 3> chartColor(CrowdClass c) {
-  // The map colours are chosen for dark backgrounds (lane lines white); on the charts' white
-  // paper a colour brighter than kMaxChartLuma (Rec. 601 luma) is scaled down to it.
-  const auto rgb = crowdClassColor(c);
-  const double luma = 0.299 * rgb[0] + 0.587 * rgb[1] + 0.114 * rgb[2];
-  if (luma <= kMaxChartLuma) return rgb;
-  const double f = kMaxChartLuma / luma;
-  std::array<uint8_t, 3> out{};
-  for (int k = 0; k < 3; ++k) out[k] = static_cast<uint8_t>(std::lround(rgb[k] * f));
-  return out;
-}
-
-namespace {
-
 cv::Scalar bgr(CrowdClass c) {
-  const auto rgb = chartColor(c);
+  const auto rgb = crowdClassPaperColor(c);  // the map colours are for dark backgrounds
   return cv::Scalar(rgb[2], rgb[1], rgb[0]);
 }
 

@@ -37,6 +37,18 @@ json writeScanLabels(const io::KittiRawDrive& drive, const lidar::SemanticMapRes
           {"scan_points_labelled_fraction",
            points ? static_cast<double>(labelled) / static_cast<double>(points) : 0.0}};
 }
+
+json toJson(const lidar::CameraOverlayReport& o, const lidar::CameraOverlaySettings& s) {
+  json classes = json::object();
+  for (int c = 1; c < kNumLidarClasses; ++c)
+    classes[lidarClassName(LidarClass(c))] = o.pictures_with_class[c];
+  return {{"every", s.every},
+          {"source", s.source},
+          {"files", o.files},
+          {"frames_without_image", o.frames_without_image},
+          {"points_drawn", o.points_drawn},
+          {"pictures_with_class", classes}};
+}
 }  // namespace
 
 lidar::SemanticMapResult runLidarSemanticMap(const fs::path& drive_dir, const fs::path& output,
@@ -60,10 +72,14 @@ lidar::SemanticMapResult runLidarSemanticMap(const fs::path& drive_dir, const fs
       output / "poses.txt",
       lidar::cameraPosesForFile(r.poses.T_map_velo, drive.calib.T_rect0_velo()));
   io::writeKittiOdometryPoses(output / "poses_velo.txt", r.poses.T_map_velo);
+  const lidar::CameraOverlayReport overlays =
+      lidar::writeCameraOverlays(drive, r.map, r.poses.T_map_velo, p.exports.overlay,
+                                 p.map.fusion.projection.max_range, output / "overlay");
   json summary = toJson(r, p.map.poses.odometry);
   summary.update(p.exports.write_scan_labels
                      ? writeScanLabels(drive, r, output)
                      : json{{"scan_label_files", 0}, {"scan_points_labelled_fraction", 0.0}});
+  summary["overlay"] = toJson(overlays, p.exports.overlay);
   summary["timings_s"]["open"] = t_open + r.timings.open;
   summary["timings_s"]["outputs"] = t.seconds();
   summary["timings_s"]["total"] = total.seconds();

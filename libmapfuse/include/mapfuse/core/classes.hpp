@@ -45,8 +45,13 @@ const char* crowdClassName(CrowdClass c);
 /// @brief Inverse of crowdClassName; nullopt for an unknown name.
 std::optional<CrowdClass> crowdClassFromName(const std::string& name);
 GeometryKind geometryKind(CrowdClass c);
-/// @brief Display colour (R, G, B) for pictures.
+/// @brief Display colour (R, G, B) for pictures on dark or photographic backgrounds (maps,
+/// camera frames): lane lines white, poles grey.
 std::array<uint8_t, 3> crowdClassColor(CrowdClass c);
+/// @brief Display colour (R, G, B) on white paper (evaluate's charts): the same hue family where
+/// the map colour reads on white, ink for white lane lines, violet for grey poles; every colour
+/// has Rec. 601 luma <= 150 and the seven are pairwise distinct.
+std::array<uint8_t, 3> crowdClassPaperColor(CrowdClass c);
 
 const char* lineStyleName(LineStyle s);  ///< "none", "solid", "dashed"
 const char* lineColorName(LineColor c);  ///< "none", "white", "yellow"

@@ -26,10 +26,6 @@ struct MapReportEntry {
 std::string markdownReport(const std::vector<MapReportEntry>& maps,
                            const std::vector<TrajectoryMetrics>& trajectories);
 
-/// @brief The colour (R, G, B) of a class on the charts' white paper: its map colour, scaled
-/// down to Rec. 601 luma <= 150 when brighter (white lane lines become mid grey).
-std::array<uint8_t, 3> chartColor(CrowdClass c);
-
 /// @brief Bar chart: relative precision and mean absolute error per class (m).
 void writeErrorPerClassPng(const std::filesystem::path& path, const MapReportEntry& entry);
 

@@ -10,6 +10,7 @@
 #include "mapfuse/core/labeled_cloud.hpp"
 #include "mapfuse/core/param.hpp"
 #include "mapfuse/core/se3.hpp"
+#include "mapfuse/lidar/camera_overlay.hpp"
 #include "mapfuse/lidar/voxel_map.hpp"
 
 namespace mapfuse::lidar {
@@ -18,6 +19,7 @@ namespace mapfuse::lidar {
 struct MapExportSettings {
   double topdown_resolution = 0.1;  ///< m/px
   bool write_scan_labels = true;    ///< labels/<frame>.label for every input scan
+  CameraOverlaySettings overlay;    ///< overlay/<frame>.png pictures (off by default)
 
   template <class V>
   void visit(V& v) {
@@ -25,6 +27,7 @@ struct MapExportSettings {
       param::in(0.001, 100));
     v("write_scan_labels", write_scan_labels, "",
       "write labels/<frame>.label for every input scan");
+    overlay.visit(v);
   }
 };
 

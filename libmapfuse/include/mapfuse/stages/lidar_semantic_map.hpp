@@ -40,7 +40,7 @@ nlohmann::json toJson(const lidar::SemanticMapResult& r,
 nlohmann::json toJson(const lidar::ClassifierTrainingResult& r);
 
 /// @brief Builds the semantic voxel map of one drive into `output` (map.ply, map.pcd,
-/// labels/<frame>.label, topdown.png, poses.txt, poses_velo.txt,
+/// labels/<frame>.label, topdown.png, overlay/<frame>.png on request, poses.txt, poses_velo.txt,
 /// lidar-semantic-map.{config,summary}.json); a failed run leaves the folder as it was.
 lidar::SemanticMapResult runLidarSemanticMap(const std::filesystem::path& drive,
                                              const std::filesystem::path& output,
