@@ -6,7 +6,7 @@ CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 # unit tests run there once, and the fuzz targets. `make fuzz` runs each target FUZZ_SECONDS,
 # FUZZ_JOBS at a time; `make test` adds a pass of CI_FUZZ_SECONDS per target. -O1 with line
 # tables only: what OSS-Fuzz builds with, and the cheapest level that keeps the unit tests fast
-# enough for CI (docs/reliability.md "CI time" has the measured costs of -O0/-O1/-O2 and gcc).
+# enough for CI (docs/reliability.md "CI time" has the measured costs of -O1, -O2 and gcc).
 SANITIZE_BUILD ?= build-sanitize
 FUZZ_WORK ?= $(SANITIZE_BUILD)/fuzz-work
 FUZZ_SECONDS ?= 60
