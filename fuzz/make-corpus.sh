@@ -62,6 +62,14 @@ seed fuzz_camera_calib calibration.json < "$drive/calibration.json"
 shrink drive-frames "$drive" 6 | seed fuzz_drive_frames drive.txt
 seed fuzz_semantic_image mask.png < "$(ls "$drive"/masks/*.png | head -1)"
 
+# ---- OpenDRIVE: the junction map of the unit tests (lanes, links, road marks, signals,
+# objects), cut out of tests/sim/test_opendrive.cpp so that seed and test stay one text
+python3 - "$root/tests/sim/test_opendrive.cpp" <<'PY' | seed fuzz_opendrive junction.xodr
+import re, sys
+m = re.search(r'kJunctionMap = R"\((.*?)\)";', open(sys.argv[1]).read(), re.S)
+sys.stdout.write(m.group(1) if m else sys.exit("make-corpus: no kJunctionMap in " + sys.argv[1]))
+PY
+
 # ---- configurations: one byte chooses the stage (fuzz_config.cpp's order), then the file
 i=0
 for stage in aggregate align balance evaluate evaluate-voxels georef lidar-semantic-map \
@@ -105,8 +113,13 @@ if [ -d "$shared" ]; then
     seed fuzz_kitti_calib odometry.txt < "$odo/sequences/00/calib.txt"
   osm=$shared/maps/lanelet2_karlsruhe_mapping_example.osm
   [ -f "$osm" ] && shrink osm "$osm" 4 | seed fuzz_lanelet2_osm karlsruhe.osm
-  xodr=$shared/maps/MONAEast.xodr
-  [ -f "$xodr" ] && seed fuzz_opendrive monaeast.xodr < "$xodr"
+  xodr=$shared/maps/MONAEast.xodr  # 153 KB, within fuzz_opendrive's max_len (fuzz/run.sh)
+  if [ -f "$xodr" ]; then
+    seed fuzz_opendrive monaeast.xodr < "$xodr"
+    # small cuts of it: each of its junctions with its roads, and its first three roads alone
+    for j in 0 1 2 3; do shrink xodr "$xodr" $j 8 | seed fuzz_opendrive "monaeast-junction$j.xodr"; done
+    shrink xodr "$xodr" -1 3 | seed fuzz_opendrive monaeast-roads.xodr
+  fi
 fi
 
 echo "fuzz: seeds for $(ls "$seeds" | wc -l) targets, $(find "$seeds" -type f | wc -l) files," \

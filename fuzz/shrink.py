@@ -8,6 +8,9 @@
   shrink.py prob FILE W H            the top-left W x H pixels of a .prob image
   shrink.py ply FILE N / pcd FILE N  the first N points of a binary PLY / PCD
   shrink.py osm FILE N               N lanelets with their ways, nodes and regulatory elements
+  shrink.py xodr FILE J N            OpenDRIVE: the J-th smallest junction with its roads (N at
+                                     most; J = -1: the first N roads), links to removed roads and
+                                     junctions dropped, numbers to 9 digits, no lateral profiles
 Writes the seed to stdout.
 """
 import json
@@ -131,6 +134,55 @@ def osm(path, n):
     out.write(b"<?xml version='1.0' encoding='UTF-8'?>\n" + ET.tostring(new))
 
 
+def xodr(path, j, n):
+    root = ET.parse(path).getroot()
+    roads = {r.get("id"): r for r in root.findall("road")}
+    junctions = sorted(root.findall("junction"), key=lambda x: len(x.findall("connection")))
+    if j >= 0 and junctions:
+        jn = junctions[min(j, len(junctions) - 1)]
+        keep_j = {jn.get("id")}
+        keep = []
+        for c in jn.findall("connection"):
+            for rid in (c.get("incomingRoad"), c.get("connectingRoad")):
+                if rid in roads and rid not in keep:
+                    keep.append(rid)
+        keep = set(keep[:n])
+    else:
+        keep_j = set()
+        keep = set(list(roads)[:n])
+    new = ET.Element(root.tag, root.attrib)
+    for child in root:
+        if child.tag == "header":
+            for u in child.findall("userData"):
+                child.remove(u)
+            new.append(child)
+        elif child.tag == "road" and child.get("id") in keep:
+            if child.get("junction", "-1") not in keep_j:
+                child.set("junction", "-1")
+            for lp in child.findall("lateralProfile"):
+                child.remove(lp)
+            for link in child.findall("link"):
+                for end in list(link):
+                    kind, ref = end.get("elementType"), end.get("elementId")
+                    if (kind == "road" and ref not in keep) or (kind == "junction" and
+                                                                 ref not in keep_j):
+                        link.remove(end)
+            new.append(child)
+        elif child.tag == "junction" and child.get("id") in keep_j:
+            for c in child.findall("connection"):
+                if c.get("incomingRoad") not in keep or c.get("connectingRoad") not in keep:
+                    child.remove(c)
+            new.append(child)
+    for e in new.iter():  # 1.6740308465599534e+0 -> 1.67403085
+        for k, v in e.attrib.items():
+            try:
+                e.set(k, "%.9g" % float(v)) if any(ch in v for ch in ".e") else None
+            except ValueError:
+                pass
+    ET.indent(new, space=" ")
+    out.write(b"<?xml version='1.0' encoding='UTF-8'?>\n" + ET.tostring(new))
+
+
 def main(argv):
     kind, path = argv[1], argv[2]
     if kind == "lsm-json":
@@ -145,6 +197,8 @@ def main(argv):
         cloud(path, int(argv[3]), kind)
     elif kind == "osm":
         osm(path, int(argv[3]))
+    elif kind == "xodr":
+        xodr(path, int(argv[3]), int(argv[4]))
     else:
         sys.exit("shrink.py: unknown kind " + kind)
 

@@ -79,7 +79,12 @@ SynthWorld makeSynthWorld(const SynthOptions& o) {
 
   std::mt19937_64 rng(o.seed);
   std::normal_distribution<double> g(0.0, 1.0);
-  auto noise2 = [&](double s) { return Vec3(s * g(rng), s * g(rng), 0.3 * s * g(rng)); };
+  // Drawn z, y, x whatever the compiler (the order gcc gave the unsequenced arguments before):
+  // the same world under gcc and clang.
+  auto noise2 = [&](double s) {
+    const double z = 0.3 * s * g(rng), y = s * g(rng), x = s * g(rng);
+    return Vec3(x, y, z);
+  };
   for (int d = 0; d < o.drives; ++d) {
     Lsm lsm;
     lsm.drive_id = "synth_" + std::to_string(d);
@@ -153,7 +158,8 @@ SynthWorld makeSynthWorld(const SynthOptions& o) {
       e.id = eid++;
       e.anchor = 0;
       e.confidence = 0.3;
-      const Vec3 c(ux(rng), uy(rng), 0);
+      const double cy = uy(rng), cx = ux(rng);  // in this order (gcc's, see noise2)
+      const Vec3 c(cx, cy, 0);
       const int kind = f % 3;
       e.cls = kind == 0   ? CrowdClass::kPole
               : kind == 1 ? CrowdClass::kGroundArrow

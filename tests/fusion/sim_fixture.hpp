@@ -77,6 +77,13 @@ inline Traversal makeTraversal(const std::vector<TrueElement>& world, int index,
   std::mt19937_64 rng(o.seed * 1000 + index);
   std::normal_distribution<double> n01(0.0, 1.0);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
+  // Three draws, z first, then y, then x: the order gcc gave `Vector3d(n01(rng), n01(rng),
+  // n01(rng))` (unsequenced arguments; clang draws x first), so the fixture is the same world
+  // under both compilers.
+  auto normal3 = [&] {
+    const double z = n01(rng), y = n01(rng), x = n01(rng);
+    return Eigen::Vector3d(x, y, z);
+  };
   const geo::EnuConverter enu(fixtureOrigin());
   Traversal tr;
   Lsm& lsm = tr.lsm;
@@ -113,8 +120,7 @@ inline Traversal makeTraversal(const std::vector<TrueElement>& world, int index,
   const double a = 2 * M_PI * u01(rng);
   tr.gps_bias = o.gps_bias * Eigen::Vector3d(std::cos(a), std::sin(a), 0.3 * n01(rng));
   for (double t = lsm.keyframes.front().stamp; t <= lsm.keyframes.back().stamp; t += 1.0) {
-    Eigen::Vector3d p = trueAt(t * speed).translation() + tr.gps_bias +
-                        o.gps_white * Eigen::Vector3d(n01(rng), n01(rng), n01(rng));
+    Eigen::Vector3d p = trueAt(t * speed).translation() + tr.gps_bias + o.gps_white * normal3();
     if (u01(rng) < o.outlier_probability) {
       const double b = 2 * M_PI * u01(rng);
       p += (10.0 + 10.0 * u01(rng)) * Eigen::Vector3d(std::cos(b), std::sin(b), 0.0);
@@ -144,8 +150,9 @@ inline Traversal makeTraversal(const std::vector<TrueElement>& world, int index,
     e.truth_id = te.id;
     if (te.cls == CrowdClass::kPole) e.height = 5.0;
     for (const auto& p : te.points) {
+      const Eigen::Vector3d n = normal3();
       e.points_body.push_back(tr.truth[best].inverse() * p +
-                              0.03 * Eigen::Vector3d(n01(rng), n01(rng), 0.3 * n01(rng)));
+                              0.03 * Eigen::Vector3d(n.x(), n.y(), 0.3 * n.z()));
       e.covariances.push_back(Eigen::Matrix3d::Identity() * 0.03 * 0.03);
     }
     lsm.elements.push_back(e);

@@ -99,6 +99,12 @@ TEST_CASE("align: gba_sgicp shrinks element spread and beats the baselines") {
 }
 
 TEST_CASE("align: SGICP registration converges from a bad start of 5 m and 5 degrees") {
+  // This fixture draw (seed 1) converges at the rotation centre (7 mm); most draws do not. With
+  // seeds 1-12 and both orders of the fixture's noise draws (gcc's and clang's, before the order
+  // was fixed), the centre pair converged (< 1 cm, fitness 1) in 4 of 24 runs; in the others the
+  // pairs ended 0.6-2.6 m off (lane and dash aliases) at fitness 0.41-0.49 and RMSE 0.38-0.46 m,
+  // and most of those were accepted (min_fitness 0.3, max_rmse 0.5) and kept by PCM. Reported,
+  // not fixed here: raising min_fitness changes the default chain (docs/reliability.md).
   constexpr double kBadShift = 5.0;             // m, issue 4: deliberately bad start
   constexpr double kBadYaw = 5.0 * M_PI / 180;  // rad
   constexpr double kTransTol = 0.3;             // m, recovered relative pose vs truth

@@ -279,7 +279,11 @@ TEST_CASE("simulate: a stop line whose centre a drive never sees is observed in 
   // A crossing road's stop line while the vehicle turns: its centre stays outside the image, one
   // end is in view. The visible run is observed once per drive, on the true line; with
   // partial_stop_line_min_length 0 the drives are as before, every other observation unchanged.
-  constexpr double kOnLine = 0.3;  // m, observed points to their true stop line (noise ~5 cm)
+  constexpr double kOnLine = 0.3;  // m, slack on the observed length
+  // Observed points to their true stop line: within 4 sigma of the observer's along-ray ground
+  // noise at the point's range (eq. (1): base + k r^2, 5 cm at 10 m, 0.3 m at 30 m). A fixed
+  // 0.3 m held for one draw of the noise and not for another (0.36 m).
+  constexpr double kSigmas = 4.0;
   auto p = smallParams();
   p.level = "lsm";
   p.crowd.traversals = 12;
@@ -307,8 +311,13 @@ TEST_CASE("simulate: a stop line whose centre a drive never sees is observed in 
       const Pose3 T = io::readPose(io::JsonView(traj.at("poses").at(el.anchor).at("pose"), "t"));
       const MapInstance& t = *by_id.at(el.truth_id);
       std::vector<Eigen::Vector3d> pts;
-      for (const auto& q : el.points_body) pts.push_back(T * q);
-      for (const auto& q : pts) CHECK(sim::distanceToPolyline(t.points, q) < kOnLine);
+      for (const auto& q : el.points_body) {
+        pts.push_back(T * q);
+        const double r = q.head<2>().norm();  // m, from the body origin (the camera is ~2 m off)
+        const auto& o = p.crowd.obs;
+        CHECK(sim::distanceToPolyline(t.points, pts.back()) <
+              kSigmas * (o.ground_sigma_base + o.ground_sigma_range_quad * (r + 2) * (r + 2)));
+      }
       const double length = (pts.back() - pts.front()).head<2>().norm();
       CHECK(length >= p.crowd.obs.partial_stop_line_min_length - kOnLine);
       CHECK(length < polylineLength(t.points));

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <random>
 
+#include "draw_order.hpp"
+
 namespace mapfuse::sim {
 
 namespace {
@@ -106,7 +108,7 @@ Drive simulateDrive(const Polyline& route, const DriveParams& P, const geo::EnuC
   const double lateral = P.lateral_offset_sigma * N01(rng);
   const double phase_p = U(0, 2 * kPi), phase_r = U(0, 2 * kPi);
   d.wheel_scale_error = P.wheel_scale_sigma * N01(rng);
-  d.gyro_bias = P.gyro_bias_sigma * Eigen::Vector3d(N01(rng), N01(rng), N01(rng));
+  d.gyro_bias = P.gyro_bias_sigma * drawVector3(N01, rng);
   const double bias_mag = U(P.gps_bias_min, P.gps_bias_max), bias_dir = U(0, 2 * kPi);
   d.gps_bias0 = bias_mag * Eigen::Vector2d(std::cos(bias_dir), std::sin(bias_dir));
 
@@ -144,10 +146,9 @@ Drive simulateDrive(const Polyline& route, const DriveParams& P, const geo::EnuC
       acc = (d.truth[k1].translation() - 2 * d.truth[k].translation() + d.truth[k0].translation()) /
             (dt * dt);
     d.imu[k].stamp = d.stamps[k];
-    d.imu[k].gyro =
-        omega + d.gyro_bias + gyro_sigma * Eigen::Vector3d(N01(rng), N01(rng), N01(rng));
+    d.imu[k].gyro = omega + d.gyro_bias + gyro_sigma * drawVector3(N01, rng);
     d.imu[k].accel = d.truth[k].linear().transpose() * (acc + Eigen::Vector3d(0, 0, kGravity)) +
-                     P.accel_noise * Eigen::Vector3d(N01(rng), N01(rng), N01(rng));
+                     P.accel_noise * drawVector3(N01, rng);
   }
   // Wheel speed at the wheel rate.
   const int wheel_every = std::max(1, static_cast<int>(std::lround(P.imu_rate / P.wheel_rate)));
@@ -168,19 +169,21 @@ Drive simulateDrive(const Polyline& route, const DriveParams& P, const geo::EnuC
     }
     const Eigen::Vector3d rpy = rpyFromRotation(d.truth[k].linear());
     (void)rpy0;
-    d.odom[k] = poseFromXyzRpy(p_o.x(), p_o.y(), p_o.z(), rpy.x() + P.attitude_noise * N01(rng),
-                               rpy.y() + P.attitude_noise * N01(rng), yaw_o);
+    const double pitch_noise = N01(rng), roll_noise = N01(rng);  // in this order: draw_order.hpp
+    d.odom[k] = poseFromXyzRpy(p_o.x(), p_o.y(), p_o.z(), rpy.x() + P.attitude_noise * roll_noise,
+                               rpy.y() + P.attitude_noise * pitch_noise, yaw_o);
   }
   // GPS at the GPS rate: bias random walk + white noise + multipath outliers.
   Eigen::Vector2d bias = d.gps_bias0;
   const double gps_dt = 1.0 / P.gps_rate;
   for (double t = 0.0; t <= d.stamps.back() + 1e-9; t += gps_dt) {
     const int k = std::min(n - 1, static_cast<int>(std::lround(t * P.imu_rate)));
-    if (t > 0.0) bias += P.gps_bias_walk * std::sqrt(gps_dt) * Eigen::Vector2d(N01(rng), N01(rng));
+    if (t > 0.0) bias += P.gps_bias_walk * std::sqrt(gps_dt) * drawVector2(N01, rng);
     GpsRecord g;
+    const Eigen::Vector3d white = drawVector3(N01, rng);
     g.error_enu =
-        Eigen::Vector3d(bias.x() + P.gps_white_sigma * N01(rng),
-                        bias.y() + P.gps_white_sigma * N01(rng), P.gps_vertical_sigma * N01(rng));
+        Eigen::Vector3d(bias.x() + P.gps_white_sigma * white.x(),
+                        bias.y() + P.gps_white_sigma * white.y(), P.gps_vertical_sigma * white.z());
     if (U(0, 1) < P.gps_outlier_probability) {
       const double m = U(P.gps_outlier_min, P.gps_outlier_max), a = U(0, 2 * kPi);
       g.error_enu += Eigen::Vector3d(m * std::cos(a), m * std::sin(a), 0.0);

@@ -7,6 +7,7 @@
 #include <random>
 #include <sstream>
 
+#include "draw_order.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/document.hpp"
@@ -155,9 +156,9 @@ FramesStats writeFramesDrive(const std::filesystem::path& dir, const World& worl
              uv.y() <= C.height - 0.5;
     };
     auto noisyPx = [&](const Eigen::Vector2d& uv) {
-      const Eigen::Vector2d n =
-          FP.pixel_sigma > 0 ? Eigen::Vector2d(FP.pixel_sigma * N01(rng), FP.pixel_sigma * N01(rng))
-                             : Eigen::Vector2d::Zero();
+      const Eigen::Vector2d n = FP.pixel_sigma > 0
+                                    ? Eigen::Vector2d(FP.pixel_sigma * drawVector2(N01, rng))
+                                    : Eigen::Vector2d::Zero();
       return nlohmann::json::array({roundPx(uv.x() + n.x()), roundPx(uv.y() + n.y())});
     };
     auto toCv = [](const Eigen::Vector2d& uv) {

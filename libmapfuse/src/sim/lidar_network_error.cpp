@@ -71,17 +71,21 @@ std::vector<uint8_t> corruptLabels(const CameraFrame& truth, const NetworkErrorP
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   const int blobs = p.blobs_per_frame > 0.0 ? count(rng) : 0;
   for (int k = 0; k < blobs; ++k) {
-    const cv::Point c(static_cast<int>(u01(rng) * w), static_cast<int>(h * (0.3 + 0.7 * u01(rng))));
+    // Draws in a fixed order (sim/draw_order.hpp): the order the release (gcc) build used.
+    const double cy = u01(rng), cx = u01(rng);
+    const cv::Point c(static_cast<int>(cx * w), static_cast<int>(h * (0.3 + 0.7 * cy)));
     const double r = p.blob_radius_min + (p.blob_radius_max - p.blob_radius_min) * u01(rng);
     const uint8_t cls = static_cast<uint8_t>(1 + static_cast<int>(u01(rng) * 6.999));
     cv::Mat mask = cv::Mat::zeros(h, w, CV_8U);
     for (int e = 0; e < 3; ++e) {
-      const cv::Point ce(c.x + static_cast<int>((u01(rng) - 0.5) * r),
-                         c.y + static_cast<int>((u01(rng) - 0.5) * r));
-      cv::ellipse(mask, ce,
-                  cv::Size(static_cast<int>(r * (0.5 + u01(rng))),
-                           static_cast<int>(r * (0.3 + 0.5 * u01(rng)))),
-                  u01(rng) * 180.0, 0, 360, cv::Scalar(255), cv::FILLED);
+      const double ey = u01(rng), ex = u01(rng);
+      const cv::Point ce(c.x + static_cast<int>((ex - 0.5) * r),
+                         c.y + static_cast<int>((ey - 0.5) * r));
+      const double angle = u01(rng), minor = u01(rng), major = u01(rng);
+      cv::ellipse(
+          mask, ce,
+          cv::Size(static_cast<int>(r * (0.5 + major)), static_cast<int>(r * (0.3 + 0.5 * minor))),
+          angle * 180.0, 0, 360, cv::Scalar(255), cv::FILLED);
     }
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x)

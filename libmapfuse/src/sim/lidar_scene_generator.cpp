@@ -71,8 +71,10 @@ void addTree(Builder& b, Rng& rng, double s, double lateral, double ground, doub
   for (int k = 0; k < blobs; ++k) {
     Primitive crown = trunk;
     crown.kind = Primitive::Kind::kEllipsoid;
-    crown.centre += Eigen::Vector3d(uniform(rng, -0.6, 0.6), uniform(rng, -0.6, 0.6),
-                                    0.5 * trunk_h + r * uniform(rng, 0.5, 0.9));
+    // Drawn z, y, x: the order of the release (gcc) build (sim/draw_order.hpp).
+    const double dz = r * uniform(rng, 0.5, 0.9), dy = uniform(rng, -0.6, 0.6),
+                 dx = uniform(rng, -0.6, 0.6);
+    crown.centre += Eigen::Vector3d(dx, dy, 0.5 * trunk_h + dz);
     crown.half = {r * uniform(rng, 0.7, 1.1), r * uniform(rng, 0.7, 1.1),
                   r * uniform(rng, 0.6, 0.9)};
     crown.yaw = uniform(rng, 0.0, M_PI);
@@ -166,8 +168,10 @@ LidarScene generateStreet(const StreetParams& P) {
   for (double stretch = 0.0; stretch < L; stretch += 30.0) {
     if (!chance(rng, P.parked_share)) continue;
     for (double s = stretch + uniform(rng, 0.0, 4.0); s < std::min(L, stretch + 30.0);) {
-      const Eigen::Vector3d size(uniform(rng, 4.0, 4.8), uniform(rng, 1.7, 1.9),
-                                 uniform(rng, 1.4, 1.7));
+      // Drawn height, width, length: the order of the release (gcc) build (draw_order.hpp).
+      const double height = uniform(rng, 1.4, 1.7), width = uniform(rng, 1.7, 1.9),
+                   length = uniform(rng, 4.0, 4.8);
+      const Eigen::Vector3d size(length, width, height);
       const SurfaceLabel label{LidarClass::kVehicle, 10, instance++, 0.45f};
       const Eigen::Vector2d xy = road.pointAt(s + 0.5 * size.x(), park_lat);
       for (auto& p :

@@ -6,6 +6,8 @@
 #include <random>
 #include <set>
 
+#include "draw_order.hpp"
+
 namespace mapfuse::sim {
 
 PieceIndex::PieceIndex(const World& world, double point_spacing) {
@@ -122,12 +124,12 @@ ObservedDrive observeLsm(const World& world, const PieceIndex& index, const Driv
     }
     Eigen::Matrix3d mean_cov = Eigen::Matrix3d::Zero();
     for (const auto& c : covs) mean_cov += c / static_cast<double>(covs.size());
-    const Eigen::Vector3d z0(N01(g), N01(g), N01(g));
+    const Eigen::Vector3d z0 = drawVector3(N01, g);
     const Eigen::Vector3d common =
         std::sqrt(P.correlated_fraction) *
         Eigen::Vector3d(Eigen::Matrix3d(Eigen::LLT<Eigen::Matrix3d>(mean_cov).matrixL()) * z0);
     for (std::size_t i = 0; i < pts.size(); ++i) {
-      const Eigen::Vector3d zi(N01(g), N01(g), N01(g));
+      const Eigen::Vector3d zi = drawVector3(N01, g);
       e.points_body.push_back(
           pts[i] + common +
           std::sqrt(1.0 - P.correlated_fraction) *
@@ -265,8 +267,8 @@ ObservedDrive observeLsm(const World& world, const PieceIndex& index, const Driv
       } else {
         f.cls = CrowdClass::kPole;
         f.height = U(2.0, 6.0);
-        noisy(f, {Eigen::Vector3d(x, (U(0, 1) < 0.5 ? -1 : 1) * U(5.0, P.lateral_range), 0.0)},
-              true);
+        const double side = U(0, 1) < 0.5 ? -1 : 1;  // drawn first (draw_order.hpp)
+        noisy(f, {Eigen::Vector3d(x, side * U(5.0, P.lateral_range), 0.0)}, true);
       }
       addElement(std::move(f));
       ++out.stats.false_positives;
