@@ -1,6 +1,5 @@
 /// @file aggregate: georeferenced or aligned LSMs -> vector map (§4.3, Song et al. 2023;
 /// docs/aggregate.md). Prints the map size figures as JSON on stdout.
-#include <iostream>
 
 #include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/aggregate.hpp"
@@ -17,14 +16,9 @@ static const char* const kAbout =
 int main(int argc, char** argv) {
   using namespace mapfuse;
   cli::StageTool<stages::AggregateParams> tool("aggregate", kAbout);
-  std::vector<std::string> inputs;
-  std::string out_dir;
-  tool.app()
-      .add_option("inputs", inputs, "LSM files (.json/.cbor); @list.txt or - (stdin) for lists")
-      ->required();
-  tool.app().add_option("-o,--out", out_dir, "output folder")->required();
+  const auto& inputs = tool.inputs("inputs", cli::kLsmListHelp);
+  const auto& out = tool.out("output folder");
   return tool.run(argc, argv, [&](const stages::AggregateParams& params) {
-    const auto run = stages::runAggregate(cli::expandInputList(inputs), out_dir, params);
-    std::cout << stages::toJson(run)["size"].dump() << "\n";
+    return stages::toJson(stages::runAggregate(inputs, out, params))["size"].dump();
   });
 }

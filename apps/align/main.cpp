@@ -1,6 +1,4 @@
 // align: SGICP + PCM + multi-trajectory pose graph + GBA (§4.2, eq. 7-14) over georeferenced LSMs.
-#include <iostream>
-
 #include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/align.hpp"
 
@@ -13,15 +11,5 @@ static const char* const kAbout =
 
 int main(int argc, char** argv) {
   using namespace mapfuse;
-  cli::StageTool<stages::AlignParams> tool("align", kAbout);
-  std::vector<std::string> inputs;
-  std::string out;
-  tool.app()
-      .add_option("lsms", inputs, "Input LSMs (.json/.cbor), @list.txt, or - for a list on stdin")
-      ->required();
-  tool.app().add_option("-o,--out", out, "Output folder (LSMs keep their file names)")->required();
-  return tool.run(argc, argv, [&](const stages::AlignParams& params) {
-    stages::runAlign(cli::expandInputList(inputs), out, params);
-    std::cout << out << '\n';
-  });
+  return cli::lsmFolderMain<stages::AlignParams>(argc, argv, "align", kAbout, stages::runAlign);
 }

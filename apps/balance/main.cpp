@@ -1,6 +1,5 @@
 // balance: place the independently aligned tiles of a tiled run consistently before aggregation
 // (per-tile registration groups and per-drive georef errors solved together).
-#include <iostream>
 
 #include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/balance.hpp"
@@ -17,14 +16,10 @@ static const char* const kAbout =
 int main(int argc, char** argv) {
   using namespace mapfuse;
   cli::StageTool<stages::BalanceParams> tool("balance", kAbout);
-  std::string tiles_json, out;
-  tool.app()
-      .add_option("--tiles", tiles_json, "tiles.json written by `tile`")
-      ->required()
-      ->check(CLI::ExistingFile);
-  tool.app().add_option("-o,--out", out, "Output folder (one folder per tile)")->required();
+  const auto& tiles_json = tool.existingFile("--tiles", "tiles.json written by `tile`");
+  const auto& out = tool.out("Output folder (one folder per tile)");
   return tool.run(argc, argv, [&](const stages::BalanceParams& params) {
     stages::runBalance(tiles_json, out, params);
-    std::cout << out << '\n';
+    return out;
   });
 }

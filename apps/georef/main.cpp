@@ -1,6 +1,4 @@
 // georef: GPS + odometry pose graph per LSM (§4.1, eq. 4-6) -> LSMs in ENU of one shared origin.
-#include <iostream>
-
 #include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/georef.hpp"
 
@@ -13,15 +11,5 @@ static const char* const kAbout =
 
 int main(int argc, char** argv) {
   using namespace mapfuse;
-  cli::StageTool<stages::GeorefParams> tool("georef", kAbout);
-  std::vector<std::string> inputs;
-  std::string out;
-  tool.app()
-      .add_option("lsms", inputs, "Input LSMs (.json/.cbor), @list.txt, or - for a list on stdin")
-      ->required();
-  tool.app().add_option("-o,--out", out, "Output folder (LSMs keep their file names)")->required();
-  return tool.run(argc, argv, [&](const stages::GeorefParams& params) {
-    stages::runGeoref(cli::expandInputList(inputs), out, params);
-    std::cout << out << '\n';
-  });
+  return cli::lsmFolderMain<stages::GeorefParams>(argc, argv, "georef", kAbout, stages::runGeoref);
 }

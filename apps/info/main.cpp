@@ -14,15 +14,11 @@ static const char* const kAbout =
 int main(int argc, char** argv) {
   using namespace mapfuse;
   cli::StageTool<stages::InfoParams> tool("info", kAbout);
-  std::vector<std::string> files;
+  const auto& paths = tool.inputs("files", "mapfuse files, @list.txt, or - for a list on stdin");
   bool origin = false;
-  tool.app()
-      .add_option("files", files, "mapfuse files, @list.txt, or - for a list on stdin")
-      ->required();
   tool.app().add_flag("--origin", origin,
                       "Print the shared ENU origin of the first LSM as lat,lon,alt");
   return tool.run(argc, argv, [&](const stages::InfoParams&) {
-    const auto paths = cli::expandInputList(files);
     if (origin) {
       const geo::GeoOrigin o = stages::originOfLsm(paths.at(0));
       std::cout << std::setprecision(12) << o.lat << ',' << o.lon << ',' << std::setprecision(8)

@@ -1,5 +1,4 @@
 // localize: localisation of georeferenced drives on a vector map (Song et al. 2023 §5, Fig. 12).
-#include <iostream>
 
 #include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/localize.hpp"
@@ -16,18 +15,16 @@ int main(int argc, char** argv) {
   using namespace mapfuse;
   cli::StageTool<stages::LocalizeParams> tool("localize", kAbout);
   stages::LocalizeInputs in;
-  std::string out;
   auto& app = tool.app();
-  app.add_option("lsms", in.lsms, "Drives: LSMs (.json/.cbor), @list.txt, or - (stdin)")
-      ->required();
+  const auto& lsms = tool.inputs("lsms", "Drives: LSMs (.json/.cbor), @list.txt, or - (stdin)");
   app.add_option("--map", in.map, "Vector map (.json/.cbor): aggregate's or simulate's truth")
       ->required();
   app.add_option("--truth-trajectories", in.truth_trajectories,
                  "Folder of <drive>.trajectory.json (simulate truth/): score the errors");
-  app.add_option("-o,--out", out, "Output folder")->required();
+  const auto& out = tool.out("Output folder");
   return tool.run(argc, argv, [&](const stages::LocalizeParams& params) {
-    in.lsms = cli::expandInputList(in.lsms);
+    in.lsms = lsms;
     stages::runLocalize(in, out, params);
-    std::cout << out << '\n';
+    return out;
   });
 }

@@ -1,7 +1,6 @@
 // simulate-lidar: a seeded synthetic KITTI raw drive (Velodyne, OXTS, image_02, calibration)
 // with LiDAR + camera ground truth: true SemanticKITTI labels per point, true label images and
 // network-like class probabilities (semantics_02/*.prob). See docs/lidar-ground-truth.md.
-#include <iostream>
 
 #include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/simulate_lidar.hpp"
@@ -10,11 +9,8 @@ int main(int argc, char** argv) {
   using namespace mapfuse;
   cli::StageTool<stages::SimulateLidarParams> tool(
       "simulate-lidar", "Simulate a labelled KITTI raw drive (LiDAR + camera ground truth).");
-  std::string out;
-  tool.app()
-      .add_option("-o,--out", out, "Output root: <out>/<date>/<date>_drive_<drive>_sync")
-      ->required();
+  const auto& out = tool.out("Output root: <out>/<date>/<date>_drive_<drive>_sync");
   return tool.run(argc, argv, [&](const stages::SimulateLidarParams& params) {
-    std::cout << stages::runSimulateLidar(out, params).drive_dir.string() << '\n';
+    return stages::runSimulateLidar(out, params).drive_dir.string();
   });
 }

@@ -1,5 +1,4 @@
 // simulate: crowdsourced drives with ground truth (docs/simulate.md); prints the summary JSON.
-#include <iostream>
 
 #include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/simulate.hpp"
@@ -14,12 +13,11 @@ static const char* const kAbout =
 int main(int argc, char** argv) {
   using namespace mapfuse;
   cli::StageTool<stages::SimulateParams> tool("simulate", kAbout);
-  std::string out_dir;
-  tool.app().add_option("-o,--out", out_dir, "output folder")->required();
+  const auto& out = tool.out("output folder");
   return tool.run(argc, argv, [&](const stages::SimulateParams& params) {
-    const auto run = stages::runSimulate(params, out_dir);
+    const auto run = stages::runSimulate(params, out);
     nlohmann::json summary = stages::toJson(run);
     summary["seconds"] = run.seconds;
-    std::cout << summary.dump(2) << "\n";
+    return summary.dump(2);
   });
 }

@@ -9,16 +9,10 @@ int main(int argc, char** argv) {
   using namespace mapfuse;
   cli::StageTool<stages::TileParams> tool(
       "tile", "Cut georeferenced LSMs (frame enu) into per-tile LSM sets.");
-  std::vector<std::string> inputs;
-  std::string out;
-  tool.app()
-      .add_option("lsms", inputs, "LSM files (.json/.cbor), @list.txt, or - for a list on stdin")
-      ->required();
-  tool.app()
-      .add_option("-o,--out", out, "Output folder (tiles.json + one folder per tile)")
-      ->required();
+  const auto& inputs = tool.inputs("lsms", cli::kLsmListHelp);
+  const auto& out = tool.out("Output folder (tiles.json + one folder per tile)");
   return tool.run(argc, argv, [&](const stages::TileParams& params) {
-    const auto manifest = stages::runTile(cli::expandInputList(inputs), out, params);
+    const auto manifest = stages::runTile(inputs, out, params);
     for (const auto& t : manifest["tiles"]) std::cout << t["name"].get<std::string>() << '\n';
   });
 }

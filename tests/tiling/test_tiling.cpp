@@ -191,7 +191,7 @@ TEST_CASE("splitting cuts drives into per-tile runs with their elements", "[tili
   lsm.gps.push_back({3.0, {49.0, 8.4, 110.0}, 1.0, 2.0});
 
   const TileGrid grid(100.0, 10.0);
-  const auto tiles = splitIntoTiles({lsm}, grid, 2);
+  const auto tiles = splitLsm(lsm, grid, 2);
   REQUIRE(tiles.count(TileKey{0, 0}));
   const auto& t00 = tiles.at(TileKey{0, 0});
   REQUIRE(t00.size() == 2);  // out and back
@@ -212,5 +212,5 @@ TEST_CASE("splitting cuts drives into per-tile runs with their elements", "[tili
 
   Lsm odom = lsm;
   odom.frame = LsmFrame::kOdom;
-  CHECK_THROWS_AS(splitIntoTiles({odom}, grid, 2), InputError);
+  CHECK_THROWS_AS(splitLsm(odom, grid, 2), InputError);
 }

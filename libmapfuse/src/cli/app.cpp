@@ -102,6 +102,10 @@ int CommandTool::run(int argc, char** argv) {
   });
 }
 
+void printLine(const std::string& line) {
+  std::cout << line << '\n';
+}
+
 std::vector<std::string> expandInputList(const std::vector<std::string>& args) {
   std::vector<std::string> out;
   auto readList = [&](std::istream& in) {

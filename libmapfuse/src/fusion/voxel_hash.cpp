@@ -6,33 +6,16 @@
 #include <utility>
 
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/core/voxel_grid.hpp"
 
 namespace mapfuse::fusion {
 
-namespace {
-constexpr int64_t kKeyOffset = int64_t(1) << 20;  // voxel coordinates in [-2^20, 2^20)
-constexpr uint64_t kKeyMask = (uint64_t(1) << 21) - 1;
-
-inline uint64_t hashKey(uint64_t k) {
-  // splitmix64 finaliser: cheap and well mixed for packed integer keys.
-  k ^= k >> 31;
-  k *= 0x7fb5d329728ea185ull;
-  k ^= k >> 27;
-  k *= 0x81dadef4bc2dd44dull;
-  k ^= k >> 33;
-  return k;
-}
-}  // namespace
-
 uint64_t packVoxelKey(int64_t x, int64_t y, int64_t z) {
-  return (uint64_t(x + kKeyOffset) & kKeyMask) | ((uint64_t(y + kKeyOffset) & kKeyMask) << 21) |
-         ((uint64_t(z + kKeyOffset) & kKeyMask) << 42);
+  return voxel_grid::pack(x, y, z);
 }
 
 uint64_t voxelKey(const Eigen::Vector3d& p, double inv_cell_size) {
-  return packVoxelKey(static_cast<int64_t>(std::floor(p.x() * inv_cell_size)),
-                      static_cast<int64_t>(std::floor(p.y() * inv_cell_size)),
-                      static_cast<int64_t>(std::floor(p.z() * inv_cell_size)));
+  return voxel_grid::pointKey(p, inv_cell_size);
 }
 
 VoxelIndex::VoxelIndex(const std::vector<Eigen::Vector3d>& points, double cell_size)
@@ -57,7 +40,7 @@ VoxelIndex::VoxelIndex(const std::vector<Eigen::Vector3d>& points, double cell_s
   for (std::size_t i = 0; i < n;) {
     std::size_t j = i;
     while (j < n && keyed[j].first == keyed[i].first) ++j;
-    uint64_t h = hashKey(keyed[i].first) & mask_;
+    uint64_t h = voxel_grid::mix(keyed[i].first) & mask_;
     while (table_[h].key != ~0ull) h = (h + 1) & mask_;
     table_[h] = Slot{keyed[i].first, uint32_t(i), uint32_t(j)};
     i = j;
@@ -66,7 +49,7 @@ VoxelIndex::VoxelIndex(const std::vector<Eigen::Vector3d>& points, double cell_s
 
 const VoxelIndex::Slot* VoxelIndex::find(uint64_t key) const {
   if (table_.empty()) return nullptr;
-  uint64_t h = hashKey(key) & mask_;
+  uint64_t h = voxel_grid::mix(key) & mask_;
   while (true) {
     const Slot& s = table_[h];
     if (s.key == key) return &s;
@@ -75,22 +58,9 @@ const VoxelIndex::Slot* VoxelIndex::find(uint64_t key) const {
   }
 }
 
-namespace {
-// Squared distance from q to the 27 cells around its own, home cell first (offset 0,0,0), so
-// that cells farther than the current best can be skipped.
-struct CellVisit {
-  int dx, dy, dz;
-};
-constexpr CellVisit kCellOrder[27] = {
-    {0, 0, 0},   {-1, 0, 0},  {1, 0, 0},   {0, -1, 0}, {0, 1, 0},   {0, 0, -1},   {0, 0, 1},
-    {-1, -1, 0}, {-1, 1, 0},  {1, -1, 0},  {1, 1, 0},  {-1, 0, -1}, {-1, 0, 1},   {1, 0, -1},
-    {1, 0, 1},   {0, -1, -1}, {0, -1, 1},  {0, 1, -1}, {0, 1, 1},   {-1, -1, -1}, {-1, -1, 1},
-    {-1, 1, -1}, {-1, 1, 1},  {1, -1, -1}, {1, -1, 1}, {1, 1, -1},  {1, 1, 1}};
-
-inline double axisGap(int d, double local, double size) {
-  return d < 0 ? local : (d > 0 ? size - local : 0.0);
-}
-}  // namespace
+using voxel_grid::axisGap;
+using CellVisit = voxel_grid::CellOffset;
+constexpr const auto& kCellOrder = voxel_grid::kNeighbourOrder;
 
 int VoxelIndex::nearest(const Eigen::Vector3d& q, double max_dist_sq, double* dist_sq) const {
   const double fx = std::floor(q.x() * inv_cell_size_), fy = std::floor(q.y() * inv_cell_size_),

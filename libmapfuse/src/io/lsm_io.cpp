@@ -248,7 +248,7 @@ Lsm readLsm(const std::filesystem::path& path) {
   return lsmFromJson(readDocument(path), path.string());
 }
 
-std::vector<Lsm> readLsmInputs(const std::vector<std::string>& files, bool covariances) {
+void refuseSameFile(const std::vector<std::string>& files) {
   namespace fs = std::filesystem;
   for (std::size_t i = 0; i < files.size(); ++i)
     for (std::size_t j = 0; j < i; ++j) {
@@ -257,6 +257,19 @@ std::vector<Lsm> readLsmInputs(const std::vector<std::string>& files, bool covar
         throw ConfigError("inputs " + files[j] + " and " + files[i] +
                           " are the same file (its data would count twice)");
     }
+}
+
+void refuseSameDrive(const std::vector<std::string>& files,
+                     const std::vector<std::string>& drive_ids) {
+  for (std::size_t i = 0; i < files.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (drive_ids[j] == drive_ids[i])
+        throw ConfigError("inputs " + files[j] + " and " + files[i] + " hold the same drive '" +
+                          drive_ids[i] + "' (its data would count twice)");
+}
+
+std::vector<Lsm> readLsmInputs(const std::vector<std::string>& files, bool covariances) {
+  refuseSameFile(files);
   // Decoded side by side (the files are independent); errors reported as a serial read would,
   // the first file's first.
   std::vector<Lsm> lsms(files.size());
@@ -265,12 +278,9 @@ std::vector<Lsm> readLsmInputs(const std::vector<std::string>& files, bool covar
     if (!covariances)
       for (Element& e : lsms[i].elements) std::vector<Eigen::Matrix3d>().swap(e.covariances);
   });
-  for (std::size_t i = 0; i < files.size(); ++i) {
-    for (std::size_t j = 0; j < i; ++j)
-      if (lsms[j].drive_id == lsms[i].drive_id)
-        throw ConfigError("inputs " + files[j] + " and " + files[i] + " hold the same drive '" +
-                          lsms[i].drive_id + "' (its data would count twice)");
-  }
+  std::vector<std::string> ids;
+  for (const Lsm& l : lsms) ids.push_back(l.drive_id);
+  refuseSameDrive(files, ids);
   return lsms;
 }
 

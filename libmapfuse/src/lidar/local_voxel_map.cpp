@@ -3,26 +3,11 @@
 #include <cmath>
 
 #include "mapfuse/core/error.hpp"
-#include "voxel_key.hpp"
+#include "mapfuse/core/voxel_grid.hpp"
 
 namespace mapfuse::lidar {
 namespace {
 constexpr uint32_t kEmpty = ~0u;
-
-// The 27 cells around the query cell, its own first, then faces, edges, corners: cells farther
-// than the best point found so far are skipped.
-struct Offset {
-  int dx, dy, dz;
-};
-constexpr Offset kOffsets[27] = {
-    {0, 0, 0},   {-1, 0, 0},  {1, 0, 0},   {0, -1, 0}, {0, 1, 0},   {0, 0, -1},   {0, 0, 1},
-    {-1, -1, 0}, {-1, 1, 0},  {1, -1, 0},  {1, 1, 0},  {-1, 0, -1}, {-1, 0, 1},   {1, 0, -1},
-    {1, 0, 1},   {0, -1, -1}, {0, -1, 1},  {0, 1, -1}, {0, 1, 1},   {-1, -1, -1}, {-1, -1, 1},
-    {-1, 1, -1}, {-1, 1, 1},  {1, -1, -1}, {1, -1, 1}, {1, 1, -1},  {1, 1, 1}};
-
-inline double gap(int d, double local, double size) {
-  return d < 0 ? local : (d > 0 ? size - local : 0.0);
-}
 }  // namespace
 
 LocalVoxelMap::LocalVoxelMap(const LocalMapSettings& s) : s_(s) {
@@ -52,7 +37,7 @@ std::vector<Eigen::Vector3d> LocalVoxelMap::points() const {
 }
 
 int LocalVoxelMap::findVoxel(uint64_t key) const {
-  uint64_t h = detail::mixKey(key) & mask_;
+  uint64_t h = voxel_grid::mix(key) & mask_;
   while (true) {
     const uint32_t v = table_[h];
     if (v == kEmpty) return -1;
@@ -62,7 +47,7 @@ int LocalVoxelMap::findVoxel(uint64_t key) const {
 }
 
 void LocalVoxelMap::insertSlot(uint64_t key, uint32_t voxel) {
-  uint64_t h = detail::mixKey(key) & mask_;
+  uint64_t h = voxel_grid::mix(key) & mask_;
   while (table_[h] != kEmpty) h = (h + 1) & mask_;
   table_[h] = voxel;
 }
@@ -90,7 +75,7 @@ void LocalVoxelMap::update(const std::vector<Eigen::Vector3d>& points,
   const std::size_t m = static_cast<std::size_t>(s_.max_points_per_voxel);
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Eigen::Vector3d& p = points[i];
-    const uint64_t key = detail::pointKey(p, inv_voxel_);
+    const uint64_t key = voxel_grid::pointKey(p, inv_voxel_);
     const int found = findVoxel(key);
     if (found < 0) {
       const uint32_t v = static_cast<uint32_t>(keys_.size());
@@ -151,10 +136,11 @@ bool LocalVoxelMap::nearest(const Eigen::Vector3d& q, double max_dist_sq, MapNei
   double best = max_dist_sq;
   std::size_t best_i = 0;
   int best_v = -1;
-  for (const Offset& o : kOffsets) {
-    const double gx = gap(o.dx, lx, size), gy = gap(o.dy, ly, size), gz = gap(o.dz, lz, size);
+  for (const voxel_grid::CellOffset& o : voxel_grid::kNeighbourOrder) {
+    const double gx = voxel_grid::axisGap(o.dx, lx, size), gy = voxel_grid::axisGap(o.dy, ly, size),
+                 gz = voxel_grid::axisGap(o.dz, lz, size);
     if (gx * gx + gy * gy + gz * gz >= best) continue;
-    const int v = findVoxel(detail::packKey(cx + o.dx, cy + o.dy, cz + o.dz));
+    const int v = findVoxel(voxel_grid::pack(cx + o.dx, cy + o.dy, cz + o.dz));
     if (v < 0) continue;
     const std::size_t base = static_cast<std::size_t>(v) * m;
     for (std::size_t i = base; i < base + counts_[static_cast<std::size_t>(v)]; ++i) {

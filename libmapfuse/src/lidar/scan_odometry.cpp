@@ -3,9 +3,9 @@
 #include <cmath>
 
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/core/voxel_grid.hpp"
 #include "mapfuse/lidar/scan_normals.hpp"
 #include "setting_check.hpp"
-#include "voxel_key.hpp"
 
 namespace mapfuse::lidar {
 namespace {
@@ -20,8 +20,8 @@ std::vector<Eigen::Vector3d> downsample(const std::vector<Eigen::Vector3d>& pts,
   std::vector<Eigen::Vector3d> out;
   out.reserve(pts.size() / 2);
   for (std::size_t i = 0; i < pts.size(); ++i) {
-    const uint64_t key = detail::pointKey(pts[i], inv);
-    uint64_t h = detail::mixKey(key) & mask;
+    const uint64_t key = voxel_grid::pointKey(pts[i], inv);
+    uint64_t h = voxel_grid::mix(key) & mask;
     bool seen = false;
     while (table[h] != ~0ull) {
       if (table[h] == key) {

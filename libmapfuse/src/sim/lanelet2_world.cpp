@@ -10,6 +10,7 @@
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/io/bounds.hpp"
 #include "mapfuse/sim/line_chains.hpp"
+#include "truth_counts.hpp"
 
 namespace mapfuse::sim {
 
@@ -293,24 +294,15 @@ World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin
   }
   world.stats["lanelets"] = static_cast<double>(map.lanelets.size());
   world.stats["drivable_lanelets"] = drivable;
-  world.stats["lane_lines"] = lines;
-  world.stats["stop_lines"] = stops;
-  world.stats["traffic_signs"] = signs;
-  world.stats["traffic_lights"] = lights;
   world.stats["boundaries_ignored"] = boundaries;
   world.stats["crossing_lines_ignored"] = crossing_lines;
   world.stats["arrows_placed"] = arrows;
   world.stats["arrows_mapped"] = map_arrows;
-  world.stats["poles_placed"] = map_has_poles ? 0 : signs + lights;
-  world.stats["poles_mapped"] = poles;
-  world.stats["line_pieces_joined"] = joins;
   world.stats["untyped_ways_as_virtual"] = map.untyped_ways;
-  int skipped = 0;
-  for (const auto& kv : map.skipped_way_types) skipped += kv.second;
-  world.stats["skipped_ways"] = skipped;
-  skipped = 0;
-  for (const auto& kv : map.skipped_relation_types) skipped += kv.second;
-  world.stats["skipped_relations"] = skipped;
+  world.stats["skipped_ways"] = detail::totalOf(map.skipped_way_types);
+  detail::TruthCounts{lines, stops, signs, lights, poles, map_has_poles ? 0 : signs + lights, joins}
+      .writeTo(world.stats);
+  world.stats["skipped_relations"] = detail::totalOf(map.skipped_relation_types);
   return world;
 }
 

@@ -7,6 +7,7 @@
 
 #include "mapfuse/sim/line_chains.hpp"
 #include "opendrive_internal.hpp"
+#include "truth_counts.hpp"
 
 namespace mapfuse::sim::detail {
 
@@ -169,20 +170,10 @@ void addOpenDriveElements(const OdrContext& ctx, World& world) {
   const int joins = joinLineChains(world.truth.instances, kJoinTolerance);
   int lines = 0;
   for (const auto& m : world.truth.instances) lines += m.cls == CrowdClass::kLaneLine;
-  world.stats["lane_lines"] = lines;
-  world.stats["line_pieces_joined"] = joins;
-  world.stats["traffic_signs"] = signs;
-  world.stats["traffic_lights"] = lights;
-  world.stats["stop_lines"] = stop_lines;
+  TruthCounts{lines, stop_lines, signs, lights, poles, placed_poles, joins}.writeTo(world.stats);
   world.stats["crosswalks"] = crosswalks;
-  world.stats["poles_mapped"] = poles;
-  world.stats["poles_placed"] = placed_poles;
-  int skipped = 0;
-  for (const auto& kv : skipped_marks) skipped += kv.second;
-  world.stats["road_marks_not_lines"] = skipped;
-  skipped = 0;
-  for (const auto& kv : skipped_objects) skipped += kv.second;
-  world.stats["objects_skipped"] = skipped;
+  world.stats["road_marks_not_lines"] = totalOf(skipped_marks);
+  world.stats["objects_skipped"] = totalOf(skipped_objects);
 }
 
 }  // namespace mapfuse::sim::detail

@@ -5,6 +5,8 @@
 
 #include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/log.hpp"
+#include "mapfuse/core/parallel_for.hpp"
+#include "mapfuse/geo/origin.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
 #include "mapfuse/io/lsm_io.hpp"
@@ -47,31 +49,49 @@ nlohmann::json runTile(const std::vector<std::string>& lsm_files, const std::fil
   const auto t0 = std::chrono::steady_clock::now();
   io::OutputTransaction outputs(out);  // locked and writable before the work
   if (lsm_files.empty()) throw InputError("tile: no input LSM given");
-  const std::vector<Lsm> lsms = io::readLsmInputs(lsm_files);
+  io::refuseSameFile(lsm_files);
   const tiling::TileGrid grid(params.tile_size, params.margin);
-  const auto tiles = tiling::splitIntoTiles(lsms, grid, params.min_keyframes);
+  // One LSM at a time per thread: read, cut, write its runs, free it. The manifest lists each
+  // tile's runs in input order, as a serial run would.
+  const std::size_t n = lsm_files.size();
+  std::vector<std::string> drive_ids(n);
+  std::vector<geo::GeoOrigin> origins(n);
+  std::vector<std::map<tiling::TileKey, std::vector<std::string>>> written(n);
+  parallelFor(n, [&](std::size_t i) {
+    const Lsm lsm = io::readLsm(lsm_files[i]);
+    drive_ids[i] = lsm.drive_id;
+    for (const auto& [key, runs] : tiling::splitLsm(lsm, grid, params.min_keyframes))
+      for (const auto& run : runs) {
+        const std::string name = key.name() + "/" + run.drive_id + "." + params.format;
+        io::writeLsm(out / name, run);
+        written[i][key].push_back(name);
+      }
+    origins[i] = *lsm.origin;  // splitLsm refuses an LSM without one
+  });
+  io::refuseSameDrive(lsm_files, drive_ids);
+  for (std::size_t i = 1; i < n; ++i)
+    if (!geo::sameOrigin(origins[i], origins[0]))
+      throw InputError("LSM " + drive_ids[i] + " has another ENU origin than " + drive_ids[0]);
+  std::map<tiling::TileKey, std::vector<std::string>> tiles;
+  for (const auto& per_input : written)
+    for (const auto& [key, names] : per_input)
+      tiles[key].insert(tiles[key].end(), names.begin(), names.end());
 
   nlohmann::json manifest = {{"format", "mapfuse.tiles"},
                              {"version", 1},
                              {"tile_size", params.tile_size},
                              {"margin", params.margin},
-                             {"origin", io::originToJson(*lsms.front().origin)},
+                             {"origin", io::originToJson(origins[0])},
                              {"tiles", nlohmann::json::array()}};
   std::size_t files = 0;
-  for (const auto& [key, runs] : tiles) {
+  for (const auto& [key, names] : tiles) {
     const tiling::Rect core = grid.core(key);
-    nlohmann::json entry = {{"name", key.name()},
-                            {"ix", key.ix},
-                            {"iy", key.iy},
-                            {"core", {core.min_x, core.min_y, core.max_x, core.max_y}},
-                            {"lsms", nlohmann::json::array()}};
-    for (const auto& run : runs) {
-      const std::string name = key.name() + "/" + run.drive_id + "." + params.format;
-      io::writeLsm(out / name, run);
-      entry["lsms"].push_back(name);
-      ++files;
-    }
-    manifest["tiles"].push_back(entry);
+    manifest["tiles"].push_back({{"name", key.name()},
+                                 {"ix", key.ix},
+                                 {"iy", key.iy},
+                                 {"core", {core.min_x, core.min_y, core.max_x, core.max_y}},
+                                 {"lsms", names}});
+    files += names.size();
   }
   io::writeDocument(out / "tiles.json", manifest, 1);
   io::writeResolvedConfig(out, "tile", paramsToJson(params));

@@ -4,7 +4,6 @@
 #include <unordered_set>
 
 #include "mapfuse/core/error.hpp"
-#include "mapfuse/geo/origin.hpp"
 
 namespace mapfuse::tiling {
 namespace {
@@ -30,44 +29,38 @@ Lsm extractRun(const Lsm& src, std::size_t first, std::size_t last, double gps_s
 
 }  // namespace
 
-std::map<TileKey, std::vector<Lsm>> splitIntoTiles(const std::vector<Lsm>& lsms,
-                                                   const TileGrid& grid, int min_keyframes,
-                                                   double gps_slack) {
+std::map<TileKey, std::vector<Lsm>> splitLsm(const Lsm& lsm, const TileGrid& grid,
+                                             int min_keyframes, double gps_slack) {
+  if (lsm.frame != LsmFrame::kEnu || !lsm.origin)
+    throw InputError("LSM " + lsm.drive_id + " is not georeferenced (frame must be enu)");
+  // Every tile whose margin rectangle a keyframe falls in.
+  std::map<TileKey, std::vector<bool>> inside;
+  const std::size_t n = lsm.keyframes.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& t = lsm.keyframes[i].T_frame_body.translation();
+    for (const TileKey& k : grid.tilesTouching(t.x(), t.y())) {
+      auto& flags = inside[k];
+      flags.resize(n, false);
+      flags[i] = true;
+    }
+  }
   std::map<TileKey, std::vector<Lsm>> tiles;
-  for (const auto& lsm : lsms) {
-    if (lsm.frame != LsmFrame::kEnu || !lsm.origin)
-      throw InputError("LSM " + lsm.drive_id + " is not georeferenced (frame must be enu)");
-    if (!geo::sameOrigin(*lsm.origin, *lsms.front().origin))
-      throw InputError("LSM " + lsm.drive_id + " has another ENU origin than " +
-                       lsms.front().drive_id);
-    // Every tile whose margin rectangle a keyframe falls in.
-    std::map<TileKey, std::vector<bool>> inside;
-    const std::size_t n = lsm.keyframes.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      const auto& t = lsm.keyframes[i].T_frame_body.translation();
-      for (const TileKey& k : grid.tilesTouching(t.x(), t.y())) {
-        auto& flags = inside[k];
-        flags.resize(n, false);
-        flags[i] = true;
+  for (const auto& [key, flags] : inside) {
+    std::vector<Lsm> runs;
+    for (std::size_t i = 0; i < n;) {
+      if (!flags[i]) {
+        ++i;
+        continue;
       }
+      std::size_t j = i;
+      while (j + 1 < n && flags[j + 1]) ++j;
+      if (int(j - i + 1) >= min_keyframes) runs.push_back(extractRun(lsm, i, j, gps_slack));
+      i = j + 1;
     }
-    for (const auto& [key, flags] : inside) {
-      std::vector<Lsm> runs;
-      for (std::size_t i = 0; i < n;) {
-        if (!flags[i]) {
-          ++i;
-          continue;
-        }
-        std::size_t j = i;
-        while (j + 1 < n && flags[j + 1]) ++j;
-        if (int(j - i + 1) >= min_keyframes) runs.push_back(extractRun(lsm, i, j, gps_slack));
-        i = j + 1;
-      }
-      if (runs.size() > 1)
-        for (std::size_t r = 0; r < runs.size(); ++r)
-          runs[r].drive_id = lsm.drive_id + ".run" + std::to_string(r);
-      for (auto& r : runs) tiles[key].push_back(std::move(r));
-    }
+    if (runs.size() > 1)
+      for (std::size_t r = 0; r < runs.size(); ++r)
+        runs[r].drive_id = lsm.drive_id + ".run" + std::to_string(r);
+    if (!runs.empty()) tiles[key] = std::move(runs);
   }
   return tiles;
 }

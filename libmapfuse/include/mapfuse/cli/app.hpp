@@ -5,10 +5,13 @@
 /// A tool's main is a StageTool: its positional arguments, then run() with the library call; a
 /// tool of subcommands (evaluate) is a CommandTool.
 #include <CLI/CLI.hpp>
+#include <deque>
 #include <exception>
 #include <functional>
 #include <memory>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "mapfuse/cli/params.hpp"
@@ -116,33 +119,71 @@ void preloadConfig(int argc, char** argv, Params& params) {
 /// ("<tool>: error: ...") and the documented exit code. --help exits 0.
 int run(CLI::App& app, int argc, char** argv, const std::function<void()>& body);
 
+/// @brief --help of a tool's positional LSM list.
+inline constexpr const char* kLsmListHelp =
+    "Input LSMs (.json/.cbor), @list.txt, or - for a list on stdin";
+
+/// @brief Writes `line` and a newline to stdout.
+void printLine(const std::string& line);
+
 /// @brief Splits "a,b" or a list file ("@list.txt" or "-" for stdin, one path per line) into paths.
 std::vector<std::string> expandInputList(const std::vector<std::string>& args);
 
-/// A stage's command-line tool: `tool.app()` takes its positional arguments and outputs, run()
-/// adds --config, -v, --quiet and one option per parameter, parses, validates and calls `body`.
+/// A stage's command-line tool: its positional arguments and outputs (inputs(), out(), or
+/// `app()` for anything else), then run(), which adds --config, -v, --quiet and one option per
+/// parameter, parses, validates and calls `body`. A body that returns a string prints it as one
+/// line on stdout (the path or figures a pipeline reads next).
 ///
 ///   cli::StageTool<stages::AlignParams> tool("align", kAbout);
-///   tool.app().add_option("lsms", inputs, "...")->required();
-///   return tool.run(argc, argv, [&](const stages::AlignParams& p) { ... });
+///   const auto& lsms = tool.inputs("lsms", cli::kLsmListHelp);
+///   const auto& out = tool.out("Output folder");
+///   return tool.run(argc, argv, [&](const auto& p) { stages::runAlign(lsms, out, p); return out;
+///   });
 template <class Params>
 class StageTool {
  public:
   StageTool(const char* name, const char* description) : app_(description, name) {}
+  StageTool(const StageTool&) = delete;
+  StageTool& operator=(const StageTool&) = delete;
 
   CLI::App& app() { return app_; }
   Params& params() { return params_; }
 
+  /// @brief A required positional list of input files ("a,b", @list.txt, or - for stdin).
+  /// @return the paths, expanded by run() before the body runs.
+  const std::vector<std::string>& inputs(const char* name, const char* help) {
+    app_.add_option(name, inputs_, help)->required();
+    return inputs_;
+  }
+
+  /// @brief The required -o/--out path. @return it, set once run() has parsed.
+  const std::string& out(const char* help) {
+    app_.add_option("-o,--out", out_, help)->required();
+    return out_;
+  }
+
+  /// @brief A required option naming an existing file (e.g. --tiles). @return its path.
+  const std::string& existingFile(const char* option, const char* help) {
+    files_.emplace_back();
+    app_.add_option(option, files_.back(), help)->required()->check(CLI::ExistingFile);
+    return files_.back();
+  }
+
   /// @brief Adds the common options and the parameters, parses, validates, runs `body`.
   /// @return the process exit code.
-  int run(int argc, char** argv, const std::function<void(const Params&)>& body) {
+  template <class Body>
+  int run(int argc, char** argv, Body body) {
     addCommonOptions(app_, common_);
     preloadConfig(argc, argv, params_);  // file values become the defaults
     addParamOptions(app_, params_);
     return cli::run(app_, argc, argv, [&] {
       applyCommonOptions(common_);
       validateParams(params_);
-      body(params_);
+      inputs_ = expandInputList(inputs_);
+      if constexpr (std::is_void_v<std::invoke_result_t<Body&, const Params&>>)
+        body(std::as_const(params_));
+      else
+        printLine(body(std::as_const(params_)));
     });
   }
 
@@ -150,7 +191,23 @@ class StageTool {
   CLI::App app_;
   Params params_;
   CommonOptions common_;
+  std::vector<std::string> inputs_;
+  std::string out_;
+  std::deque<std::string> files_;  ///< stable addresses for existingFile()
 };
+
+/// @brief main() of a stage that turns LSMs into an output folder of LSMs with the same file
+/// names (georef, align): `stage(lsms, out, params)` is the library call; prints the folder.
+template <class Params, class Stage>
+int lsmFolderMain(int argc, char** argv, const char* name, const char* about, Stage stage) {
+  StageTool<Params> tool(name, about);
+  const auto& lsms = tool.inputs("lsms", kLsmListHelp);
+  const auto& out = tool.out("Output folder (LSMs keep their file names)");
+  return tool.run(argc, argv, [&](const Params& params) {
+    stage(lsms, out, params);
+    return out;
+  });
+}
 
 /// A tool of subcommands (`evaluate map`, `evaluate voxels`): each subcommand gets --config, -v
 /// and --quiet, then its own options from its setup, which returns what runs when it is chosen.

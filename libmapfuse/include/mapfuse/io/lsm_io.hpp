@@ -26,6 +26,13 @@ Lsm readLsm(const std::filesystem::path& path);
 /// @param covariances false: each element's per-point covariances are dropped once its file is
 /// read and checked (aggregate never uses them; they are three quarters of a decoded LSM).
 std::vector<Lsm> readLsmInputs(const std::vector<std::string>& files, bool covariances = true);
+/// @brief readLsmInputs' first rule alone, for stages that read their inputs one at a time:
+/// @throws ConfigError when one file is given twice (by path or identity), naming both.
+void refuseSameFile(const std::vector<std::string>& files);
+/// @brief readLsmInputs' second rule: `drive_ids[i]` is the drive of `files[i]`.
+/// @throws ConfigError when two files hold one drive, naming both.
+void refuseSameDrive(const std::vector<std::string>& files,
+                     const std::vector<std::string>& drive_ids);
 /// @brief Atomic write (temp file + rename).
 void writeLsm(const std::filesystem::path& path, const Lsm& lsm);
 /// @brief Writes each input LSM again, whole, into `out_dir` under its file name, with the

@@ -9,14 +9,13 @@
 
 namespace mapfuse::tiling {
 
-/// @brief Cuts every LSM (frame enu, shared origin) into the tiles its keyframes touch.
+/// @brief Cuts one LSM (frame enu) into the tiles its keyframes touch.
 /// A tile gets each maximal run of consecutive keyframes inside its margin rectangle with at
 /// least `min_keyframes` keyframes, the elements anchored to them and the GPS fixes within the
 /// run's time span (± `gps_slack` s). A drive that enters a tile twice yields two runs, named
-/// "<drive_id>.run<k>".
-/// @throws InputError when an LSM is not in ENU or origins differ.
-std::map<TileKey, std::vector<Lsm>> splitIntoTiles(const std::vector<Lsm>& lsms,
-                                                   const TileGrid& grid, int min_keyframes,
-                                                   double gps_slack = 1.0);
+/// "<drive_id>.run<k>". One LSM at a time, so that a batch is cut in the memory of one drive.
+/// @throws InputError when the LSM is not in ENU.
+std::map<TileKey, std::vector<Lsm>> splitLsm(const Lsm& lsm, const TileGrid& grid,
+                                             int min_keyframes, double gps_slack = 1.0);
 
 }  // namespace mapfuse::tiling
