@@ -124,8 +124,8 @@ cv::Mat overlay(const stages::LoadedDrive& d, const Lsm& lsm,
 }  // namespace
 
 TEST_CASE(
-    "real KITTI drive: signs, lights and poles against the hand-checked truth; no lane line "
-    "on a vehicle",
+    "real KITTI drive: signs, lights and poles against the hand-checked truth, and no lane "
+    "line on a vehicle",
     "[vehicle][kitti][aerial]") {
   const fs::path drive =
       test::requireShared("data/kitti_raw/2011_09_26/2011_09_26_drive_sfnd_sync");
