@@ -4,7 +4,9 @@
 #include <random>
 
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/localize/drive_smoother.hpp"
 #include "mapfuse/localize/localizer.hpp"
+#include "mapfuse/localize/map_frame.hpp"
 #include "mapfuse/localize/map_index.hpp"
 #include "mapfuse/localize/truth_errors.hpp"
 #include "mapfuse/sim/crowd.hpp"
@@ -170,4 +172,93 @@ TEST_CASE("localize: planar errors split along the true heading", "[localize]") 
   CHECK(e.longitudinal == Approx(1.0));  // north = forward
   CHECK(e.lateral == Approx(0.3));       // west = left
   CHECK(e.heading_deg == Approx(0.01 * 180 / M_PI));
+}
+
+TEST_CASE("localize: the full-drive solve recovers an offset better than per keyframe",
+          "[localize]") {
+  // Georeferenced relative poses are not exact: every keyframe's prior also walks off by
+  // ~kStepSigma per step (bench: georef's are 0.07-0.16 m off per 8.5 m step), then the whole
+  // drive is offset by 2 m / 1.5 m / 1.5 deg.
+  constexpr double kStepSigma = 0.08;     // m per keyframe step
+  constexpr double kStepYawSigma = 5e-4;  // rad per keyframe step
+  // the full-drive solve's longitudinal error at most this share of the per-keyframe one
+  constexpr double kMaxLongitudinalRatio = 0.8;
+  constexpr double kLateralSlack = 0.01;  // m, lateral may not get worse by more
+  SimulatedDrive d = simulateDrive();
+  std::mt19937 rng(3);
+  std::normal_distribution<double> step(0.0, kStepSigma), yaw_step(0.0, kStepYawSigma);
+  Eigen::Vector3d walk = Eigen::Vector3d::Zero();
+  double yaw_walk = 0.0;
+  for (auto& kf : d.lsm.keyframes) {
+    walk += Eigen::Vector3d(step(rng), step(rng), 0.0);
+    yaw_walk += yaw_step(rng);
+    kf.T_frame_body.translation() += walk;
+    kf.T_frame_body.linear() =
+        Eigen::AngleAxisd(yaw_walk, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+        kf.T_frame_body.linear();
+  }
+  offsetDrive(d.lsm, 2.0, 1.5, 1.5 * kDeg);
+  const localize::LocalizeSettings s;
+  const localize::MapIndex index(d.world.truth, s.match_attributes);
+  const auto obs = localize::observationsOf(d.lsm, s.match_attributes, "sim");
+  const auto per_keyframe = localize::localizeDrive(index, obs, s);
+  auto full = per_keyframe;
+  localize::smoothDrive(index, obs, s, localize::SmootherSettings{}, full);
+  const auto e1 = localize::localizeErrors(per_keyframe, d.truth, *d.lsm.origin, "sim");
+  const auto e2 = localize::localizeErrors(full, d.truth, *d.lsm.origin, "sim");
+  INFO("per keyframe: lateral " << e1.localized.lateral << " m, longitudinal "
+                                << e1.localized.longitudinal << " m, heading "
+                                << e1.localized.heading_deg << " deg; full drive: lateral "
+                                << e2.localized.lateral << " m, longitudinal "
+                                << e2.localized.longitudinal << " m, heading "
+                                << e2.localized.heading_deg << " deg");
+  CHECK(per_keyframe.lost == 0);
+  CHECK(full.lost == 0);
+  CHECK(e2.localized.longitudinal < kMaxLongitudinalRatio * e1.localized.longitudinal);
+  CHECK(e2.localized.lateral < e1.localized.lateral + kLateralSlack);
+  CHECK(e2.localized.lateral < kMaxMeanLateral);
+  CHECK(e2.localized.longitudinal < kMaxMeanLongitudinal);
+  CHECK(e2.localized.heading_deg < kMaxMeanHeadingDeg);
+}
+
+TEST_CASE(
+    "localize: the map-to-truth transform of a moved map is recovered, and errors in the "
+    "map's frame take it off",
+    "[localize]") {
+  constexpr double kShiftTolerance = 0.02;  // m
+  constexpr double kYawToleranceDeg = 0.01;
+  SimulatedDrive d = simulateDrive();
+  // the map: the truth rotated by 0.3 deg about (100, 50) and shifted by (0.4, -0.3) m
+  Pose3 T_map_truth = Pose3::Identity();
+  T_map_truth.linear() = Eigen::AngleAxisd(0.3 * kDeg, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Vector3d pivot(100, 50, 0);
+  T_map_truth.translation() = pivot - T_map_truth.linear() * pivot + Eigen::Vector3d(0.4, -0.3, 0);
+  VectorMap map = d.world.truth;
+  for (auto& inst : map.instances)
+    for (auto& p : inst.points) p = T_map_truth * p;
+  const localize::LocalizeSettings s;
+  const localize::MapIndex truth_index(d.world.truth, s.match_attributes);
+  const localize::MapToTruth m = localize::estimateMapToTruth(map, truth_index, s);
+  const Pose3 residual = m.T_truth_map * T_map_truth;  // identity when recovered
+  INFO("residual shift " << residual.translation().transpose() << " m, map points " << m.points
+                         << ", matched " << m.matched << ", rms " << m.rms_before << " -> "
+                         << m.rms_after << " m");
+  CHECK(residual.translation().head<2>().norm() < kShiftTolerance);
+  CHECK(std::abs(std::atan2(residual.linear()(1, 0), residual.linear()(0, 0))) / kDeg <
+        kYawToleranceDeg);
+  CHECK(m.rms_after < 0.01);
+  // a drive localised on the moved map: against the truth as is it carries the map's offset,
+  // in the map's frame it does not
+  const localize::MapIndex index(map, s.match_attributes);
+  const auto result =
+      localize::localizeDrive(index, localize::observationsOf(d.lsm, s.match_attributes, "sim"), s);
+  const auto errors =
+      localize::localizeErrors(result, d.truth, *d.lsm.origin, "sim", m.T_truth_map);
+  INFO("as is: lateral " << errors.localized.lateral << " longitudinal "
+                         << errors.localized.longitudinal << "; in the map's frame: lateral "
+                         << errors.in_map.lateral << " longitudinal "
+                         << errors.in_map.longitudinal);
+  CHECK(errors.localized.lateral + errors.localized.longitudinal > 0.3);
+  CHECK(errors.in_map.lateral < kMaxMeanLateral);
+  CHECK(errors.in_map.longitudinal < kMaxMeanLongitudinal);
 }

@@ -4,10 +4,14 @@
 #include <cmath>
 
 #include "mapfuse/core/error.hpp"
+#include "matching.hpp"
 #include "pose_solver.hpp"
 
 namespace mapfuse::localize {
 namespace {
+
+using detail::matchPoints;
+using detail::WorldPoint;
 
 double yawOf(const Pose3& T) {
   return std::atan2(T.linear()(1, 0), T.linear()(0, 0));
@@ -21,13 +25,6 @@ Pose3 corrected(const Pose3& T, const Eigen::Vector3d& x) {
   out.translation().head<2>() = c + x.head<2>();
   return out;
 }
-
-/// An observed point in ENU at the current pose, ready to match.
-struct WorldPoint {
-  const ObservedPoint* obs;
-  Eigen::Vector2d q;
-  Eigen::Matrix2d cov;  ///< horizontal covariance in ENU, m^2
-};
 
 /// The window's observed points in ENU: each keyframe's points placed by the drive's relative
 /// poses (prior_k^-1 prior_j), then by the current pose of keyframe k.
@@ -74,35 +71,6 @@ Eigen::Vector2d searchShift(const MapIndex& map, const std::vector<WorldPoint>& 
       if (score > best_score) best_score = score, best = shift;
     }
   return best;
-}
-
-/// Matching of one round: every point to its nearest target within `radius`.
-std::vector<detail::Match> matchPoints(const MapIndex& map, const std::vector<WorldPoint>& pts,
-                                       double radius, const LocalizeSettings& s, double* sum_sq) {
-  std::vector<detail::Match> out;
-  *sum_sq = 0;
-  for (const auto& wp : pts) {
-    const TargetMatch m = map.nearest(wp.obs->key, wp.q, radius);
-    if (!m.target) continue;
-    detail::Match mt;
-    mt.q = wp.q;
-    mt.a = m.target->a;
-    mt.is_line = m.target->is_line && wp.obs->is_line;
-    if (mt.is_line) {
-      const Eigen::Vector2d d = m.target->b - m.target->a;
-      if (d.norm() < 1e-9) continue;  // a degenerate segment: no normal
-      mt.n = Eigen::Vector2d(-d.y(), d.x()).normalized();
-      // eq. (L2): sigma across the line from the point's covariance and the map's
-      mt.sqrt_info(0, 0) = 1.0 / std::sqrt(mt.n.dot(wp.cov * mt.n) + s.line_sigma * s.line_sigma);
-    } else {
-      const Eigen::Matrix2d cov =
-          wp.cov + s.point_sigma * s.point_sigma * Eigen::Matrix2d::Identity();
-      mt.sqrt_info = Eigen::Matrix2d(cov.inverse().llt().matrixL().transpose());
-    }
-    *sum_sq += m.distance * m.distance;
-    out.push_back(mt);
-  }
-  return out;
 }
 
 Eigen::Matrix3d covOf(const Element& e, std::size_t i) {

@@ -4,56 +4,10 @@
 
 #include <cmath>
 
+#include "residuals.hpp"
+
 namespace mapfuse::localize::detail {
 namespace {
-
-double wrapAngle(double a) {
-  return std::atan2(std::sin(a), std::cos(a));
-}
-
-/// eq. (L1) + (L2): the matched point after the correction, against its target.
-struct MatchResidual {
-  Match m;
-  Eigen::Vector2d c;
-
-  template <class T>
-  bool operator()(const T* x, T* r) const {
-    const T cs = ceres::cos(x[2]), sn = ceres::sin(x[2]);
-    const T dx = T(m.q.x() - c.x()), dy = T(m.q.y() - c.y());
-    const T px = T(c.x()) + x[0] + cs * dx - sn * dy;
-    const T py = T(c.y()) + x[1] + sn * dx + cs * dy;
-    const T ex = px - T(m.a.x()), ey = py - T(m.a.y());
-    if (m.is_line) {
-      r[0] = T(m.sqrt_info(0, 0)) * (T(m.n.x()) * ex + T(m.n.y()) * ey);
-    } else {
-      r[0] = T(m.sqrt_info(0, 0)) * ex + T(m.sqrt_info(0, 1)) * ey;
-      r[1] = T(m.sqrt_info(1, 0)) * ex + T(m.sqrt_info(1, 1)) * ey;
-    }
-    return true;
-  }
-};
-
-/// eq. (L3): a planar prior on the corrected pose (linear in x).
-struct PriorResidual {
-  Eigen::Vector3d offset;  ///< (c - t_prior, psi - psi_prior wrapped), m, m, rad
-  Eigen::Matrix3d L;       ///< square-root information
-
-  template <class T>
-  bool operator()(const T* x, T* r) const {
-    const Eigen::Matrix<T, 3, 1> e(T(offset.x()) + x[0], T(offset.y()) + x[1],
-                                   T(offset.z()) + x[2]);
-    Eigen::Map<Eigen::Matrix<T, 3, 1>> out(r);
-    out = L.cast<T>() * e;
-    return true;
-  }
-};
-
-void addPrior(ceres::Problem& problem, const SolveInput& in, const PlanarPrior& p, double* x) {
-  const Eigen::Vector2d d = in.c - p.t;
-  auto* f = new ceres::AutoDiffCostFunction<PriorResidual, 3, 3>(
-      new PriorResidual{Eigen::Vector3d(d.x(), d.y(), wrapAngle(in.yaw - p.yaw)), p.sqrt_info});
-  problem.AddResidualBlock(f, nullptr, x);
-}
 
 /// Information of x at the solution: sum of w J^T J over the matches (w: the Cauchy weight of
 /// the block's squared residual) plus the priors' L^T L.
@@ -92,16 +46,11 @@ SolveOutput solvePlanarCorrection(const SolveInput& in) {
   po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(po);
   ceres::CauchyLoss loss(in.robust_scale);  // residuals are in sigmas
-  for (const Match& m : in.matches) {
-    ceres::CostFunction* f =
-        m.is_line
-            ? static_cast<ceres::CostFunction*>(
-                  new ceres::AutoDiffCostFunction<MatchResidual, 1, 3>(new MatchResidual{m, in.c}))
-            : new ceres::AutoDiffCostFunction<MatchResidual, 2, 3>(new MatchResidual{m, in.c});
-    problem.AddResidualBlock(f, &loss, x);
-  }
-  addPrior(problem, in, in.gps, x);
-  if (in.motion) addPrior(problem, in, *in.motion, x);
+  for (const Match& m : in.matches)
+    problem.AddResidualBlock(MatchResidual::create(m, in.c), &loss, x);
+  problem.AddResidualBlock(PriorResidual::create(in.c, in.yaw, in.gps), nullptr, x);
+  if (in.motion)
+    problem.AddResidualBlock(PriorResidual::create(in.c, in.yaw, *in.motion), nullptr, x);
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_QR;
   options.max_num_iterations = in.max_iterations;

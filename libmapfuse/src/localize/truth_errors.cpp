@@ -41,7 +41,9 @@ PlanarError planarError(const Pose3& T_est, const Pose3& T_true) {
 }
 
 LocalizeErrors localizeErrors(const LocalizeResult& result, const eval::TrueTrajectory& truth,
-                              const geo::GeoOrigin& origin, const std::string& source) {
+                              const geo::GeoOrigin& origin, const std::string& source,
+                              const Pose3& T_truth_map) {
+  const Pose3 T_map_truth = T_truth_map.inverse();
   const bool convert = !geo::sameOrigin(origin, truth.origin);
   const geo::EnuConverter from(truth.origin), to(origin);
   const auto sorted = eval::sortedByStamp(truth);
@@ -56,9 +58,11 @@ LocalizeErrors localizeErrors(const LocalizeResult& result, const eval::TrueTraj
     e.lost = k.status == KeyframeStatus::kLost;
     e.localized = planarError(k.T_enu_body, T_true);
     e.prior = planarError(k.T_enu_prior, T_true);
+    e.in_map = planarError(k.T_enu_body, T_map_truth * T_true);
     if (!e.lost) {
       add(out.localized, e.localized);
       add(out.prior, e.prior);
+      add(out.in_map, e.in_map);
     }
     out.keyframes.push_back(e);
   }
@@ -67,14 +71,18 @@ LocalizeErrors localizeErrors(const LocalizeResult& result, const eval::TrueTraj
                      truth.drive_id + "'");
   finish(out.localized);
   finish(out.prior);
+  finish(out.in_map);
   return out;
 }
 
-MeanAbsError pooled(const std::vector<LocalizeErrors>& drives, bool prior) {
+MeanAbsError pooled(const std::vector<LocalizeErrors>& drives, ErrorOf which) {
   MeanAbsError m;
   for (const auto& d : drives)
     for (const auto& e : d.keyframes)
-      if (!e.lost) add(m, prior ? e.prior : e.localized);
+      if (!e.lost)
+        add(m, which == ErrorOf::kPrior   ? e.prior
+               : which == ErrorOf::kInMap ? e.in_map
+                                          : e.localized);
   finish(m);
   return m;
 }

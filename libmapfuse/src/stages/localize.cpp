@@ -20,45 +20,13 @@
 
 namespace mapfuse::stages {
 
-nlohmann::json toJson(const LocalizeRun& run) {
-  nlohmann::json drives = nlohmann::json::array();
-  std::vector<localize::LocalizeErrors> errors;
-  for (const auto& d : run.drives) {
-    nlohmann::json j = localize::toJson(d.result);
-    j["drive_id"] = d.drive_id;
-    j["file"] = d.file;
-    if (d.errors) {
-      j["localized"] = localize::toJson(d.errors->localized);
-      j["prior"] = localize::toJson(d.errors->prior);
-      errors.push_back(*d.errors);
-    }
-    drives.push_back(j);
-  }
-  nlohmann::json s = {
-      {"drives", drives},
-      {"keyframes", run.keyframes},
-      {"lost", run.lost},
-      {"lost_share", run.lostShare()},
-      {"seconds_localize", run.seconds_localize},
-      {"localisations_per_second_per_core",
-       run.seconds_localize > 0 ? double(run.keyframes) / run.seconds_localize : 0.0}};
-  if (!errors.empty()) {  // the paper's three averages, over all drives' localised keyframes
-    s["localized"] = localize::toJson(localize::pooled(errors, false));
-    s["prior"] = localize::toJson(localize::pooled(errors, true));
-    // the drives share the map: their mean ENU error is the map's offset against the truth
-    const Eigen::Vector2d offset = localize::commonOffset(errors);
-    s["common_offset_enu_m"] = {offset.x(), offset.y()};
-    s["localized_without_common_offset"] =
-        localize::toJson(localize::pooledWithoutOffset(errors, offset));
-  }
-  return s;
-}
-
 LocalizeRun runLocalize(const LocalizeInputs& in, const std::filesystem::path& out_dir,
                         const LocalizeParams& params) {
   validateParams(params);
   io::OutputTransaction outputs(out_dir);  // locked and writable before the work
   if (in.lsms.empty()) throw InputError("localize: no drive (LSM) to localise");
+  if (!in.lsm_build_config.empty() && in.frames_dir.empty())
+    throw ConfigError("localize: --lsm-build-config is for the frames level (--frames)");
   const VectorMap file_map = io::readVectorMap(in.map);
   std::map<std::string, eval::TrueTrajectory> truth;
   if (!in.truth_trajectories.empty())
@@ -69,13 +37,30 @@ LocalizeRun runLocalize(const LocalizeInputs& in, const std::filesystem::path& o
   std::vector<localize::DriveObservations> obs;
   std::vector<std::shared_ptr<const localize::MapIndex>> index(n);  // the map in each drive's ENU
   std::vector<const eval::TrueTrajectory*> true_of(n, nullptr);
+  std::optional<VectorMap> truth_map;
+  if (!in.truth_map.empty()) truth_map = io::readVectorMap(in.truth_map);
+  std::vector<std::optional<localize::MapToTruth>> map_to_truth(n);
   for (std::size_t i = 0; i < n; ++i) {  // every input checked before the work
-    obs.push_back(localize::observationsOf(lsms[i], params.localize.match_attributes, in.lsms[i]));
+    if (in.frames_dir.empty())
+      obs.push_back(
+          localize::observationsOf(lsms[i], params.localize.match_attributes, in.lsms[i]));
+    else
+      obs.push_back(frameLevelObservations(in, lsms[i], params));
     for (std::size_t j = 0; j < i && !index[i]; ++j)
-      if (geo::sameOrigin(*lsms[j].origin, *lsms[i].origin)) index[i] = index[j];
-    if (!index[i])
-      index[i] = std::make_shared<localize::MapIndex>(eval::inOrigin(file_map, *lsms[i].origin),
-                                                      params.localize.match_attributes);
+      if (geo::sameOrigin(*lsms[j].origin, *lsms[i].origin)) {
+        index[i] = index[j];
+        map_to_truth[i] = map_to_truth[j];
+      }
+    if (!index[i]) {
+      const VectorMap map = eval::inOrigin(file_map, *lsms[i].origin);
+      index[i] = std::make_shared<localize::MapIndex>(map, params.localize.match_attributes);
+      if (truth_map)
+        map_to_truth[i] = localize::estimateMapToTruth(
+            map,
+            localize::MapIndex(eval::inOrigin(*truth_map, *lsms[i].origin),
+                               params.localize.match_attributes),
+            params.localize);
+    }
     if (in.truth_trajectories.empty()) continue;
     const auto t = truth.find(lsms[i].drive_id);
     if (t == truth.end())
@@ -84,15 +69,24 @@ LocalizeRun runLocalize(const LocalizeInputs& in, const std::filesystem::path& o
     true_of[i] = &t->second;
   }
   LocalizeRun run;
+  run.level = in.frames_dir.empty() ? "lsm" : "frames";
+  run.solve = params.smoother.solve;
+  localize::LocalizeSettings settings = params.localize;
+  if (!in.frames_dir.empty()) settings.window = params.frames.frame_window;
   run.drives.resize(n);
   Progress progress("drives", n);
   parallelFor(n, [&](std::size_t i) {  // drives are independent
     LocalizedDrive& d = run.drives[i];
     d.file = in.lsms[i];
     d.drive_id = lsms[i].drive_id;
-    d.result = localize::localizeDrive(*index[i], obs[i], params.localize);
+    d.result = localize::localizeDrive(*index[i], obs[i], settings);
+    if (params.smoother.solve == "full_drive")
+      localize::smoothDrive(*index[i], obs[i], settings, params.smoother, d.result);
+    d.map_to_truth = map_to_truth[i];
     if (true_of[i])
-      d.errors = localize::localizeErrors(d.result, *true_of[i], *lsms[i].origin, d.file);
+      d.errors = localize::localizeErrors(
+          d.result, *true_of[i], *lsms[i].origin, d.file,
+          map_to_truth[i] ? map_to_truth[i]->T_truth_map : Pose3::Identity());
     progress.advance();
   });
   for (std::size_t i = 0; i < n; ++i) {

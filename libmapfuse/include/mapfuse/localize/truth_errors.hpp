@@ -27,6 +27,7 @@ struct KeyframeError {
   bool lost = false;
   PlanarError localized;  ///< of the localised pose
   PlanarError prior;      ///< of the georeferenced prior
+  PlanarError in_map;     ///< of the localised pose against the truth carried into the map frame
 };
 
 /// Mean absolute errors (the paper's three averages).
@@ -41,6 +42,7 @@ struct LocalizeErrors {
   std::vector<KeyframeError> keyframes;  ///< keyframes the truth covers (by stamp)
   MeanAbsError localized;                ///< over the keyframes not lost
   MeanAbsError prior;                    ///< over the same keyframes
+  MeanAbsError in_map;  ///< localised, against the truth in the map's frame (map_frame.hpp)
 };
 
 /// @brief Planar error of `T_est` against `T_true` (both ENU of one origin).
@@ -48,12 +50,19 @@ PlanarError planarError(const Pose3& T_est, const Pose3& T_true);
 
 /// @brief Errors of a localisation against the true trajectory, keyframes matched by stamp
 /// (eval::truePoseAt); the truth is re-expressed in `origin` (the drive's) when its own differs.
+/// `in_map`: against the true pose carried into the map's frame, T_truth_map^-1 T_true
+/// (T_truth_map from estimateMapToTruth in the same ENU frame; identity: the same as localized).
 /// @throws InputError naming `source` when no keyframe falls in the truth's time span.
 LocalizeErrors localizeErrors(const LocalizeResult& result, const eval::TrueTrajectory& truth,
-                              const geo::GeoOrigin& origin, const std::string& source);
+                              const geo::GeoOrigin& origin, const std::string& source,
+                              const Pose3& T_truth_map = Pose3::Identity());
 
-/// @brief Mean absolute errors of several drives' errors pooled keyframe by keyframe.
-MeanAbsError pooled(const std::vector<LocalizeErrors>& drives, bool prior);
+/// Which error of a keyframe to pool.
+enum class ErrorOf { kLocalized, kPrior, kInMap };
+
+/// @brief Mean absolute errors of several drives' errors pooled keyframe by keyframe, over the
+/// keyframes not lost.
+MeanAbsError pooled(const std::vector<LocalizeErrors>& drives, ErrorOf which);
 
 /// @brief Mean signed ENU position error of the localised keyframes of all drives (m): the
 /// common offset of the map against the truth when the drives share one map.
