@@ -1,46 +1,68 @@
 // lidar-semantic-map: KITTI raw drive -> semantic voxel map (Jeong et al. 2018; docs/lidar.md).
 // `lidar-semantic-map DRIVE -o OUT` builds the map; `lidar-semantic-map train DRIVE... -o DIR`
 // fits the per-label cluster classifiers from drives with labels/<frame>.label files.
-#include <iostream>
-
 #include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/lidar_semantic_map.hpp"
 
 static const char* const kAbout =
     "Build a semantic voxel map from a KITTI raw drive or a KITTI odometry / SemanticKITTI\n"
     "sequence folder: poses (OXTS, poses file or LiDAR odometry), per-pixel semantics (ENet or\n"
-    "precomputed semantics_02), projection onto image_02, cluster error minimisation (optional\n"
-    "forests), Bayesian voxel fusion, batch refinement. Outputs below --out: map.ply, map.pcd,\n"
+    "precomputed semantics_02), projection onto image_02, cluster error minimisation, Bayesian\n"
+    "voxel fusion, batch refinement. Outputs below --out: map.ply, map.pcd,\n"
     "labels/<frame>.label, topdown.png, poses.txt (KITTI T_world_cam0), poses_velo.txt\n"
     "(T_map_velo), lidar-semantic-map.{config,summary}.json. Untrusted odometry steps are\n"
     "listed on stderr and in the summary; more than --odom-max-untrusted stop the run (exit 3).\n"
     "A failed run leaves the previous outputs in the folder unchanged.\n"
-    "`train DRIVE... -o DIR` fits rtrees_<label>.yml from drives with labels/<frame>.label.\n"
+    "Error minimisation is on by default with the forests the build generates from simulated\n"
+    "drives (--classifier-dir auto = <bin>/../models/lidar-classifiers; none = off); the summary\n"
+    "names them and their provenance. Retrain: scripts/train-classifiers.sh BIN_DIR DIR "
+    "(simulated\n"
+    "drives), or `train DRIVE... --validation DRIVE... -o DIR` on drives with\n"
+    "labels/<frame>.label (validation drives choose each label's threshold), then\n"
+    "--classifier-dir DIR.\n"
     "Exit codes: 0 ok, 2 usage/config, 3 bad input, 4 I/O.";
 static const char* const kDrive =
     "KITTI raw drive (<date>/<date>_drive_<name>_sync) or sequence (sequences/NN)";
 
+namespace {
+/// The `train` subcommand's inputs.
+struct TrainArgs {
+  CLI::App* sub = nullptr;
+  std::string out;
+  std::vector<std::string> drives, validation;
+};
+
+TrainArgs addTrain(CLI::App& app) {
+  TrainArgs t;
+  t.sub = app.add_subcommand("train", "Fit the per-label cluster classifiers");
+  t.sub->add_option("drives", t.drives, "Labelled drives, @list.txt or -")->required();
+  t.sub->add_option("-o,--out", t.out, "Classifier folder")->required();
+  t.sub->add_option("--validation", t.validation,
+                    "Labelled drives (not training, not test) on which each label's threshold is "
+                    "chosen and forests that cost their label IoU are dropped");
+  t.sub->fallthrough();
+  return t;
+}
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace mapfuse;
   cli::StageTool<stages::LidarSemanticMapParams> tool("lidar-semantic-map", kAbout);
-  std::string drive, out, train_out;
-  std::vector<std::string> train_drives;
+  std::string drive, out;
   tool.app().add_option("drive", drive, kDrive);
   tool.app().add_option("-o,--out", out, "Output folder");
-  CLI::App* train = tool.app().add_subcommand("train", "Fit the per-label cluster classifiers");
-  train->add_option("drives", train_drives, "Labelled drives, @list.txt or -")->required();
-  train->add_option("-o,--out", train_out, "Classifier folder")->required();
-  train->fallthrough();
+  TrainArgs train = addTrain(tool.app());
   return tool.run(argc, argv, [&](const stages::LidarSemanticMapParams& params) {
-    if (train->parsed()) {
-      const auto list = cli::expandInputList(train_drives);
-      stages::runLidarSemanticMapTrain({list.begin(), list.end()}, train_out, params);
-      std::cout << train_out << '\n';
-    } else if (drive.empty() || out.empty()) {
-      throw ConfigError("a drive folder and -o/--out are required (or the train subcommand)");
-    } else {
-      stages::runLidarSemanticMap(drive, out, params);
-      std::cout << out << '\n';
+    if (train.sub->parsed()) {
+      const auto list = cli::expandInputList(train.drives);
+      const auto held = cli::expandInputList(train.validation);
+      stages::runLidarSemanticMapTrain({list.begin(), list.end()}, {held.begin(), held.end()},
+                                       train.out, params);
+      return train.out;
     }
+    if (drive.empty() || out.empty())
+      throw ConfigError("a drive folder and -o/--out are required (or the train subcommand)");
+    stages::runLidarSemanticMap(drive, out, params);
+    return out;
   });
 }

@@ -195,7 +195,7 @@ int main(int argc, char** argv) {
   if (!train_drives.empty() && !classifier_dir.empty()) {
     const auto t = Clock::now();
     std::vector<fs::path> td(train_drives.begin(), train_drives.end());
-    const auto tr = lidar::trainClusterClassifier(td, {}, p, lidar::RTreesSettings{}, "");
+    const auto tr = lidar::trainClusterClassifier(td, {}, {}, p, lidar::RTreesSettings{}, "");
     tr.classifier.save(classifier_dir);
     em_note = fmt("forests trained in the bench on %.0f labelled frames of another seed (%.1f s)",
                   static_cast<double>(tr.frames_used), since(t));

@@ -77,7 +77,17 @@ TEST_CASE("lidar-semantic-map builds a map from precomputed label images", "[lid
   stages::runLidarSemanticMap(drive, root / "out", p);
   const auto summary = test::readSummary(root / "out", "lidar-semantic-map");
   CHECK(summary["semantics"]["source"] == "precomputed");
-  CHECK(summary["error_minimization"]["skipped"] == true);
+  // Error minimisation on by default, with the generated forests and their provenance.
+  const auto& em = summary["error_minimization"];
+  if (MAPFUSE_FORESTS_GENERATED) {
+    CHECK(em["skipped"] == false);
+    CHECK_FALSE(em["labels"].empty());
+    CHECK(em["classifier_dir"].get<std::string>().find("lidar-classifiers") != std::string::npos);
+    CHECK(em["provenance"]["format"] == "mapfuse.lidar_forest_provenance");
+  } else {
+    CHECK(em["skipped"] == true);  // auto without generated forests: off, with the reason
+    CHECK(em["reason"].get<std::string>().find("no generated forests") != std::string::npos);
+  }
   CHECK(summary["poses"]["converged_scans"].get<int>() == 2);  // 3 frames: 2 steps
   CHECK(summary["poses"]["untrusted_steps"].empty());
   const auto ply = io::readPly(root / "out/map.ply");

@@ -4,6 +4,7 @@
 
 #include "mapfuse/core/classes.hpp"
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/core/log.hpp"
 #include "mapfuse/core/progress.hpp"
 #include "mapfuse/io/semantic_kitti.hpp"
 #include "mapfuse/io/velodyne.hpp"
@@ -42,16 +43,23 @@ TrainingDriveStats collectSamples(const io::KittiRawDrive& drive, const Semantic
                        std::to_string(gt.size()) + " labels for " + std::to_string(scan.size()) +
                            " scan points");
     const auto proj = labelScan(scan.points, P, semantics.get(f), fusion.projection);
+    std::vector<uint8_t> truth(proj.points.size());
+    for (std::size_t k = 0; k < truth.size(); ++k) {
+      truth[k] = static_cast<uint8_t>(
+          lidarClassFromSemanticKitti(io::semanticIdOf(gt[proj.scan_index[k]])));
+      ++samples[truth[k]].truth_points;
+    }
     const auto cl = labelClusters(proj.points, proj.labels, fusion.clustering, mask);
     for (const auto& c : cl) {  // correct when the majority of the true labels agrees
       std::array<int, kNumLidarClasses> votes{};
-      for (int m : c.members)
-        ++votes[static_cast<int>(
-            lidarClassFromSemanticKitti(io::semanticIdOf(gt[proj.scan_index[m]])))];
+      for (int m : c.members) ++votes[truth[m]];
       const int majority =
           static_cast<int>(std::max_element(votes.begin(), votes.end()) - votes.begin());
-      samples[c.label].features.push_back(c.features);
-      samples[c.label].correct.push_back(majority == c.label ? 1 : 0);
+      LabelSamples& ls = samples[c.label];
+      ls.features.push_back(c.features);
+      ls.correct.push_back(majority == c.label ? 1 : 0);
+      ls.points.push_back(static_cast<int>(c.members.size()));
+      ls.correct_points.push_back(votes[c.label]);
     }
     st.clusters += cl.size();
     ++st.frames_used;
@@ -63,6 +71,7 @@ TrainingDriveStats collectSamples(const io::KittiRawDrive& drive, const Semantic
 }  // namespace
 
 ClassifierTrainingResult trainClusterClassifier(const std::vector<fs::path>& drives,
+                                                const std::vector<fs::path>& validation,
                                                 const io::FrameRange& frames,
                                                 const SemanticMapSettings& map,
                                                 const RTreesSettings& rtrees,
@@ -78,6 +87,37 @@ ClassifierTrainingResult trainClusterClassifier(const std::vector<fs::path>& dri
   }
   if (r.frames_used == 0) throw InputError("train: no frame with a labels/<frame>.label file");
   r.classifier = ClusterClassifier::train(samples, rtrees, &r.report);
+  if (validation.empty()) {
+    MAPFUSE_WARN(
+        "train: no validation drive: every forest filters at its majority vote (0.5), "
+        "even one that costs its label IoU");
+    return r;
+  }
+  std::vector<std::array<LabelSamples, kNumLidarClasses>> held(validation.size());
+  for (std::size_t d = 0; d < validation.size(); ++d) {
+    const io::KittiRawDrive drive = io::openKittiRawDrive(validation[d], frames);
+    const fs::path cache = cache_root.empty() ? fs::path() : cache_root / drive.dir.filename();
+    r.validation_drives.push_back(collectSamples(drive, map, cache, held[d]));
+  }
+  r.validated = true;
+  for (int l = 1; l < kNumLidarClasses; ++l) {
+    const auto label = static_cast<LidarClass>(l);
+    if (!r.classifier.has(label)) continue;
+    std::vector<ValidationSet> sets(held.size());
+    for (std::size_t d = 0; d < held.size(); ++d) {
+      sets[d].samples = std::move(held[d][l]);
+      for (const ClusterFeatures& f : sets[d].samples.features)
+        sets[d].correct_votes.push_back(r.classifier.correctVotes(label, f));
+    }
+    ThresholdChoice& c = r.thresholds[l] =
+        chooseThreshold(sets, rtrees.min_validation_gain, rtrees.gain_tolerance);
+    if (c.used) {
+      r.classifier.setThreshold(label, c.min_correct_votes);
+    } else {
+      r.classifier.remove(label);
+      MAPFUSE_INFO("train: no forest for " << lidarClassName(label) << ": " << c.reason);
+    }
+  }
   return r;
 }
 

@@ -26,6 +26,7 @@ EnetSegmenter::EnetSegmenter(const std::filesystem::path& model, const EnetSetti
     throw ParseError(model.string(), "", std::string("OpenCV cannot load the model: ") + e.what());
   }
   if (impl_->net.empty()) throw ParseError(model.string(), "", "OpenCV loaded an empty network");
+  if (settings.threads > 0) cv::setNumThreads(settings.threads);  // process-wide (TBB arena)
   impl_->net.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
   impl_->net.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
 }

@@ -1,9 +1,12 @@
 #include "mapfuse/lidar/semantic_mapper.hpp"
 
+#include <future>
+
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/core/progress.hpp"
 #include "mapfuse/core/stopwatch.hpp"
 #include "mapfuse/io/velodyne.hpp"
+#include "mapfuse/lidar/forest_source.hpp"
 
 namespace mapfuse::lidar {
 namespace {
@@ -12,22 +15,42 @@ double bytesPerVoxel(const SemanticVoxelMap& map) {
                      : static_cast<double>(map.memoryBytes()) / static_cast<double>(map.size());
 }
 
-/// §2.1: every frame labelled and fused into `r.map` (eq. 2-6).
+/// One frame's inputs, read (and segmented) ahead of its fusion.
+struct FrameInput {
+  io::VelodyneScan scan;
+  io::SemanticImage sem;
+  double t_load = 0, t_semantics = 0;  ///< s, in the reading thread
+};
+
+/// §2.1: every frame labelled and fused into `r.map` (eq. 2-6). Frame k+1 is read and segmented
+/// (ENet, the expensive part) in a second thread while frame k is projected, filtered and fused,
+/// so that network and LiDAR work overlap; the fusion order, hence the map, is unchanged.
 void fuseFrames(const io::KittiRawDrive& drive, FrameSemantics& semantics,
                 const ClusterClassifier& classifier, const FrameFusionSettings& settings,
                 SemanticMapResult& r) {
   const Eigen::Matrix<double, 3, 4> P = drive.calib.veloToImage2();
-  Progress progress("frames", drive.frames.size());
-  for (std::size_t i = 0; i < drive.frames.size(); ++i) {
-    const auto& f = drive.frames[i];
+  auto read = [&](std::size_t i) {  // one call at a time: semantics is not shared otherwise
+    FrameInput in;
     Stopwatch t;
-    const io::VelodyneScan scan = io::readVelodyneBin(f.velodyne);
-    r.timings.load_scans += t.seconds();
+    in.scan = io::readVelodyneBin(drive.frames[i].velodyne);
+    in.t_load = t.seconds();
     t.restart();
-    const io::SemanticImage sem = semantics.get(f);
-    r.timings.semantics += t.seconds();
+    in.sem = semantics.get(drive.frames[i]);
+    in.t_semantics = t.seconds();
+    return in;
+  };
+  Progress progress("frames", drive.frames.size());
+  std::future<FrameInput> next;
+  if (!drive.frames.empty()) next = std::async(std::launch::async, read, 0);
+  for (std::size_t i = 0; i < drive.frames.size(); ++i) {
+    Stopwatch wait;
+    const FrameInput in = next.get();  // rethrows the reader's error
+    r.timings.wait_inputs += wait.seconds();
+    if (i + 1 < drive.frames.size()) next = std::async(std::launch::async, read, i + 1);
+    r.timings.load_scans += in.t_load;
+    r.timings.semantics += in.t_semantics;
     const auto st =
-        fuseFrame(r.map, scan.points, r.poses.T_map_velo[i], P, sem, classifier, settings);
+        fuseFrame(r.map, in.scan.points, r.poses.T_map_velo[i], P, in.sem, classifier, settings);
     r.timings.projection += st.t_projection;
     r.timings.error_minimization += st.t_error_min;
     r.timings.fusion += st.t_fusion;
@@ -53,8 +76,8 @@ SemanticMapResult buildSemanticMap(const io::KittiRawDrive& drive, const Semanti
   SemanticMapResult r;
   Stopwatch t;
   const FrameFusionSettings fusion = fusionForDrive(s.fusion, drive);
-  ClusterClassifier classifier;
-  if (!s.classifier_dir.empty()) classifier = ClusterClassifier::load(s.classifier_dir);
+  ForestSource forests = loadForests(s.classifier_dir);
+  const ClusterClassifier& classifier = forests.classifier;
   FrameSemantics semantics(drive, s.semantics, semantics_cache);
   r.timings.open = t.seconds();
 
@@ -63,7 +86,9 @@ SemanticMapResult buildSemanticMap(const io::KittiRawDrive& drive, const Semanti
   r.timings.poses = t.seconds();
 
   r.map = SemanticVoxelMap(s.voxel_size, static_cast<float>(s.min_log_prob));
+  Stopwatch fusing;
   fuseFrames(drive, semantics, classifier, fusion, r);
+  r.timings.frames = fusing.seconds();
   r.voxels_after_fusion = r.map.size();
   r.bytes_per_voxel_before_shrink = bytesPerVoxel(r.map);
   r.map.shrinkToFit();
@@ -72,11 +97,13 @@ SemanticMapResult buildSemanticMap(const io::KittiRawDrive& drive, const Semanti
   r.semantics = {semantics.source(), semantics.fromPrecomputed(), semantics.fromCache(),
                  semantics.fromNetwork(), semantics.networkSeconds()};
   r.forest_labels = classifier.labels();
-  if (classifier.empty()) {
-    r.error_min_skipped = s.classifier_dir.empty() ? "no classifier_dir given"
-                                                   : "no rtrees_<label>.yml in classifier_dir";
+  for (const std::string& name : r.forest_labels)
+    r.forest_thresholds[name] = classifier.threshold(*lidarClassFromName(name));
+  r.classifier_dir = forests.dir.string();
+  r.forest_provenance = forests.provenance;
+  r.error_min_skipped = forests.skipped;
+  if (!r.error_min_skipped.empty())
     MAPFUSE_INFO("lidar-semantic-map: error minimisation skipped (" << r.error_min_skipped << ")");
-  }
 
   MapRefinementSettings refinement = s.refinement;  // one range and thread count for the run
   refinement.knn.num_threads = refinement.through.num_threads = s.num_threads;

@@ -45,6 +45,9 @@ json timingsJson(const lidar::SemanticMapResult& r, std::size_t frames) {
             {"projection", t.projection},
             {"error_minimization", t.error_minimization},
             {"fusion", t.fusion},
+            {"wait_inputs", t.wait_inputs},
+            {"frames", t.frames},
+            {"frames_per_second", t.frames > 0 ? static_cast<double>(frames) / t.frames : 0.0},
             {"per_frame_labelling_excluding_network",
              (t.projection + t.error_minimization + t.fusion) / static_cast<double>(frames)}};
   if (r.refinement.ran) j["refinement_knn"] = r.refinement.seconds_knn;
@@ -67,10 +70,16 @@ json toJson(const lidar::SemanticMapResult& r, const lidar::DriveOdometrySetting
              {"rejected_clusters", r.error_min.rejected_clusters},
              {"rejected_points", r.error_min.rejected_points},
              {"skipped", !r.error_min_skipped.empty()}};
-  if (r.error_min_skipped.empty())
+  if (r.error_min_skipped.empty()) {
     em["labels"] = r.forest_labels;
-  else
+    em["min_correct_votes"] = r.forest_thresholds;
+    em["classifier_dir"] = r.classifier_dir;
+    em["provenance"] = r.forest_provenance.is_null()
+                           ? json("none: the folder has no provenance.json")
+                           : r.forest_provenance;
+  } else {
     em["reason"] = r.error_min_skipped;
+  }
   s["error_minimization"] = em;
   s["points_projected"] = r.points_projected;
   s["points_fused"] = r.points_fused;
@@ -83,14 +92,38 @@ json toJson(const lidar::SemanticMapResult& r, const lidar::DriveOdometrySetting
   return s;
 }
 
-json toJson(const lidar::ClassifierTrainingResult& r) {
+namespace {
+json drivesJson(const std::vector<lidar::TrainingDriveStats>& drives) {
   json per_drive = json::array();
-  for (const auto& d : r.drives)
+  for (const auto& d : drives)
     per_drive.push_back({{"drive", d.drive},
                          {"frames_used", d.frames_used},
                          {"frames_without_labels", d.frames_without_labels},
                          {"clusters", d.clusters},
                          {"semantics", d.semantics}});
+  return per_drive;
+}
+json thresholdJson(const lidar::ThresholdChoice& c) {
+  json j = {{"clusters", c.clusters},
+            {"forest_used", c.used},
+            {"iou_unfiltered", c.iou_unfiltered},
+            {"iou_filtered", c.iou_filtered},
+            {"iou_majority_vote", c.iou_majority},
+            {"worst_drive_gain", c.worst_gain},
+            {"worst_drive_gain_at_0.05_to_0.95", c.worst_gain_by_threshold}};
+  if (c.used) {
+    j["min_correct_votes"] = c.min_correct_votes;
+    j["rejected_clusters"] = c.rejected_clusters;
+    j["rejected_correct_points"] = c.rejected_correct_points;
+    j["rejected_wrong_points"] = c.rejected_wrong_points;
+  } else {
+    j["reason"] = c.reason;
+  }
+  return j;
+}
+}  // namespace
+
+json toJson(const lidar::ClassifierTrainingResult& r) {
   json labels = json::object();
   for (int l = 1; l < kNumLidarClasses; ++l) {
     json j = {{"correct_clusters", r.report.positives[l]},
@@ -100,9 +133,11 @@ json toJson(const lidar::ClassifierTrainingResult& r) {
       j["training_accuracy"] = r.report.training_accuracy[l];
     else
       j["reason"] = "fewer than rtrees_min_samples correct or wrong clusters";
+    if (r.validated && r.report.trained[l]) j["validation"] = thresholdJson(r.thresholds[l]);
     labels[lidarClassName(LidarClass(l))] = j;
   }
-  return {{"drives", per_drive},
+  return {{"drives", drivesJson(r.drives)},
+          {"validation_drives", drivesJson(r.validation_drives)},
           {"frames_used", r.frames_used},
           {"labels", labels},
           {"forests", r.classifier.labels()}};

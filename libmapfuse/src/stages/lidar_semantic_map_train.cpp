@@ -9,13 +9,14 @@ namespace mapfuse::stages {
 namespace fs = std::filesystem;
 
 lidar::ClassifierTrainingResult runLidarSemanticMapTrain(const std::vector<fs::path>& drives,
+                                                         const std::vector<fs::path>& validation,
                                                          const fs::path& output,
                                                          const LidarSemanticMapParams& p) {
   validateParams(p);
   io::OutputTransaction outputs(output);  // locked and writable before the work (exit 4)
   const Stopwatch total;
-  lidar::ClassifierTrainingResult r =
-      lidar::trainClusterClassifier(drives, p.frames, p.map, p.rtrees, output / "semantics_cache");
+  lidar::ClassifierTrainingResult r = lidar::trainClusterClassifier(
+      drives, validation, p.frames, p.map, p.rtrees, output / "semantics_cache");
   r.classifier.save(output);
   nlohmann::json summary = toJson(r);
   summary["timings_s"] = {{"total", total.seconds()}};

@@ -16,11 +16,14 @@ namespace mapfuse::lidar {
 struct EnetSettings {
   double scale = 1.0;     ///< input scale (1.0 native; 1.5 also works; never stretch the aspect)
   int pad_multiple = 16;  ///< reflect padding to a multiple of this (px)
+  int threads = 0;        ///< cv::setNumThreads for the network; 0 = OpenCV's default (cores)
 
   template <class V>
   void visit(V& v) {
     v("enet_scale", scale, "", "ENet input scale (1.0 native, 1.5 also fine)",
       param::gt(0.1) & param::le(4));
+    v("enet_threads", threads, "", "OpenCV threads of the network (0 = one per core)",
+      param::in(0, 256));
   }
 };
 

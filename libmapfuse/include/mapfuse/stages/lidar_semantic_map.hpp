@@ -46,10 +46,13 @@ lidar::SemanticMapResult runLidarSemanticMap(const std::filesystem::path& drive,
                                              const std::filesystem::path& output,
                                              const LidarSemanticMapParams& params);
 
-/// @brief Fits the per-label RTrees from drives that carry labels/<frame>.label files; writes
-/// rtrees_<label>.yml and lidar-semantic-map-train.{config,summary}.json into `output`.
+/// @brief Fits the per-label RTrees from drives that carry labels/<frame>.label files, chooses
+/// each label's threshold on the `validation` drives (none: majority vote, every forest kept);
+/// writes rtrees_<label>.yml, thresholds.json and lidar-semantic-map-train.{config,summary}.json
+/// into `output`.
 lidar::ClassifierTrainingResult runLidarSemanticMapTrain(
-    const std::vector<std::filesystem::path>& drives, const std::filesystem::path& output,
+    const std::vector<std::filesystem::path>& drives,
+    const std::vector<std::filesystem::path>& validation, const std::filesystem::path& output,
     const LidarSemanticMapParams& params);
 
 }  // namespace mapfuse::stages
