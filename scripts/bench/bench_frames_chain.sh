@@ -43,6 +43,14 @@ PY
     echo "bench_frames_chain: $level $n done" >&2
   done
 done
+# the section bench_vp_calibration.sh writes into the same page survives this rewrite
+doc="$root/docs/performance-frames-chain.md"
+keep="$work/vp-section.md"
+if [[ -f $doc ]]; then
+  sed -n '/<!-- vp-calibration begin/,/<!-- vp-calibration end -->/p' "$doc" > "$keep"
+else
+  : > "$keep"
+fi
 {
   echo "# Performance: lsm-build LSMs against the simulator's LSMs, whole chain"
   echo
@@ -60,5 +68,6 @@ done
   echo "| traversals | LSMs from | ATE | lane line | stop line | arrow | crosswalk | sign | light | pole |"
   echo "|---|---|---|---|---|---|---|---|---|---|"
   cat "$rows"
-} > "$root/docs/performance-frames-chain.md"
+  if [[ -s $keep ]]; then echo; cat "$keep"; fi
+} > "$doc"
 cat "$root/docs/performance-frames-chain.md"

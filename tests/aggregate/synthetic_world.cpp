@@ -55,6 +55,11 @@ SynthWorld makeSynthWorld(const SynthOptions& o) {
     add(CrowdClass::kLaneLine,
         line({mid - len * std::cos(a), 7 - len * std::sin(a), 0}, {mid, 7, 0}), solid);
   }
+  if (o.crossing_deg > 0) {  // a painted line crossing the road inside a junction
+    const double a = o.crossing_deg * M_PI / 180, half = 15.0;
+    const Vec3 c(o.crossing_x, 3.5, 0), d(std::cos(a), std::sin(a), 0);
+    add(CrowdClass::kLaneLine, line(c - half * d, c + half * d, 0.5), solid);
+  }
   if (o.discrete) {
     for (double x = 10; x < L - o.view; x += 25) add(CrowdClass::kPole, {{x, -4, 0.1}}, {}, 5.0);
     for (double x = 20; x < L - o.view; x += 50) {
@@ -64,7 +69,11 @@ SynthWorld makeSynthWorld(const SynthOptions& o) {
     }
     for (double x = 30; x < L - 40; x += 40)
       add(CrowdClass::kGroundArrow, rect({x, 1.75, 0}, 3, 1));
-    add(CrowdClass::kCrosswalk, rect({L - o.view - 15, 3.5, 0}, 4, 7));
+    {  // a parallelogram: 4 m along the road, sides of 7 m at crosswalk_deg to it
+      const double a = o.crosswalk_deg * M_PI / 180;
+      const Vec3 c(L - o.view - 15, 3.5, 0), u(2, 0, 0), v(3.5 * std::cos(a), 3.5 * std::sin(a), 0);
+      add(CrowdClass::kCrosswalk, {c - u - v, c + u - v, c + u + v, c - u + v});
+    }
     add(CrowdClass::kStopLine, line({L - o.view - 20, 0, 0}, {L - o.view - 20, 3.5, 0}, 3.5));
   }
 

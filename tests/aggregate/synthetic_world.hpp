@@ -20,6 +20,9 @@ struct SynthOptions {
   bool fork = false;            ///< branch leaves line y = 0 at x = length / 2, heading -6 deg
   bool merge = false;           ///< a line joins line y = 7 at x = length / 2 from y = 13
   bool discrete = true;         ///< poles, signs, arrows, crosswalk, stop line
+  double crossing_deg = 0.0;    ///< > 0: a 30 m line crossing all lines at (crossing_x, 3.5)
+  double crossing_x = 100.0;    ///< m, where the crossing line meets the middle line
+  double crosswalk_deg = 90.0;  ///< angle of the crosswalk's 7 m sides to the road (90: rectangle)
   double drive_sigma = 0.05;    ///< m, per-drive offset (alignment residual)
   double element_sigma = 0.03;  ///< m, per-element offset
   double point_sigma = 0.03;    ///< m, per-point noise

@@ -8,6 +8,7 @@
 #include "lane_fragments.hpp"
 #include "lane_links.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
+#include "mapfuse/core/area_outline.hpp"
 #include "mapfuse/core/union_find.hpp"
 
 namespace mapfuse::aggregate {
@@ -144,7 +145,15 @@ std::vector<MapInstance> discreteInstances(const VoteGrid& grid, const std::vect
     if (cls == CrowdClass::kStopLine) {
       // the extreme cell centres: a stroke's end cells lie within half a cell of the line's ends
       inst.points = {m + a0 * u, m + a1 * u};
-    } else {  // the cells' union reaches half a cell beyond their centres
+    } else if (cls == CrowdClass::kCrosswalk) {
+      // the quadrilateral outline of the cells' union (core/area_outline.hpp): a skewed
+      // crosswalk stays a parallelogram
+      const double off[4][2] = {{-h, -h}, {h, -h}, {h, h}, {-h, h}};
+      std::vector<Vec3> corners;
+      for (const auto& p : pts)
+        for (const auto& o : off) corners.push_back(p + Vec3(o[0], o[1], 0));
+      inst.points = simplifyRing(convexHullXy(corners), 4);
+    } else {  // arrows: the cells' union reaches half a cell beyond their centres
       a0 -= h, a1 += h, b0 -= h, b1 += h;
       inst.points = {m + a0 * u + b0 * v, m + a1 * u + b0 * v, m + a1 * u + b1 * v,
                      m + a0 * u + b1 * v};

@@ -5,7 +5,8 @@
 /// the observation pieces of §4.3.1, become stage-1 fragments (centreline binned along the
 /// principal axis) that the stage-2 linking and the Bezier fit of eq. (15), Song et al. 2023,
 /// turn into instances; a stop-line component becomes the segment between its extreme cells
-/// along its principal axis, an arrow or crosswalk component its oriented bounding rectangle.
+/// along its principal axis, a crosswalk component the convex hull of its cells simplified to a
+/// quadrilateral (core/area_outline.hpp), an arrow component its oriented bounding rectangle.
 #include <vector>
 
 #include "grid_vote.hpp"

@@ -29,6 +29,31 @@ double coveredFraction(const Fragment& a, const Fragment& b, double tol) {
   return double(inside) / double(a.centreline.size());
 }
 
+// Whether two fragments run within `max_angle` (rad, undirected) of each other where they meet:
+// crossing lines are not one line (crossing_lines.hpp). The shorter one's principal axis against
+// the other's centreline segment nearest to its centre (a long fragment may curve). Fragments too
+// short for a direction agree with any.
+bool sameDirection(const Fragment& a, const Fragment& b, double max_angle) {
+  constexpr double kMinSpan = 0.5;  // m, shorter centrelines have no reliable direction
+  const double la = polylineLength(a.centreline), lb = polylineLength(b.centreline);
+  if (la < kMinSpan || lb < kMinSpan) return true;
+  const Fragment& s = la <= lb ? a : b;
+  const Fragment& l = la <= lb ? b : a;
+  const Eigen::Vector2d ds = principalAxis2d(s.samples.empty() ? s.centreline : s.samples);
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const auto& p : s.centreline) c += p;
+  c /= double(s.centreline.size());
+  double best = 1e300;
+  Eigen::Vector2d dl = ds;
+  for (std::size_t k = 1; k < l.centreline.size(); ++k) {
+    const Eigen::Vector2d d = (l.centreline[k] - l.centreline[k - 1]).head<2>();
+    if (d.norm() < 1e-9) continue;
+    const double dist = distanceToSegment2d(c, l.centreline[k - 1], l.centreline[k]);
+    if (dist < best) best = dist, dl = d.normalized();
+  }
+  return std::abs(ds.dot(dl)) >= std::cos(max_angle);
+}
+
 // Pools fragments into the union-find roots of `parent`; centrelines recomputed.
 void poolFragments(std::vector<Fragment>& frags, std::vector<int>& parent, double station_step) {
   std::vector<Fragment> out;
@@ -59,6 +84,7 @@ bgi::rtree<BoxValue, bgi::rstar<16>> fragmentBoxes(const std::vector<Fragment>& 
 
 void mergeSideBySide(std::vector<Fragment>& frags, const LaneInstantiationParams& p) {
   const double tol = 2 * p.buffer_width;
+  const double max_angle = p.piece_angle_deg * M_PI / 180.0;
   const auto tree = fragmentBoxes(frags, tol);
   std::vector<int> parent(frags.size());
   std::iota(parent.begin(), parent.end(), 0);
@@ -70,7 +96,8 @@ void mergeSideBySide(std::vector<Fragment>& frags, const LaneInstantiationParams
       const std::size_t j = h.second;
       if (j <= i) continue;
       if (std::max(coveredFraction(frags[i], frags[j], tol),
-                   coveredFraction(frags[j], frags[i], tol)) >= 0.5) {
+                   coveredFraction(frags[j], frags[i], tol)) >= 0.5 &&
+          sameDirection(frags[i], frags[j], max_angle)) {
         parent[findRoot(parent, int(j))] = findRoot(parent, int(i));
         merged = true;
       }
@@ -81,6 +108,7 @@ void mergeSideBySide(std::vector<Fragment>& frags, const LaneInstantiationParams
 
 void absorbStubs(std::vector<Fragment>& frags, const LaneInstantiationParams& p) {
   const double tol = p.station_step;
+  const double max_angle = p.piece_angle_deg * M_PI / 180.0;
   std::vector<char> stub(frags.size());
   for (std::size_t i = 0; i < frags.size(); ++i)
     stub[i] = polylineLength(frags[i].centreline) < tol;
@@ -95,7 +123,8 @@ void absorbStubs(std::vector<Fragment>& frags, const LaneInstantiationParams& p)
     double best = tol;
     int target = -1;
     for (const auto& h : hits) {
-      if (h.second == i || stub[h.second]) continue;
+      if (h.second == i || stub[h.second] || !sameDirection(frags[i], frags[h.second], max_angle))
+        continue;
       for (const auto& q : frags[i].centreline) {
         const double d = distanceToPolyline2d(q, frags[h.second].centreline);
         if (d <= best) best = d, target = int(h.second);

@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "box2d.hpp"
+#include "crossing_lines.hpp"
 #include "dbscan.hpp"
 #include "lane_fragments.hpp"
 #include "lane_links.hpp"
@@ -212,7 +213,9 @@ std::vector<std::vector<std::size_t>> overlapNeighbours(const std::vector<Observ
     std::vector<OverlapPolygon> polys;
     std::vector<double> areas;
     std::vector<Box2> boxes;
+    std::vector<std::vector<Eigen::Vector2d>> lines;  // simplified pieces, for the angle test
     std::size_t b = 0;
+    const double max_angle = p.piece_angle_deg * M_PI / 180.0;
     auto similar = [&](std::size_t r, std::size_t q, std::size_t& count) {
       const std::size_t ri = r - b, qi = q - b;
       if (!bg::intersects(boxes[ri], boxes[qi])) return false;
@@ -226,7 +229,12 @@ std::vector<std::vector<std::size_t>> overlapNeighbours(const std::vector<Observ
                          bufferPiece(pieces[by_tile[q]], p.buffer_width), both);
         inter = bg::area(both);
       }
-      return *inter >= p.min_overlap_ratio * smaller;
+      if (*inter < p.min_overlap_ratio * smaller) return false;
+      // Crossing lines overlap where they cross: not neighbours (crossing_lines.hpp).
+      // the shorter piece's points against the longer piece
+      const bool r_shorter = areas[ri] <= areas[qi];
+      return !piecesCross(r_shorter ? lines[ri] : lines[qi], r_shorter ? lines[qi] : lines[ri],
+                          2 * p.buffer_width, max_angle);
     };
 #pragma omp for schedule(dynamic, 16)
     for (std::ptrdiff_t t = 0; t < std::ptrdiff_t(tiles.size()); ++t) {
@@ -235,6 +243,7 @@ std::vector<std::vector<std::size_t>> overlapNeighbours(const std::vector<Observ
       polys.assign(e - b, OverlapPolygon());
       areas.assign(e - b, 0.0);
       boxes.assign(e - b, Box2());
+      lines.assign(e - b, {});
       for (std::size_t r = b; r < e; ++r) {
         const Piece& piece = pieces[by_tile[r]];
         // The buffer ring built directly (line_buffer.hpp); Boost's where that may differ.
@@ -242,6 +251,7 @@ std::vector<std::vector<std::size_t>> overlapNeighbours(const std::vector<Observ
         bg::simplify(toLine(piece.points), simple, kSimplifyTolerance);
         std::vector<Eigen::Vector2d> line;
         for (const auto& q : simple) line.emplace_back(bg::get<0>(q), bg::get<1>(q));
+        lines[r - b] = line;
         if (const auto ring = mitreBuffer(line, p.buffer_width)) {
           areas[r - b] = ringArea(*ring);
           polys[r - b] = OverlapPolygon({*ring}, piece.corner);

@@ -35,6 +35,19 @@ nlohmann::json toJson(const vehicle::LsmBuildResult& r) {
           {"keyframes", r.keyframes},
           {"vp_frames", r.vp_frames},
           {"mean_pitch_correction_rad", r.mean_pitch_correction},
+          {"vp_calibration",
+           {{"pitch_rad", r.vp.fallback ? 0.0 : r.vp.median},
+            {"estimated_pitch_rad", r.vp.median},
+            {"spread_rad", r.vp.spread},
+            {"standard_error_rad", r.vp.standard_error},
+            {"supporting_frames", r.vp.accepted},
+            {"frames_with_vp", r.vp.estimates},
+            {"rejected_curve", r.vp.rejected_curve},
+            {"rejected_azimuth", r.vp.rejected_azimuth},
+            {"rejected_no_look_ahead", r.vp.rejected_no_look_ahead},
+            {"azimuth_offset_rad", r.vp.azimuth_offset},
+            {"fallback", r.vp.fallback},
+            {"fallback_reason", r.vp.fallback_reason}}},
           {"ranged_markings", r.ranged_markings},
           {"ground_instances", r.assembly.ground_instances},
           {"ground_instances_dropped", r.assembly.ground_dropped},
@@ -89,6 +102,18 @@ LsmBuildRun runLsmBuild(const LsmBuildInputs& in, const LsmBuildParams& p) {
   run.cached_frames = drive.cached_frames;
   run.aerial_detections = drive.aerial_detections;
   validateLsm(run.build.lsm, drive.drive_id);
+  if (p.build.vanishing.enabled) {
+    const auto& vp = run.build.vp;
+    if (vp.fallback)
+      MAPFUSE_INFO("lsm-build: " << drive.drive_id << ": VP calibration fell back to the static "
+                                 << "extrinsic (" << vp.fallback_reason << ": " << vp.accepted
+                                 << " supporting frames, median " << vp.median << " rad, spread "
+                                 << vp.spread << " rad)");
+    else
+      MAPFUSE_INFO("lsm-build: " << drive.drive_id << ": VP calibration pitch " << vp.median
+                                 << " rad from " << vp.accepted << " supporting frames (spread "
+                                 << vp.spread << " rad)");
+  }
 
   io::writeLsm(run.lsm_file, run.build.lsm);
   if (p.render)

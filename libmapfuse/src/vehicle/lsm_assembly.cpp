@@ -8,8 +8,38 @@
 #include <set>
 #include <unordered_map>
 
+#include "mapfuse/core/area_outline.hpp"
+
 namespace mapfuse::vehicle {
 namespace {
+
+/// A crosswalk is a quadrilateral (a parallelogram where the road meets the junction skewed).
+constexpr std::size_t kCrosswalkVertices = 4;
+
+/// True when some observation has exactly `n` vertices (areaOutline averaged complete ones).
+bool sameVertexCount(const std::vector<std::vector<Eigen::Vector3d>>& rings, std::size_t n) {
+  for (const auto& r : rings)
+    if (r.size() == n) return true;
+  return false;
+}
+
+/// Oriented minimum-area rectangle of every observed point, z = their mean.
+std::vector<Eigen::Vector3d> minAreaRectangle(
+    const std::vector<std::vector<Eigen::Vector3d>>& rings) {
+  std::vector<cv::Point2f> xy;
+  double z = 0.0;
+  for (const auto& r : rings)
+    for (const auto& p : r) {
+      xy.emplace_back(float(p.x()), float(p.y()));
+      z += p.z();
+    }
+  cv::Point2f c[4];
+  cv::minAreaRect(xy).points(c);
+  std::vector<Eigen::Vector3d> out;
+  for (const auto& q : c)
+    out.emplace_back(q.x, q.y, z / double(std::max<std::size_t>(1, xy.size())));
+  return out;
+}
 
 /// Markings of one physical instance, accumulated over frames.
 struct Instance {
@@ -227,24 +257,19 @@ Lsm assembleLsm(const std::vector<Pose3>& poses, const std::vector<double>& stam
     }
     const int64_t truth = majorityTruth(inst);
     if (geometryKind(inst.cls) == GeometryKind::kPlanar) {
-      // Oriented rectangle of all observed corners; z = mean.
-      std::vector<cv::Point2f> xy;
-      double z = 0.0;
+      // The outline (area_outline.hpp): averaged corners, or the simplified hull.
+      std::vector<std::vector<Eigen::Vector3d>> rings;
       Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
       std::size_t n = 0;
-      for (const auto* m : inst.parts)
-        for (std::size_t i = 0; i < m->points.size(); ++i, ++n) {
-          xy.emplace_back(float(m->points[i].x()), float(m->points[i].y()));
-          z += m->points[i].z();
-          C += m->covariances[i];
-        }
-      const cv::RotatedRect rect = cv::minAreaRect(xy);
-      cv::Point2f corners[4];
-      rect.points(corners);
-      std::vector<Eigen::Vector3d> pts;
-      for (const auto& c : corners) pts.emplace_back(c.x, c.y, z / double(n));
+      for (const auto* m : inst.parts) {
+        rings.push_back(m->points);
+        for (const auto& c : m->covariances) C += c, ++n;
+      }
+      std::vector<Eigen::Vector3d> pts = areaOutline(rings, s.min_observations, kCrosswalkVertices);
+      if (inst.cls != CrowdClass::kCrosswalk && !sameVertexCount(rings, pts.size()))
+        pts = minAreaRectangle(rings);  // an arrow seen only in parts: its hull is no outline
       addElement(inst.cls, inst.attributes, pts,
-                 std::vector<Eigen::Matrix3d>(4, C / double(n) / double(frames.size())),
+                 std::vector<Eigen::Matrix3d>(pts.size(), C / double(n) / double(frames.size())),
                  int(frames.size()), truth, 0.0);
       continue;
     }

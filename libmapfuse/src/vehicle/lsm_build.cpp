@@ -26,19 +26,27 @@ void calibrateGroundPlanes(const DriveData& d, const LsmBuildSettings& s, LsmBui
       out.planes[i].normal_cam =
           tiltByBodyRotation(d.calib.ground.normal_cam, tilt[i], d.calib.T_body_cam.linear());
   }
-  // Lane vanishing points against that plane (§3.2.1), median over the window.
+  // Lane vanishing points against that plane (§3.2.1), only where the ego-motion shows a straight
+  // road ahead and the VP lies on the motion's direction; pooled, or the static extrinsic kept
+  // (vp_gate.hpp).
   out.pitch_corrections.assign(n, 0.0);
+  out.vp = VpCalibration{};
   if (s.vanishing.enabled) {
     const Eigen::Matrix3d K_inv = d.calib.K.inverse();
-    std::vector<std::optional<double>> per_frame(n);
+    std::vector<std::optional<VanishingEstimate>> per_frame(n);
+    std::vector<Eigen::Vector3d> normals(n);
 #pragma omp parallel for schedule(dynamic)
     for (int i = 0; i < int(n); ++i) {
       const auto lanes = laneLinePixels(d.frames[i], K_inv, d.calib.ground, s.ranging.min_range,
                                         s.vanishing.max_range);
-      per_frame[i] = estimatePitchCorrection(lanes, d.calib.K, out.planes[i], s.vanishing);
+      per_frame[i] = estimateVanishing(lanes, d.calib.K, out.planes[i], s.vanishing);
+      normals[i] = out.planes[i].normal_cam;
     }
-    for (const auto& c : per_frame) out.vp_frames += c ? 1 : 0;
-    out.pitch_corrections = smoothCorrections(per_frame, s.vanishing.window);
+    const auto motion = lookAheadMotion(d.T_odom_body, s.vanishing.max_range);
+    out.vp = gateVanishingPoints(per_frame, motion, normals,
+                                 d.calib.T_body_cam.linear().transpose(), s.vanishing);
+    out.vp_frames = out.vp.accepted;
+    out.pitch_corrections = out.vp.corrections;
   }
   for (std::size_t i = 0; i < n; ++i)
     out.planes[i].normal_cam = tiltNormal(out.planes[i].normal_cam, out.pitch_corrections[i], 0.0);

@@ -67,7 +67,7 @@ std::optional<double> pitchFromVanishingDirection(const Eigen::Vector3d& n,
   return std::abs(t1) < std::abs(t2) ? t1 : t2;
 }
 
-std::optional<double> estimatePitchCorrection(
+std::optional<VanishingEstimate> estimateVanishing(
     const std::vector<std::vector<Eigen::Vector2d>>& lane_pixels, const Eigen::Matrix3d& K,
     const GroundPlane& nominal, const VanishingSettings& s) {
   std::vector<ImageLine> lines;
@@ -84,7 +84,15 @@ std::optional<double> estimatePitchCorrection(
   if (d.z() < 0.0) d = -d;  // lanes recede in front of the camera
   const auto pitch = pitchFromVanishingDirection(nominal.normal_cam, d);
   if (!pitch || std::abs(*pitch) > s.max_pitch_correction) return std::nullopt;
-  return pitch;
+  return VanishingEstimate{*pitch, d, int(lines.size())};
+}
+
+std::optional<double> estimatePitchCorrection(
+    const std::vector<std::vector<Eigen::Vector2d>>& lane_pixels, const Eigen::Matrix3d& K,
+    const GroundPlane& nominal, const VanishingSettings& s) {
+  const auto e = estimateVanishing(lane_pixels, K, nominal, s);
+  if (!e) return std::nullopt;
+  return e->pitch;
 }
 
 std::vector<std::vector<Eigen::Vector2d>> laneLinePixels(const FrameObservations& frame,

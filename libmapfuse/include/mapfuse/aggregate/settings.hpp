@@ -14,6 +14,7 @@ namespace mapfuse::aggregate {
 struct LaneInstantiationParams {
   double buffer_width = 0.2;         ///< m, half width of the buffer polygon (stage 1)
   double min_overlap_ratio = 0.3;    ///< stage-1 eps: overlap area / smaller polygon area
+  double piece_angle_deg = 45.0;     ///< deg, stage 1: pieces crossing at more are not neighbours
   int min_pts = 3;                   ///< stage-1 MinPts (capped by the number of drives)
   double tile_size = 10.0;           ///< m, edge of the square tiles observations are cut at
   double resample_step = 0.25;       ///< m, spacing of the points averaged into centrelines
@@ -35,6 +36,10 @@ struct LaneInstantiationParams {
       gt(0) & le(10));
     v("min_overlap_ratio", min_overlap_ratio, "",
       "stage 1 eps: overlap area / smaller polygon area for neighbours", gt(0) & le(1));
+    v("piece_angle_deg", piece_angle_deg, "deg",
+      "stage 1: overlapping pieces whose directions differ more than this where they meet are "
+      "not neighbours (crossing lines); 90: off",
+      gt(0) & le(90));
     v("lane_min_pts", min_pts, "", "stage 1 MinPts (capped by the number of drives)",
       in(1, 1000000));
     // pieces of observations number (observed length / tile_size)

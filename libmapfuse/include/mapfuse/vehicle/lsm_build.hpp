@@ -16,6 +16,7 @@
 #include "mapfuse/vehicle/lsm_assembly.hpp"
 #include "mapfuse/vehicle/triangulation.hpp"
 #include "mapfuse/vehicle/vanishing_point.hpp"
+#include "mapfuse/vehicle/vp_gate.hpp"
 
 namespace mapfuse::vehicle {
 
@@ -59,7 +60,8 @@ struct LsmBuildResult {
   Lsm lsm;                                ///< in the drive's odom frame
   std::vector<GroundPlane> planes;        ///< per frame, after tilt and calibration
   std::vector<double> pitch_corrections;  ///< rad per frame (0 when calibration is off)
-  int vp_frames = 0;                      ///< frames with a vanishing-point estimate
+  int vp_frames = 0;                      ///< frames supporting the VP calibration
+  VpCalibration vp;                       ///< the VP gate's counts and decision
   double mean_pitch_correction = 0.0;     ///< rad
   int frames = 0, keyframes = 0;
   int ranged_markings = 0;  ///< ground markings ranged in single frames
@@ -77,8 +79,8 @@ struct LsmBuildResult {
 LsmBuildResult buildLsm(const DriveData& drive, const LsmBuildSettings& settings);
 
 /// @brief Per frame, the nominal ground plane tilted with the body over `tilt_window` and, when
-/// enabled, corrected by the median-smoothed vanishing-point pitch (§3.2.1). Fills planes,
-/// pitch_corrections and vp_frames of `result`.
+/// enabled, corrected by the median-smoothed vanishing-point pitch of the frames the gate accepts
+/// (§3.2.1, vp_gate.hpp). Fills planes, pitch_corrections, vp and vp_frames of `result`.
 void calibrateGroundPlanes(const DriveData& drive, const LsmBuildSettings& settings,
                            LsmBuildResult& result);
 

@@ -17,24 +17,51 @@ namespace mapfuse::vehicle {
 struct VanishingSettings {
   bool enabled = true;        ///< correct the ground plane from lane vanishing points
   int window = 601;           ///< frames in the median window (the mount error is constant)
-  double max_range = 25.0;    ///< m, lane points farther away are not fitted
+  double max_range = 25.0;    ///< m, lane points farther away are not fitted; also the look-ahead
   double max_line_rms = 1.5;  ///< px, lines fitting worse (curves) are rejected
   double max_pitch_correction = 0.05;  ///< rad, larger corrections are rejected as outliers
   int min_points_per_line = 8;         ///< pixels needed to fit one lane line
   double min_line_angle = 0.05;        ///< rad, lines must differ this much in image direction
+  double max_heading_change = 0.004;   ///< rad, ego heading change over the look-ahead (straight)
+  double max_azimuth_error = 0.01;     ///< rad, VP azimuth vs ego-motion direction over look-ahead
+  int min_frames = 50;                 ///< accepted frames needed, else the static extrinsic
+  double min_significance = 3.0;       ///< |median| / its standard error needed to correct
 
   template <class V>
   void visit(V& v) {
     using namespace param;
     v("vp_calibration", enabled, "", "vanishing-point ground-plane calibration");
     v("vp_window", window, "frames", "median window of the pitch correction", in(1, 1000000));
-    v("vp_max_range", max_range, "m", "lane points farther than this are not fitted",
+    v("vp_max_range", max_range, "m",
+      "lane points farther than this are not fitted; the ego-motion look-ahead of the "
+      "straightness and direction tests",
       gt(0) & le(1000));
     v("vp_max_line_rms", max_line_rms, "px", "straightness required of a fitted lane",
       gt(0) & le(1000));
     v("max_pitch_correction", max_pitch_correction, "rad", "larger corrections are outliers",
       gt(0) & le(1));
+    v("vp_max_heading_change", max_heading_change, "rad",
+      "frames whose ego heading turns more than this over the next vp_max_range metres (a curve) "
+      "are not used",
+      gt(0) & le(3.2));
+    v("vp_max_azimuth_error", max_azimuth_error, "rad",
+      "frames whose vanishing point's azimuth differs more than this from the ego-motion "
+      "direction over the look-ahead (after the drive's median difference) are not used",
+      gt(0) & le(3.2));
+    v("vp_min_frames", min_frames, "frames",
+      "fewer accepted frames: the static extrinsic is kept (fallback)", in(1, 1000000));
+    v("vp_min_significance", min_significance, "",
+      "the drive's median correction must exceed this many standard errors, else the static "
+      "extrinsic is kept (0: always correct)",
+      in(0, 1000));
   }
+};
+
+/// One frame's vanishing-point estimate.
+struct VanishingEstimate {
+  double pitch = 0.0;  ///< rad, correction of the nominal plane
+  Eigen::Vector3d direction_cam = Eigen::Vector3d::UnitZ();  ///< unit vanishing direction
+  int lines = 0;                                             ///< straight lane lines intersected
 };
 
 /// A homogeneous image line l (l^T x = 0, (l0, l1) unit) with its fit RMS.
@@ -58,7 +85,13 @@ std::optional<double> pitchFromVanishingDirection(const Eigen::Vector3d& normal_
                                                   const Eigen::Vector3d& direction_cam);
 
 /// @brief One frame: fits the lane polylines (pixels), intersects them and returns the pitch
-/// correction of the nominal plane; nullopt when fewer than two usable straight lines.
+/// correction of the nominal plane with the vanishing direction; nullopt when fewer than two
+/// usable straight lines or the correction exceeds max_pitch_correction.
+std::optional<VanishingEstimate> estimateVanishing(
+    const std::vector<std::vector<Eigen::Vector2d>>& lane_pixels, const Eigen::Matrix3d& K,
+    const GroundPlane& nominal, const VanishingSettings& settings);
+
+/// @brief estimateVanishing's pitch only.
 std::optional<double> estimatePitchCorrection(
     const std::vector<std::vector<Eigen::Vector2d>>& lane_pixels, const Eigen::Matrix3d& K,
     const GroundPlane& nominal, const VanishingSettings& settings);
