@@ -76,6 +76,8 @@ nlohmann::json toJson(const LsmBuildRun& run) {
   if (run.semantics == "segmenter") {
     summary["seconds"]["perception"] = run.perception_seconds;
     summary["seconds"]["network"] = run.network_seconds;
+    summary["segmentation_cached_frames"] = run.cached_frames;
+    summary["aerial_detections"] = run.aerial_detections;
   }
   return summary;
 }
@@ -97,6 +99,8 @@ LsmBuildRun runLsmBuild(const LsmBuildInputs& in, const LsmBuildParams& p) {
                   drive.perception_seconds,
                   drive.network_seconds,
                   vehicle::buildLsm(drive, p.build)};
+  run.cached_frames = drive.cached_frames;
+  run.aerial_detections = drive.aerial_detections;
   validateLsm(run.build.lsm, drive.drive_id);
   if (p.build.vanishing.enabled) {
     const auto& vp = run.build.vp;

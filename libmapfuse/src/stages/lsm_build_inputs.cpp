@@ -108,8 +108,13 @@ LoadedDrive loadDrive(const LsmBuildInputs& in, const LsmBuildParams& p) {
   bool need_flow = false;
   for (const auto& f : d.frames)
     for (const auto& a : f.aerial) need_flow = need_flow || a.track_id < 0;
+  vehicle::FlowSettings flow;
+  if (d.semantics == "segmenter") {
+    flow.min_box_side = p.perception.track_min_box_side;
+    flow.max_gap = p.perception.track_max_gap;
+  }
   if (need_flow && d.images.size() == d.frames.size())
-    vehicle::associateAerialByFlow(d.images, d.frames);
+    vehicle::associateAerialByFlow(d.images, d.frames, flow);
   else if (need_flow)
     MAPFUSE_WARN("lsm-build: aerial boxes without track ids and no images: they are ignored");
   if (d.T_odom_body.size() != d.stamps.size() || d.frames.size() != d.stamps.size())

@@ -1,5 +1,5 @@
 // lsm-build's KITTI raw layout: camera 2 images and calibration, OXTS ego-motion (or a poses
-// file, read by loadDrive), lane lines from the fallback perception.
+// file, read by loadDrive), lane lines and aerial boxes from the fallback perception.
 #include <cmath>
 
 #include "mapfuse/core/error.hpp"
@@ -59,11 +59,13 @@ void loadKittiRawDrive(const LsmBuildInputs& in, const LsmBuildParams& p, Loaded
   const fs::path model = p.perception.model.empty()
                              ? sharedRoot() / "models/enet-cityscapes/enet-model.net"
                              : fs::path(p.perception.model);
-  auto lanes = vehicle::perceiveLanes(d.images, d.stamps, d.calib, model);
+  auto lanes = vehicle::perceiveFrames(d.images, d.stamps, d.calib, model, p.perception);
   d.frames = std::move(lanes.frames);
   d.bev_images = std::move(lanes.bev_images);
   d.perception_seconds = lanes.seconds;
   d.network_seconds = lanes.network_seconds;
+  d.cached_frames = lanes.cached_frames;
+  d.aerial_detections = lanes.aerial_detections;
 }
 
 }  // namespace mapfuse::stages

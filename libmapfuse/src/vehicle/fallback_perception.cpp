@@ -4,11 +4,13 @@
 #include <opencv2/dnn.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/progress.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/vehicle/centerline.hpp"
+#include "mapfuse/vehicle/segmentation_cache.hpp"
 
 namespace mapfuse::vehicle {
 
@@ -43,7 +45,7 @@ RoadSegmenter::RoadSegmenter(const std::filesystem::path& model) : impl_(new Imp
 
 RoadSegmenter::~RoadSegmenter() = default;
 
-cv::Mat RoadSegmenter::classify(const cv::Mat& bgr) {
+Segmentation RoadSegmenter::segment(const cv::Mat& bgr) {
   // Native scale, reflect padding to a multiple of 16 (data/README.md).
   const int pw = (16 - bgr.cols % 16) % 16, ph = (16 - bgr.rows % 16) % 16;
   cv::Mat padded;
@@ -61,9 +63,25 @@ cv::Mat RoadSegmenter::classify(const cv::Mat& bgr) {
     score.copyTo(best, better);
     cls.setTo(c, better);
   }
-  if (H != padded.rows || W != padded.cols)
+  // Softmax probability of the winning class: 1 / sum_c exp(s_c - s_max).
+  cv::Mat sum(H, W, CV_32F, cv::Scalar(0)), e;
+  for (int c = 0; c < C; ++c) {
+    const cv::Mat score(H, W, CV_32F, const_cast<float*>(out.ptr<float>(0, c)));
+    cv::exp(score - best, e);
+    sum += e;
+  }
+  cv::Mat conf;
+  cv::divide(255.0, sum, conf, 1.0, CV_8U);
+  if (H != padded.rows || W != padded.cols) {
     cv::resize(cls, cls, padded.size(), 0, 0, cv::INTER_NEAREST);
-  return cls(cv::Rect(0, 0, bgr.cols, bgr.rows)).clone();
+    cv::resize(conf, conf, padded.size(), 0, 0, cv::INTER_LINEAR);
+  }
+  const cv::Rect roi(0, 0, bgr.cols, bgr.rows);
+  return {cls(roi).clone(), conf(roi).clone()};
+}
+
+cv::Mat RoadSegmenter::classify(const cv::Mat& bgr) {
+  return segment(bgr).classes;
 }
 
 cv::Mat RoadSegmenter::roadMask(const cv::Mat& bgr) {
@@ -87,7 +105,7 @@ struct PlaneBasis {
 }  // namespace
 
 LaneDetection detectLanes(const cv::Mat& bgr, const cv::Mat& road_mask, const CameraCalib& calib,
-                          const LaneDetectSettings& s) {
+                          const LaneDetectSettings& s, const cv::Mat& road_users) {
   LaneDetection det;
   const PlaneBasis basis(calib.ground);
   const int rows = int(std::round((s.bev_max_x - s.bev_min_x) / s.bev_resolution));
@@ -108,6 +126,9 @@ LaneDetection detectLanes(const cv::Mat& bgr, const cv::Mat& road_mask, const Ca
   cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
   cv::remap(gray, det.bev_gray, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_CONSTANT, 0);
   cv::remap(road_mask, det.bev_road, map_x, map_y, cv::INTER_NEAREST, cv::BORDER_CONSTANT, 0);
+  cv::Mat bev_users;  // road users in the BEV: no markings there, and 0 = unseen in the mosaic
+  if (!road_users.empty())
+    cv::remap(road_users, bev_users, map_x, map_y, cv::INTER_NEAREST, cv::BORDER_CONSTANT, 0);
 
   // White top-hat with a horizontal element: bright ridges narrower than tophat_width.
   const int k = std::max(3, int(std::round(s.tophat_width / s.bev_resolution)) | 1);
@@ -121,6 +142,12 @@ LaneDetection detectLanes(const cv::Mat& bgr, const cv::Mat& road_mask, const Ca
   cv::meanStdDev(tophat, mean, stddev, road);
   const double thr = std::max(s.min_contrast, mean[0] + s.contrast_sigmas * stddev[0]);
   det.bev_markings = (tophat > thr) & (road > 0);
+  if (!bev_users.empty()) {
+    det.bev_markings.setTo(0, bev_users);
+    const cv::Mat unseen = det.bev_gray == 0;  // outside the image (remap's border)
+    cv::max(det.bev_gray, 1, det.bev_gray);    // 0 is reserved for "not seen"
+    det.bev_gray.setTo(0, bev_users | unseen);
+  }
   // Close small breaks along the driving direction, then drop speckles.
   cv::morphologyEx(det.bev_markings, det.bev_markings, cv::MORPH_CLOSE,
                    cv::getStructuringElement(cv::MORPH_RECT, {1, 5}));
@@ -148,25 +175,41 @@ LaneDetection detectLanes(const cv::Mat& bgr, const cv::Mat& road_mask, const Ca
   return det;
 }
 
-LanePerception perceiveLanes(const std::vector<std::filesystem::path>& images,
-                             const std::vector<double>& stamps, const CameraCalib& calib,
-                             const std::filesystem::path& model) {
+LanePerception perceiveFrames(const std::vector<std::filesystem::path>& images,
+                              const std::vector<double>& stamps, const CameraCalib& calib,
+                              const std::filesystem::path& model, const PerceptionSettings& s) {
   using Clock = std::chrono::steady_clock;
-  RoadSegmenter segmenter(model);
+  std::unique_ptr<RoadSegmenter> segmenter;  // loaded on the first frame not in the cache
   LanePerception out;
   out.frames.resize(images.size());
   Progress progress("frames", images.size());
   for (std::size_t i = 0; i < images.size(); ++i) {
     const auto t0 = Clock::now();
     const cv::Mat bgr = readColorImage(images[i]);
-    const cv::Mat road = segmenter.roadMask(bgr);
+    const std::filesystem::path cache =
+        s.segmentation_cache.empty() ? std::filesystem::path()
+                                     : segmentationCachePath(s.segmentation_cache, images[i]);
+    std::optional<Segmentation> seg;
+    if (!cache.empty()) seg = readCachedSegmentation(cache, bgr.size());
+    if (seg) {
+      ++out.cached_frames;
+    } else {
+      if (!segmenter) segmenter = std::make_unique<RoadSegmenter>(model);
+      seg = segmenter->segment(bgr);
+      if (!cache.empty()) writeCachedSegmentation(cache, *seg);
+    }
     const auto t1 = Clock::now();
-    const auto lanes = detectLanes(bgr, road, calib, LaneDetectSettings{});
-    const auto t2 = Clock::now();
+    const cv::Mat users = roadUserMask(seg->classes, s.road_user_margin);
+    const auto lanes =
+        detectLanes(bgr, seg->classes == cityscapes::kRoad, calib, LaneDetectSettings{}, users);
     out.frames[i].index = int(i);
     out.frames[i].stamp = stamps[i];
     out.frames[i].ground = lanes.lanes;
+    out.frames[i].aerial = detectAerial(seg->classes, seg->confidence, s.aerial);
+    setPoleAxisKeyPoints(out.frames[i].aerial, calib.K, calib.ground.normal_cam.normalized());
+    out.aerial_detections += int(out.frames[i].aerial.size());
     out.bev_images.push_back(lanes.bev_gray);
+    const auto t2 = Clock::now();
     out.network_seconds += std::chrono::duration<double>(t1 - t0).count();
     out.seconds += std::chrono::duration<double>(t2 - t0).count();
     progress.advance();

@@ -19,8 +19,8 @@ double boxIou(const Eigen::Vector4d& a, const Eigen::Vector4d& b) {
 
 void associateByFlow(const cv::Mat& prev_gray, const cv::Mat& next_gray,
                      const std::vector<AerialObservation>& prev,
-                     std::vector<AerialObservation>& next, int64_t& next_id,
-                     const FlowSettings& s) {
+                     std::vector<AerialObservation>& next, int64_t& next_id, const FlowSettings& s,
+                     std::vector<Eigen::Vector4d>* moved_boxes) {
   // Flow a grid of points per previous box; the median displacement moves the box.
   std::vector<Eigen::Vector4d> predicted(prev.size());
   std::vector<cv::Point2f> pts, moved;
@@ -52,7 +52,15 @@ void associateByFlow(const cv::Mat& prev_gray, const cv::Mat& next_gray,
                             dy[dy.size() / 2]);
     predicted[k] = prev[k].box + d;
   }
-  // Greedy one-to-one matching by IoU, best pairs first.
+  // Greedy one-to-one matching by IoU (short sides widened to min_box_side), best pairs first.
+  auto widen = [&](Eigen::Vector4d b) {
+    for (int k = 0; k < 2; ++k) {
+      const double side = b(k + 2) - b(k), grow = 0.5 * std::max(0.0, s.min_box_side - side);
+      b(k) -= grow;
+      b(k + 2) += grow;
+    }
+    return b;
+  };
   struct Pair {
     double iou;
     std::size_t p, n;
@@ -61,7 +69,7 @@ void associateByFlow(const cv::Mat& prev_gray, const cv::Mat& next_gray,
   for (std::size_t p = 0; p < prev.size(); ++p)
     for (std::size_t n = 0; n < next.size(); ++n)
       if (prev[p].cls == next[n].cls)
-        if (const double iou = boxIou(predicted[p], next[n].box); iou >= s.min_iou)
+        if (const double iou = boxIou(widen(predicted[p]), widen(next[n].box)); iou >= s.min_iou)
           pairs.push_back({iou, p, n});
   std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
     return a.iou != b.iou ? a.iou > b.iou : (a.p != b.p ? a.p < b.p : a.n < b.n);
@@ -75,19 +83,38 @@ void associateByFlow(const cv::Mat& prev_gray, const cv::Mat& next_gray,
   }
   for (auto& n : next)
     if (n.track_id < 0) n.track_id = next_id++;
+  if (moved_boxes) *moved_boxes = predicted;
 }
 
 void associateAerialByFlow(const std::vector<std::filesystem::path>& images,
-                           std::vector<FrameObservations>& frames) {
+                           std::vector<FrameObservations>& frames, const FlowSettings& settings) {
   int64_t next_id = 0;
   cv::Mat prev;
+  std::vector<AerialObservation> lost;  // tracks missed in the previous frame, box flowed on
+  std::vector<int> lost_age;            // frames since each was last seen
   for (std::size_t i = 0; i < frames.size(); ++i) {
     cv::Mat gray;
     cv::cvtColor(readColorImage(images[i]), gray, cv::COLOR_BGR2GRAY);
     if (prev.empty()) {
       for (auto& a : frames[i].aerial) a.track_id = next_id++;
     } else {
-      associateByFlow(prev, gray, frames[i - 1].aerial, frames[i].aerial, next_id, FlowSettings{});
+      std::vector<AerialObservation> from = frames[i - 1].aerial;
+      std::vector<int> age(from.size(), 0);
+      from.insert(from.end(), lost.begin(), lost.end());
+      age.insert(age.end(), lost_age.begin(), lost_age.end());
+      std::vector<Eigen::Vector4d> moved;
+      associateByFlow(prev, gray, from, frames[i].aerial, next_id, settings, &moved);
+      lost.clear();
+      lost_age.clear();
+      for (std::size_t k = 0; k < from.size(); ++k) {
+        bool continued = false;
+        for (const auto& a : frames[i].aerial)
+          continued = continued || a.track_id == from[k].track_id;
+        if (continued || age[k] + 1 > settings.max_gap) continue;
+        lost.push_back(from[k]);
+        lost.back().box = moved[k];
+        lost_age.push_back(age[k] + 1);
+      }
     }
     prev = gray;
   }

@@ -73,6 +73,7 @@ struct AerialObservation {
   /// Key points (px): sign 4 corners; light [bottom centre, top centre]; pole [base, top].
   /// Empty = use the box (centre for signs, bottom / top centre for lights and poles).
   std::vector<Eigen::Vector2d> points;
+  double confidence = 1.0;  ///< detector confidence in [0, 1] (segmentation: mean probability)
 };
 
 /// Everything perceived in one camera frame.

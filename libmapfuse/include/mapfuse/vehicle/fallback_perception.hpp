@@ -4,6 +4,8 @@
 /// markings inside it by white top-hat (bright-ridge) filtering in a bird's-eye view (BEV) of
 /// the nominal ground plane, thinned to centre lines and projected back to image pixels so the
 /// rest of lsm-build (vanishing-point calibration, eq. 1) treats them like any lane input.
+/// Issue 21: road users (vehicle and person classes) are masked out of the markings and the
+/// BEV; signs, lights and poles become aerial boxes (aerial_detection.hpp), tracked by flow.
 #include <filesystem>
 #include <memory>
 #include <opencv2/core.hpp>
@@ -12,6 +14,7 @@
 
 #include "mapfuse/core/drive_records.hpp"
 #include "mapfuse/core/param.hpp"
+#include "mapfuse/vehicle/aerial_detection.hpp"
 #include "mapfuse/vehicle/camera.hpp"
 
 namespace mapfuse::vehicle {
@@ -22,6 +25,11 @@ struct PerceptionSettings {
   std::string segmenter = "enet";  ///< fallback perception network
   std::string model;               ///< ENet model; "" = <shared>/models/enet-cityscapes/...
   int mask_min_area = 20;          ///< px, smaller mask components are noise
+  std::string segmentation_cache;  ///< folder of <frame>.seg.png class maps; "" = none
+  int road_user_margin = 6;        ///< px, road-user mask dilation (outline, shadow edge)
+  AerialDetectSettings aerial;     ///< signs, lights, poles from the segmentation
+  double track_min_box_side = 16;  ///< px, FlowSettings::min_box_side of the segmenter's boxes
+  int track_max_gap = 5;           ///< frames, FlowSettings::max_gap of the segmenter's boxes
 
   template <class V>
   void visit(V& v) {
@@ -29,11 +37,31 @@ struct PerceptionSettings {
     v("model", model, "", "segmentation model file; empty = shared models/enet-cityscapes");
     v("mask_min_area", mask_min_area, "px", "smaller mask components are dropped",
       param::in(1, 100000000));
+    v("segmentation_cache", segmentation_cache, "",
+      "folder of the network's class maps (<image>.seg.png): read when present, else computed "
+      "and written there; empty = no cache");
+    v("road_user_margin", road_user_margin, "px",
+      "dilation of the vehicle/person mask kept free of markings and of the BEV mosaic",
+      param::in(0, 1000));
+    aerial.visit(v);
+    v("track_min_box_side", track_min_box_side, "px",
+      "segmenter boxes: sides shorter than this are widened for the frame-to-frame IoU test "
+      "(thin poles)",
+      param::in(0, 10000));
+    v("track_max_gap", track_max_gap, "frames",
+      "segmenter boxes: a track missed in this many consecutive frames still continues",
+      param::in(0, 1000));
   }
 };
 
 /// @brief Reads a colour image. @throws IoError when missing, ParseError when undecodable.
 cv::Mat readColorImage(const std::filesystem::path& path);
+
+/// The network's answer for one image.
+struct Segmentation {
+  cv::Mat classes;     ///< CV_8U Cityscapes train id per pixel
+  cv::Mat confidence;  ///< CV_8U winning-class softmax probability x 255 per pixel
+};
 
 /// ENet (Torch7) road segmentation through cv::dnn.
 class RoadSegmenter {
@@ -44,6 +72,8 @@ class RoadSegmenter {
   /// @brief Cityscapes class id per pixel (CV_8U, image size): RGB/255 input at native scale,
   /// reflect-padded to a multiple of 16.
   cv::Mat classify(const cv::Mat& bgr);
+  /// @brief classify() with the winning class's softmax probability per pixel.
+  Segmentation segment(const cv::Mat& bgr);
   /// @brief 255 where the class is road (Cityscapes train id 1 in enet-classes.txt order).
   cv::Mat roadMask(const cv::Mat& bgr);
 
@@ -76,24 +106,32 @@ struct LaneDetection {
 };
 
 /// @brief Lane markings inside `road_mask` (CV_8U, 255 = road) of `bgr`, in the BEV of the
-/// calibration's nominal ground plane.
+/// calibration's nominal ground plane. Pixels of `road_users` (CV_8U, 255 = masked; may be
+/// empty) are kept out of the markings and are 0 (= not seen) in bev_gray, so the mosaic fills
+/// them from other frames.
 LaneDetection detectLanes(const cv::Mat& bgr, const cv::Mat& road_mask, const CameraCalib& calib,
-                          const LaneDetectSettings& settings);
+                          const LaneDetectSettings& settings, const cv::Mat& road_users = {});
 
 /// Lane lines the fallback perception found in every frame of a drive.
 struct LanePerception {
-  std::vector<FrameObservations> frames;  ///< index, stamp and lane lines per image
+  std::vector<FrameObservations> frames;  ///< index, stamp, lane lines and aerial boxes per image
   std::vector<cv::Mat> bev_images;        ///< BEV grey per image (for the top-down picture)
   double seconds = 0.0;                   ///< s, perception, network included
   double network_seconds = 0.0;           ///< s, of which the segmentation network
+  int cached_frames = 0;                  ///< segmentations read from the cache
+  int aerial_detections = 0;              ///< sign/light/pole boxes over all frames
 };
 
-/// @brief Road segmentation (ENet, `model`) and BEV lane detection (LaneDetectSettings{}) on
-/// each image, one after the other: the network uses OpenCV's own threads.
+/// @brief Segmentation (ENet, `model`, or settings.segmentation_cache), road users masked, BEV
+/// lane detection (LaneDetectSettings{}) and aerial boxes (settings.aerial) on each image, one
+/// after the other: the network uses OpenCV's own threads. The model is loaded only when a
+/// frame is not in the cache.
 /// @param stamps s per image
-/// @throws IoError when the model or an image is missing, ParseError when undecodable.
-LanePerception perceiveLanes(const std::vector<std::filesystem::path>& images,
-                             const std::vector<double>& stamps, const CameraCalib& calib,
-                             const std::filesystem::path& model);
+/// @throws IoError when the model or an image is missing, ParseError when undecodable (also a
+/// cached class map of the wrong size or type).
+LanePerception perceiveFrames(const std::vector<std::filesystem::path>& images,
+                              const std::vector<double>& stamps, const CameraCalib& calib,
+                              const std::filesystem::path& model,
+                              const PerceptionSettings& settings);
 
 }  // namespace mapfuse::vehicle

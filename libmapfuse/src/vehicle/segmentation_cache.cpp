@@ -1,0 +1,56 @@
+#include "mapfuse/vehicle/segmentation_cache.hpp"
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/io/atomic_file.hpp"
+
+namespace mapfuse::vehicle {
+namespace fs = std::filesystem;
+
+fs::path segmentationCachePath(const fs::path& folder, const fs::path& image) {
+  return folder / (image.stem().string() + ".seg.png");
+}
+
+std::optional<Segmentation> readCachedSegmentation(const fs::path& file, const cv::Size& size) {
+  if (!fs::exists(file)) return std::nullopt;
+  const std::string bytes = io::readBytes(file);
+  cv::Mat img;
+  try {
+    img = cv::imdecode(cv::Mat(1, int(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data())),
+                       cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception&) {
+    img = cv::Mat();
+  }
+  if (img.empty()) throw ParseError(file.string(), "", "not a decodable PNG");
+  if (img.type() != CV_8UC3)
+    throw ParseError(file.string(), "", "a segmentation cache file must be 8-bit, 3 channels");
+  if (img.size() != size)
+    throw ParseError(file.string(), "",
+                     "size " + std::to_string(img.cols) + "x" + std::to_string(img.rows) +
+                         " differs from its image " + std::to_string(size.width) + "x" +
+                         std::to_string(size.height) + " (stale cache? delete the folder)");
+  Segmentation seg;
+  cv::Mat ch[3];
+  cv::split(img, ch);
+  seg.classes = ch[0];
+  seg.confidence = ch[1];
+  double mx = 0;
+  cv::minMaxLoc(seg.classes, nullptr, &mx);
+  if (mx >= 20)
+    throw ParseError(
+        file.string(), "blue",
+        "class id " + std::to_string(int(mx)) + " is not a Cityscapes train id (< 20)");
+  return seg;
+}
+
+void writeCachedSegmentation(const fs::path& file, const Segmentation& seg) {
+  const cv::Mat zero(seg.classes.size(), CV_8UC1, cv::Scalar(0));
+  cv::Mat img;
+  cv::merge(std::vector<cv::Mat>{seg.classes, seg.confidence, zero}, img);
+  std::vector<uchar> png;
+  if (!cv::imencode(".png", img, png)) throw IoError(file.string(), "cannot encode the PNG");
+  io::writeBytesAtomic(file, std::string(png.begin(), png.end()));
+}
+
+}  // namespace mapfuse::vehicle
