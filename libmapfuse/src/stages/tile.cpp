@@ -1,6 +1,7 @@
 #include "mapfuse/stages/tile.hpp"
 
 #include <chrono>
+#include <mutex>
 #include <set>
 
 #include "mapfuse/cli/params.hpp"
@@ -57,9 +58,16 @@ nlohmann::json runTile(const std::vector<std::string>& lsm_files, const std::fil
   std::vector<std::string> drive_ids(n);
   std::vector<geo::GeoOrigin> origins(n);
   std::vector<std::map<tiling::TileKey, std::vector<std::string>>> written(n);
+  std::mutex claim_mutex;
+  std::set<std::string> claimed;  // drives being written: a second file of one drive writes
+                                  // nothing (same tile file names), refuseSameDrive names both
   parallelFor(n, [&](std::size_t i) {
     const Lsm lsm = io::readLsm(lsm_files[i]);
     drive_ids[i] = lsm.drive_id;
+    {
+      const std::lock_guard<std::mutex> lock(claim_mutex);
+      if (!claimed.insert(lsm.drive_id).second) return;
+    }
     for (const auto& [key, runs] : tiling::splitLsm(lsm, grid, params.min_keyframes))
       for (const auto& run : runs) {
         const std::string name = key.name() + "/" + run.drive_id + "." + params.format;
