@@ -89,8 +89,12 @@ cv::Mat overlay(const stages::LoadedDrive& d, const Lsm& lsm,
   cv::Mat img = cv::imread(d.images[i].string(), cv::IMREAD_COLOR);
   const auto seg = vehicle::readCachedSegmentation(
       vehicle::segmentationCachePath(cache, d.images[i]), img.size());
-  if (seg)
-    img.setTo(cv::Scalar(60, 60, 230), vehicle::roadUserMask(seg->classes, 0) & (seg->classes > 0));
+  if (seg) {  // road users tinted red, 40 %
+    cv::Mat tinted;
+    cv::addWeighted(img, 0.6, cv::Mat(img.size(), img.type(), cv::Scalar(60, 60, 230)), 0.4, 0,
+                    tinted);
+    tinted.copyTo(img, vehicle::roadUserMask(seg->classes, 0) & (seg->classes > 0));
+  }
   for (const auto& a : d.frames[i].aerial) {
     const cv::Scalar col = a.cls == CrowdClass::kPole           ? cv::Scalar(255, 200, 0)
                            : a.cls == CrowdClass::kTrafficLight ? cv::Scalar(0, 165, 255)
