@@ -36,7 +36,7 @@ constexpr double kMinRecallInRange = 0.7;
 // the lane pieces the frames could type, at least this share dashed, and no LSM line solid.
 constexpr double kMinDashedShare = 0.9;
 constexpr int kMinDashedLsmLines = 2;  // of the LSM's 3 lane lines (docs/lsm-build.md)
-constexpr double kMaxOnUsers = 0.5;  // share of a lane line's sightings on a road user
+constexpr double kMaxOnUsers = 0.5;    // share of a lane line's sightings on a road user
 constexpr double kLaneMinDepth = 4.0, kLaneMaxDepth = 30.0;  // m, the BEV band
 
 struct TruthElement {
