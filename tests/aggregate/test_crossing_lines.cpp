@@ -24,18 +24,18 @@ bool crossByDefinition(const std::vector<V2>& a, const std::vector<V2>& b, doubl
     const int n = std::max(1, int(std::ceil(s.norm() / step)));
     for (int i = (k == 1 ? 0 : 1); i <= n; ++i) {
       const V2 p = a[k - 1] + s * (double(i) / n);
-      double best = near;
-      V2 best_dir = V2::Zero();
+      bool any = false, apart = true;
       for (std::size_t j = 1; j < b.size(); ++j) {
         const V2 e = b[j] - b[j - 1];
         if (e.squaredNorm() < 1e-12) continue;
         const double t = std::clamp((p - b[j - 1]).dot(e) / e.squaredNorm(), 0.0, 1.0);
-        const double d = (b[j - 1] + t * e - p).norm();
-        if (d <= best) best = d, best_dir = e.normalized();
+        if ((b[j - 1] + t * e - p).norm() > near) continue;
+        any = true;
+        if (std::abs(e.normalized().dot(dir)) >= std::cos(max_angle)) apart = false;
       }
-      if (best_dir.squaredNorm() == 0.0) continue;
+      if (!any) continue;
       ++close;
-      if (std::abs(best_dir.dot(dir)) < std::cos(max_angle)) ++crossing;
+      if (apart) ++crossing;
     }
   }
   return close > 0 && 2 * crossing > close;

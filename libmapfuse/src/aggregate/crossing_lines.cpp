@@ -37,7 +37,7 @@ bool piecesCross(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen:
   if (a.size() < 2 || b.size() < 2) return false;
   const double cos_max = std::cos(max_angle);
   // Quick accept: a sample of a is counted crossing only when the direction of the segment of a
-  // it lies on and that of b's nearest segment differ by more than max_angle. When no segment
+  // it lies on differs by more than max_angle from all of b's segments near it. When no segment
   // of a differs that much from any segment of b, no sample can, and the answer is false
   // whatever the distances: the scan below (O(samples of a x segments of b)) is skipped. Pieces
   // of one line (nearly all overlapping pairs) have a few near-parallel segments each, so this
@@ -56,20 +56,25 @@ bool piecesCross(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen:
     if (!any_apart) return false;
   }
   int close = 0, crossing = 0;
+  // p crosses when its direction differs by more than max_angle from every segment of b
+  // within `near` (on a curve drawn with few vertices the nearest segment alone may be the
+  // neighbour of the one p runs along)
   auto test = [&](const Eigen::Vector2d& p, const Eigen::Vector2d& dir) {
-    double best = near;
-    Eigen::Vector2d best_dir = Eigen::Vector2d::Zero();
+    bool any = false;
+    double best_cos = -1.0;
     for (std::size_t k = 1; k < b.size(); ++k) {
       const Eigen::Vector2d s = b[k] - b[k - 1];
       const double len2 = s.squaredNorm();
       if (len2 < 1e-12) continue;
       const double t = std::clamp((p - b[k - 1]).dot(s) / len2, 0.0, 1.0);
       const double d = (b[k - 1] + t * s - p).norm();
-      if (d <= best) best = d, best_dir = s / std::sqrt(len2);
+      if (d > near) continue;
+      any = true;
+      best_cos = std::max(best_cos, std::abs((s / std::sqrt(len2)).dot(dir)));
     }
-    if (best_dir.squaredNorm() == 0.0) return;
+    if (!any) return;
     ++close;
-    if (std::abs(best_dir.dot(dir)) < cos_max) ++crossing;
+    if (best_cos < cos_max) ++crossing;
   };
   for (std::size_t k = 1; k < a.size(); ++k) {
     const Eigen::Vector2d s = a[k] - a[k - 1];
