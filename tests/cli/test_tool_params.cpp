@@ -44,7 +44,12 @@ struct SetNumber {
 };
 
 std::string lineOf(const std::string& file, int line) {
-  std::ifstream in(file);
+  // __FILE__ is relative to the build folder (where the compiler ran) when the compile line held
+  // relative paths: ccache's base_dir, -ffile-prefix-map.
+  const fs::path path = fs::path(file).is_absolute()
+                            ? fs::path(file)
+                            : fs::path(MAPFUSE_BIN_DIR).parent_path() / file;
+  std::ifstream in(path);
   std::string text;
   for (int i = 0; i < line && std::getline(in, text); ++i) {
   }

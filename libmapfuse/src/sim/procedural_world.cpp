@@ -110,10 +110,13 @@ World buildProceduralWorld(const ProceduralParams& P, const geo::GeoOrigin& orig
   // Intersection centres.
   std::vector<Eigen::Vector3d> centre(G * G);
   for (int i = 0; i < G; ++i)
-    for (int j = 0; j < G; ++j)
-      centre[i * G + j] = Eigen::Vector3d(
-          (i - (G - 1) / 2.0) * P.block_length + B.uniform(-P.jitter, P.jitter),
-          (j - (G - 1) / 2.0) * P.block_length + B.uniform(-P.jitter, P.jitter), 0.0);
+    for (int j = 0; j < G; ++j) {
+      // y's jitter drawn first: the order the release (gcc) build used (sim/draw_order.hpp).
+      const double jitter_y = B.uniform(-P.jitter, P.jitter);
+      const double jitter_x = B.uniform(-P.jitter, P.jitter);
+      centre[i * G + j] = Eigen::Vector3d((i - (G - 1) / 2.0) * P.block_length + jitter_x,
+                                          (j - (G - 1) / 2.0) * P.block_length + jitter_y, 0.0);
+    }
   std::vector<std::vector<Arm>> arms(G * G);
   std::vector<bool> has_lights(G * G);
   for (int k = 0; k < G * G; ++k) has_lights[k] = B.uniform(0, 1) < P.traffic_light_fraction;
