@@ -69,12 +69,15 @@ TEST_CASE("piecesCross answers as its definition on parallel, curved and crossin
     const double cross = trial % 2 == 0 ? 0.0 : 90.0 * kDeg * u(rng);
     const int na = 2 + int(10 * u(rng) * u(rng)), nb = 2 + int(10 * u(rng) * u(rng));
     const double turn_a = (u(rng) - 0.5) * 20 * kDeg, turn_b = (u(rng) - 0.5) * 20 * kDeg;
-    const std::vector<V2> a =
-        piece(rng, V2(u(rng), u(rng)) * 2.0, heading, turn_a, 0.3 + 3 * u(rng), na, 0.01 * u(rng));
-    const std::vector<V2> b = piece(
-        rng,
-        V2(u(rng), u(rng)) * 2.0 - 4.0 * V2(std::cos(heading + cross), std::sin(heading + cross)),
-        heading + cross, turn_b, 0.3 + 3 * u(rng), nb, 0.01 * u(rng));
+    // every third pair far from the origin (a city's map coordinates: rounded samples)
+    const V2 at = trial % 3 == 0 ? V2(2.5e5, -1.5e5) : V2(0, 0);
+    const std::vector<V2> a = piece(rng, at + V2(u(rng), u(rng)) * 2.0, heading, turn_a,
+                                    0.3 + 3 * u(rng), na, 0.01 * u(rng));
+    const std::vector<V2> b =
+        piece(rng,
+              at + V2(u(rng), u(rng)) * 2.0 -
+                  4.0 * V2(std::cos(heading + cross), std::sin(heading + cross)),
+              heading + cross, turn_b, 0.3 + 3 * u(rng), nb, 0.01 * u(rng));
     const double max_angle = (10 + 50 * u(rng)) * kDeg;
     const bool expected = crossByDefinition(a, b, 0.4, max_angle);
     INFO("trial " << trial);

@@ -6,28 +6,30 @@
 namespace mapfuse::aggregate {
 namespace {
 
-// Unit directions of the segments the scan in piecesCross uses, by the same expressions so the
-// values are bit-identical: a's segments of length >= 1e-9 (s / |s|), b's of squared length
-// >= 1e-12 (s / sqrt(|s|^2)).
-std::vector<Eigen::Vector2d> directionsOfA(const std::vector<Eigen::Vector2d>& a) {
-  std::vector<Eigen::Vector2d> dirs;
-  dirs.reserve(a.size());
-  for (std::size_t k = 1; k < a.size(); ++k) {
-    const Eigen::Vector2d s = a[k] - a[k - 1];
-    const double len = s.norm();
-    if (len >= 1e-9) dirs.push_back(s / len);
+// A segment's unit direction, by the same expressions as piecesCross's scan so the values are
+// bit-identical (a: s / |s| for |s| >= 1e-9; b: s / sqrt(|s|^2) for |s|^2 >= 1e-12), and its
+// bounding box.
+struct Segment {
+  Eigen::Vector2d dir, lo, hi;
+};
+std::vector<Segment> segmentsOf(const std::vector<Eigen::Vector2d>& line, bool as_b) {
+  std::vector<Segment> out;
+  out.reserve(line.size());
+  for (std::size_t k = 1; k < line.size(); ++k) {
+    const Eigen::Vector2d s = line[k] - line[k - 1];
+    Eigen::Vector2d dir;
+    if (as_b) {
+      const double len2 = s.squaredNorm();
+      if (len2 < 1e-12) continue;
+      dir = s / std::sqrt(len2);
+    } else {
+      const double len = s.norm();
+      if (len < 1e-9) continue;
+      dir = s / len;
+    }
+    out.push_back({dir, line[k].cwiseMin(line[k - 1]), line[k].cwiseMax(line[k - 1])});
   }
-  return dirs;
-}
-std::vector<Eigen::Vector2d> directionsOfB(const std::vector<Eigen::Vector2d>& b) {
-  std::vector<Eigen::Vector2d> dirs;
-  dirs.reserve(b.size());
-  for (std::size_t k = 1; k < b.size(); ++k) {
-    const Eigen::Vector2d s = b[k] - b[k - 1];
-    const double len2 = s.squaredNorm();
-    if (len2 >= 1e-12) dirs.push_back(s / std::sqrt(len2));
-  }
-  return dirs;
+  return out;
 }
 
 }  // namespace
@@ -37,17 +39,21 @@ bool piecesCross(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen:
   if (a.size() < 2 || b.size() < 2) return false;
   const double cos_max = std::cos(max_angle);
   // Quick accept: a sample of a is counted crossing only when the direction of the segment of a
-  // it lies on differs by more than max_angle from all of b's segments near it. When no segment
-  // of a differs that much from any segment of b, no sample can, and the answer is false
-  // whatever the distances: the scan below (O(samples of a x segments of b)) is skipped. Pieces
-  // of one line (nearly all overlapping pairs) have a few near-parallel segments each, so this
-  // costs O(vertices of a x vertices of b).
+  // it lies on differs by more than max_angle from all of b's segments near it, so from at
+  // least one segment of b whose box comes within `near` of that segment's box. When no such
+  // pair differs that much, no sample can, and the answer is false whatever the distances: the
+  // scan below (O(samples of a x segments of b)) is skipped. Pieces of one line (nearly all
+  // overlapping pairs, curved ones too: only segments side by side are compared) pass here, at
+  // O(vertices of a x vertices of b).
   {
-    const auto da = directionsOfA(a), db = directionsOfB(b);
+    const double reach = near + 1e-6;  // m: samples and distances are exact up to rounding
+    const auto sa = segmentsOf(a, false), sb = segmentsOf(b, true);
     bool any_apart = false;
-    for (const auto& u : da) {
-      for (const auto& w : db)
-        if (std::abs(w.dot(u)) < cos_max) {
+    for (const auto& u : sa) {
+      for (const auto& w : sb)
+        if (w.lo.x() <= u.hi.x() + reach && u.lo.x() <= w.hi.x() + reach &&
+            w.lo.y() <= u.hi.y() + reach && u.lo.y() <= w.hi.y() + reach &&
+            std::abs(w.dir.dot(u.dir)) < cos_max) {
           any_apart = true;
           break;
         }
