@@ -11,6 +11,7 @@
 # the truth as is and in the map's frame (--truth-map: the rigid map-to-truth transform).
 # Localisation rate: localisations per second of the localisation loop (OMP_NUM_THREADS=1; the
 # tool localises drives in parallel otherwise), median of 3 runs; load average recorded.
+# The map's lateral error beside the bound its traversals' GPS sets: bench_map_bound.
 # -> docs/performance-localize.md, docs/images/localize_errors.png
 # usage: scripts/bench/bench_localize.sh [BIN_DIR=<root>/build/bin]   (about 5-10 minutes)
 set -euo pipefail
@@ -80,5 +81,9 @@ first_png=$(ls "$tmp/loc_aggregated"/*.errors.png | head -1)
 mkdir -p "$root/docs/images"
 cp "$first_png" "$root/docs/images/localize_errors.png"
 
+# the map's lateral error beside what its traversals' GPS allows (docs/performance-map-bound.md)
+"$bin/bench_map_bound" --sim "$tmp/sim" --map "$agg" "$tmp"/map_lsm/*.cbor > "$tmp/bound.json"
+
 python3 "$root/scripts/bench/localize_report.py" "$rows" "$root/docs/performance-localize.md" \
-  "$load" "$traversals" "$held_out" "$seed" "$(basename "$first_png" .errors.png)"
+  "$load" "$traversals" "$held_out" "$seed" "$(basename "$first_png" .errors.png)" \
+  "$tmp/bound.json"

@@ -65,8 +65,8 @@ int main(int argc, char** argv) {
   cv::setNumThreads(1);
   const auto calib = io::readKittiCameraCalib(std::filesystem::path(kitti).parent_path(), 1.65);
   vehicle::RoadSegmenter seg(model);
-  double t_net = 0.0, t_lane = 0.0, t_aerial = 0.0;
-  int aerial_boxes = 0;
+  double t_net = 0.0, t_lane = 0.0, t_aerial = 0.0, t_colour = 0.0;
+  int aerial_boxes = 0, colour_boxes = 0;
   for (int i = 0; i < kitti_frames; ++i) {
     char name[32];
     std::snprintf(name, sizeof name, "%010d.png", i);
@@ -82,6 +82,11 @@ int main(int argc, char** argv) {
     const auto t2 = Clock::now();
     aerial_boxes += int(vehicle::detectAerial(sg.classes, sg.confidence, ps.aerial).size());
     const auto t3 = Clock::now();
+    colour_boxes +=
+        int(vehicle::detectColourCues(bgr, calib.K, calib.ground.normal_cam.normalized(), ps.colour)
+                .size());
+    const auto t4 = Clock::now();
+    t_colour += std::chrono::duration<double>(t4 - t3).count();
     t_net += std::chrono::duration<double>(t1 - t0).count();
     t_lane += std::chrono::duration<double>(t2 - t1).count();
     t_aerial += std::chrono::duration<double>(t3 - t2).count();
@@ -104,11 +109,15 @@ int main(int argc, char** argv) {
   std::cout << "| ENet segmentation + softmax probability (KITTI 1242x375, OpenCV DNN, 1 thread) | "
             << kitti_frames << " | 1 | " << t_net << " | " << kitti_frames / t_net << " | "
             << kitti_frames / t_net << " |\n"
-            << "| road-user mask + BEV top-hat lane extraction (excl. network) | " << kitti_frames
-            << " | 1 | " << t_lane << " | " << kitti_frames / t_lane << " | "
+            << "| road-user mask + BEV top-hat lane extraction + solid/dashed typing (excl. "
+               "network) | "
+            << kitti_frames << " | 1 | " << t_lane << " | " << kitti_frames / t_lane << " | "
             << kitti_frames / t_lane << " |\n"
             << "| sign/light/pole components (excl. network; " << aerial_boxes << " boxes) | "
             << kitti_frames << " | 1 | " << t_aerial << " | " << kitti_frames / t_aerial << " | "
-            << kitti_frames / t_aerial << " |\n";
+            << kitti_frames / t_aerial << " |\n"
+            << "| colour cues: red rings, lit lamps (" << colour_boxes << " boxes) | "
+            << kitti_frames << " | 1 | " << t_colour << " | " << kitti_frames / t_colour << " | "
+            << kitti_frames / t_colour << " |\n";
   return 0;
 }

@@ -4,7 +4,8 @@ import json
 import subprocess
 import sys
 
-rows_file, out, load, traversals, held_out, seed, first = sys.argv[1:]
+rows_file, out, load, traversals, held_out, seed, first, bound_file = sys.argv[1:]
+bound = json.load(open(bound_file))  # bench_map_bound on the aggregated map
 rows = {r["name"]: r for r in map(json.loads, open(rows_file))}
 cpu = subprocess.run("lscpu | sed -n 's/^Model name: *//p'", shell=True, capture_output=True,
                      text=True).stdout.strip()
@@ -87,13 +88,29 @@ lines += [
     f" In the map's frame (b): lateral {ok(M['mean_abs_lateral_m'], target['lat'])},"
     f" longitudinal {ok(M['mean_abs_longitudinal_m'], target['lon'])},"
     f" heading {ok(M['mean_abs_heading_deg'], target['hdg'])}.", "",
+    "The lateral target is below what this map's GPS allows (`bench_map_bound` on the same"
+    " map: the simulator rerun in-process, every GPS fix's true error known; docs/localize.md"
+    " \"Where the error comes from\", [performance-map-bound.md](performance-map-bound.md) for"
+    " five seeds). Across the map's lane lines (mean of absolute values, m): the map"
+    f" {bound['lateral']['map']['mean_abs_m']:.3f}; the mean GPS error of the traversals that"
+    f" drove past each point (100 m stretches) {bound['lateral']['bound']['mean_abs_m']:.3f}; the"
+    f" mean GPS error of all {bound['drives']} traversals (a map of exact shape placed on all the"
+    f" GPS) {bound['lateral']['global']['mean_abs_m']:.3f}, and"
+    f" {bound['expected_global_mean_abs_lateral_m']:.3f} expected from the simulator's GPS model"
+    f" (per-drive error {bound['expected_drive_gps_error_per_axis_m']:.2f} m per axis, over"
+    f" {bound['drives']} drives). A vehicle localised on the map follows the map, so with 50"
+    " traversals of this GPS model a mean lateral error <= 0.10 m against the truth is not"
+    " reachable even by a map of exact shape, which would need at least about"
+    f" {int((bound['expected_drive_gps_error_per_axis_m'] * (2 / 3.14159265) ** 0.5 / 0.10) ** 2 + 1)}"
+    " traversals (or absolute information other than the GPS).", "",
     f"Map-to-truth transform of the aggregated map (`map_to_truth`): shift ({m['dx_m']:.3f},"
     f" {m['dy_m']:.3f}) m ENU, rotation {m['yaw_deg']:.4f} deg; {m['matched']} of {m['points']}"
     f" map sample points matched, RMS distance to the truth {m['rms_before_m']:.3f} m as is,"
     f" {m['rms_after_m']:.3f} m after the transform: the map's non-rigid part, which no"
     " localisation on the map can take off (the vehicle follows the map). Where the error comes"
     " from (the localiser, the map's offset, its distortion):"
-    " [localize.md](localize.md#accuracy-and-speed).", "",
+    " [localize.md](localize.md#accuracy-and-speed) and"
+    " [localize.md](localize.md#where-the-error-comes-from).", "",
     "Per drive (aggregated map, LSM level, full_drive):", "",
     "| drive | keyframes | lost | (a) lateral m | (a) longitudinal m | (a) heading deg |"
     " (b) lateral m | (b) longitudinal m |", "|---|---|---|---|---|---|---|---|"]

@@ -17,9 +17,14 @@ lsm="$("$BIN/lsm-build" "$DRIVE" -o "$TMP/out" --poses "$TMP/poses.txt" --kitti-
 [[ -f "$lsm" ]] || { echo "FAIL: no LSM"; exit 1; }
 [[ -s "$TMP/out/2011_09_26_drive_sfnd_sync.bev.png" ]] || { echo "FAIL: no PNG"; exit 1; }
 grep -q '"semantics": "segmenter"' "$TMP/out/lsm-build.summary.json" || { echo "FAIL: summary"; exit 1; }
-python3 - "$lsm" <<'PY'
+python3 - "$lsm" "$TMP/out/lsm-build.summary.json" <<'PY'
 import json, sys
 lsm = json.load(open(sys.argv[1]))
+summary = json.load(open(sys.argv[2]))
+# Every lane piece of the 2 frames is counted once by style (solid, dashed or untyped).
+st = summary["lane_styles"]
+assert st["solid"] + st["dashed"] + st["untyped"] >= 1, st
+assert st["dash_period_m"] >= 0, st
 lanes = [e for e in lsm["elements"] if e["class"] == "lane_line"]
 assert len(lsm["keyframes"]) == 2, lsm["keyframes"]
 assert lanes, "no lane lines extracted from the KITTI frames"

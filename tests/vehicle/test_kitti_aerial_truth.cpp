@@ -1,7 +1,8 @@
 // Issue 21 acceptance on the real KITTI sfnd drive (78 frames, skips without ../shared):
-// lsm-build's fallback perception (ENet) finds the signs, lights and poles of the hand-checked
-// truth tests/data/kitti_sfnd_aerial_truth.json (precision >= 0.8, recall >= 0.7 within the
-// truth's match radius, horizontal distance, same class), and no lane line lies on a vehicle
+// lsm-build's fallback perception (ENet and the colour cues) finds the signs, lights and poles of
+// the hand-checked truth tests/data/kitti_sfnd_aerial_truth.json (precision >= 0.8, recall >= 0.7
+// within the truth's match radius, horizontal distance, same class), types the lane lines as they
+// are painted (dashed), and no lane line lies on a vehicle
 // (lane points projected into the frames that see them fall on the ENet road-user mask in at
 // most kMaxOnUsers of them). Poses: tests/data/kitti_sfnd_lidar_poses.txt, lidar-semantic-map's
 // odometry of this drive (T_world_cam0, docs/kitti.md).
@@ -27,11 +28,15 @@ namespace fs = std::filesystem;
 
 namespace {
 constexpr double kMinPrecision = 0.8;  // issue 21 target
-// Recall over the truth elements the drive passes within max_track_range: the issue's target is
-// 0.7; ENet finds 1 of the 4 (docs/kitti.md: it labels sign A as a vehicle, and sees the
-// lights B and E in too few frames or as signs), so this floor guards what is measured.
-constexpr double kMinRecallInRange = 0.25;
-constexpr double kMaxOnUsers = 0.5;  // share of a lane line's sightings on a road user
+// Recall over the truth elements the drive passes within max_track_range: the issue's target.
+// ENet alone finds 1 of the 4 (the mast C: it labels sign A as a vehicle and sees the lights B
+// and E in too few frames); the colour cues add A (red ring) and E (lit lamp): 3 of 4.
+constexpr double kMinRecallInRange = 0.7;
+// Lane styles (by eye in frames 0, 20, 40, 60, 77 every lane line of the drive is dashed): of
+// the lane pieces the frames could type, at least this share dashed, and no LSM line solid.
+constexpr double kMinDashedShare = 0.9;
+constexpr int kMinDashedLsmLines = 2;  // of the LSM's 3 lane lines (docs/lsm-build.md)
+constexpr double kMaxOnUsers = 0.5;    // share of a lane line's sightings on a road user
 constexpr double kLaneMinDepth = 4.0, kLaneMaxDepth = 30.0;  // m, the BEV band
 
 struct TruthElement {
@@ -77,14 +82,19 @@ Match matchElements(const std::vector<std::pair<CrowdClass, Eigen::Vector3d>>& p
 }
 
 /// Frame `i` with the road users tinted red, the aerial boxes (track id), the LSM's lane lines
-/// (green) and aerial elements (yellow: position and height) and the truth (magenta).
+/// (solid green, dashed orange, untyped white) and aerial elements (yellow: position and height)
+/// and the truth (magenta).
 cv::Mat overlay(const stages::LoadedDrive& d, const Lsm& lsm,
                 const std::vector<TruthElement>& truth, const fs::path& cache, std::size_t i) {
   cv::Mat img = cv::imread(d.images[i].string(), cv::IMREAD_COLOR);
   const auto seg = vehicle::readCachedSegmentation(
       vehicle::segmentationCachePath(cache, d.images[i]), img.size());
-  if (seg)
-    img.setTo(cv::Scalar(60, 60, 230), vehicle::roadUserMask(seg->classes, 0) & (seg->classes > 0));
+  if (seg) {  // road users tinted red, 40 %
+    cv::Mat tinted;
+    cv::addWeighted(img, 0.6, cv::Mat(img.size(), img.type(), cv::Scalar(60, 60, 230)), 0.4, 0,
+                    tinted);
+    tinted.copyTo(img, vehicle::roadUserMask(seg->classes, 0) & (seg->classes > 0));
+  }
   for (const auto& a : d.frames[i].aerial) {
     const cv::Scalar col = a.cls == CrowdClass::kPole           ? cv::Scalar(255, 200, 0)
                            : a.cls == CrowdClass::kTrafficLight ? cv::Scalar(0, 165, 255)
@@ -102,8 +112,12 @@ cv::Mat overlay(const stages::LoadedDrive& d, const Lsm& lsm,
   for (const auto& e : lsm.elements) {
     const auto pts = lsm.pointsInFrame(e);
     if (e.cls == CrowdClass::kLaneLine) {
+      // Solid green, dashed orange, untyped white.
+      const cv::Scalar col = e.attributes.style == LineStyle::kSolid    ? cv::Scalar(0, 255, 0)
+                             : e.attributes.style == LineStyle::kDashed ? cv::Scalar(0, 140, 255)
+                                                                        : cv::Scalar(255, 255, 255);
       for (std::size_t k = 1; k < pts.size(); ++k)
-        if (auto a = px(pts[k - 1]), b = px(pts[k]); a && b) cv::line(img, *a, *b, {0, 255, 0}, 2);
+        if (auto a = px(pts[k - 1]), b = px(pts[k]); a && b) cv::line(img, *a, *b, col, 2);
     } else if (e.cls == CrowdClass::kTrafficSign || e.cls == CrowdClass::kTrafficLight ||
                e.cls == CrowdClass::kPole) {
       const Eigen::Vector3d top = pts[0] + Eigen::Vector3d(0, 0, e.height);
@@ -204,6 +218,24 @@ TEST_CASE(
   }
   CHECK(precision >= kMinPrecision);
   CHECK(recall >= kMinRecallInRange);
+
+  // Lane line styles: every lane line of this drive is dashed (by eye in frames 0, 20, 40, 60,
+  // 77: the urban "Leitlinie", 3 m dash / 6 m gap, then before the junction the "Warnlinie",
+  // 6 m / 3 m; both of period 9 m, RMS / StVO).
+  const auto& ls = d.lane_styles;
+  std::cout << "lane pieces: " << ls.solid << " solid, " << ls.dashed << " dashed, " << ls.untyped
+            << " untyped; dash period " << ls.dash_period << " m\n";
+  int lsm_dashed = 0, lsm_solid = 0;
+  for (const auto& e : r.lsm.elements)
+    if (e.cls == CrowdClass::kLaneLine) {
+      lsm_dashed += e.attributes.style == LineStyle::kDashed ? 1 : 0;
+      lsm_solid += e.attributes.style == LineStyle::kSolid ? 1 : 0;
+    }
+  std::cout << "LSM lane lines: " << lsm_dashed << " dashed, " << lsm_solid << " solid\n";
+  REQUIRE(ls.solid + ls.dashed > 0);
+  CHECK(double(ls.dashed) / (ls.solid + ls.dashed) >= kMinDashedShare);
+  CHECK(lsm_dashed >= kMinDashedLsmLines);
+  CHECK(lsm_solid == 0);
 
   // Lane lines against the road-user mask of every frame that sees them in the BEV band.
   REQUIRE(!lanes.empty());

@@ -78,6 +78,10 @@ nlohmann::json toJson(const LsmBuildRun& run) {
     summary["seconds"]["network"] = run.network_seconds;
     summary["segmentation_cached_frames"] = run.cached_frames;
     summary["aerial_detections"] = run.aerial_detections;
+    summary["lane_styles"] = {{"solid", run.lane_styles.solid},
+                              {"dashed", run.lane_styles.dashed},
+                              {"untyped", run.lane_styles.untyped},
+                              {"dash_period_m", run.lane_styles.dash_period}};
   }
   return summary;
 }
@@ -101,6 +105,7 @@ LsmBuildRun runLsmBuild(const LsmBuildInputs& in, const LsmBuildParams& p) {
                   vehicle::buildLsm(drive, p.build)};
   run.cached_frames = drive.cached_frames;
   run.aerial_detections = drive.aerial_detections;
+  run.lane_styles = drive.lane_styles;
   validateLsm(run.build.lsm, drive.drive_id);
   if (p.build.vanishing.enabled) {
     const auto& vp = run.build.vp;

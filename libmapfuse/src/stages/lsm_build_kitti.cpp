@@ -66,6 +66,7 @@ void loadKittiRawDrive(const LsmBuildInputs& in, const LsmBuildParams& p, Loaded
   d.network_seconds = lanes.network_seconds;
   d.cached_frames = lanes.cached_frames;
   d.aerial_detections = lanes.aerial_detections;
+  d.lane_styles = lanes.lane_styles;
 }
 
 }  // namespace mapfuse::stages

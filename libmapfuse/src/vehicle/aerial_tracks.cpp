@@ -80,6 +80,22 @@ AerialTracks triangulateAerialTracks(const DriveData& d, const TriangulationSett
 #pragma omp parallel for schedule(dynamic)
   for (int k = 0; k < int(track_list.size()); ++k)
     elements[k] = triangulate(d, *track_list[k], s, reasons[k]);
+  // One element per place and class: of tracks closer than duplicate_radius (two detectors on
+  // one sign, a track broken by an occlusion), the one seen in more frames stays.
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    if (!elements[k]) continue;
+    for (std::size_t j = 0; j < elements.size(); ++j) {
+      if (j == k || !elements[j] || elements[j]->cls != elements[k]->cls) continue;
+      const double dist = (elements[j]->points[0] - elements[k]->points[0]).head<2>().norm();
+      const bool j_wins = elements[j]->observations > elements[k]->observations ||
+                          (elements[j]->observations == elements[k]->observations && j < k);
+      if (dist < s.duplicate_radius && j_wins) {
+        elements[k].reset();
+        reasons[k] = "duplicate";
+        break;
+      }
+    }
+  }
   for (std::size_t k = 0; k < elements.size(); ++k) {
     if (elements[k])
       out.elements.push_back(*elements[k]);

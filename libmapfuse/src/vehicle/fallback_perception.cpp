@@ -1,5 +1,6 @@
 #include "mapfuse/vehicle/fallback_perception.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <opencv2/dnn.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -172,6 +173,12 @@ LaneDetection detectLanes(const cv::Mat& bgr, const cv::Mat& road_mask, const Ca
     det.lanes.push_back(std::move(obs));
     det.lanes_ground.push_back(std::move(ground));
   }
+  // Solid / dashed from the marking profile along each line; gaps count only on visible road.
+  const cv::Mat seen = (det.bev_gray > 0) & (road > 0);
+  det.styles = classifyLineStyles(det.lanes_ground, det.bev_markings, seen,
+                                  {s.bev_max_x, s.bev_half_width, s.bev_resolution}, s.style);
+  for (std::size_t i = 0; i < det.lanes.size(); ++i)
+    det.lanes[i].attributes.style = det.styles[i].style;
   return det;
 }
 
@@ -181,6 +188,9 @@ LanePerception perceiveFrames(const std::vector<std::filesystem::path>& images,
   using Clock = std::chrono::steady_clock;
   std::unique_ptr<RoadSegmenter> segmenter;  // loaded on the first frame not in the cache
   LanePerception out;
+  LaneDetectSettings lane_settings;
+  lane_settings.style = s.line_style;
+  std::vector<double> periods;
   out.frames.resize(images.size());
   Progress progress("frames", images.size());
   for (std::size_t i = 0; i < images.size(); ++i) {
@@ -201,18 +211,30 @@ LanePerception perceiveFrames(const std::vector<std::filesystem::path>& images,
     const auto t1 = Clock::now();
     const cv::Mat users = roadUserMask(seg->classes, s.road_user_margin);
     const auto lanes =
-        detectLanes(bgr, seg->classes == cityscapes::kRoad, calib, LaneDetectSettings{}, users);
+        detectLanes(bgr, seg->classes == cityscapes::kRoad, calib, lane_settings, users);
+    for (const auto& st : lanes.styles) {
+      out.lane_styles.solid += st.style == LineStyle::kSolid ? 1 : 0;
+      out.lane_styles.dashed += st.style == LineStyle::kDashed ? 1 : 0;
+      out.lane_styles.untyped += st.style == LineStyle::kNone ? 1 : 0;
+      if (st.period > 0) periods.push_back(st.period);
+    }
     out.frames[i].index = int(i);
     out.frames[i].stamp = stamps[i];
     out.frames[i].ground = lanes.lanes;
     out.frames[i].aerial = detectAerial(seg->classes, seg->confidence, s.aerial);
     setPoleAxisKeyPoints(out.frames[i].aerial, calib.K, calib.ground.normal_cam.normalized());
+    for (auto& a : detectColourCues(bgr, calib.K, calib.ground.normal_cam.normalized(), s.colour))
+      out.frames[i].aerial.push_back(std::move(a));
     out.aerial_detections += int(out.frames[i].aerial.size());
     out.bev_images.push_back(lanes.bev_gray);
     const auto t2 = Clock::now();
     out.network_seconds += std::chrono::duration<double>(t1 - t0).count();
     out.seconds += std::chrono::duration<double>(t2 - t0).count();
     progress.advance();
+  }
+  if (!periods.empty()) {
+    std::nth_element(periods.begin(), periods.begin() + long(periods.size() / 2), periods.end());
+    out.lane_styles.dash_period = periods[periods.size() / 2];
   }
   return out;
 }

@@ -68,7 +68,7 @@ void associateByFlow(const cv::Mat& prev_gray, const cv::Mat& next_gray,
   std::vector<Pair> pairs;
   for (std::size_t p = 0; p < prev.size(); ++p)
     for (std::size_t n = 0; n < next.size(); ++n)
-      if (prev[p].cls == next[n].cls)
+      if (prev[p].cls == next[n].cls && prev[p].detector == next[n].detector)
         if (const double iou = boxIou(widen(predicted[p]), widen(next[n].box)); iou >= s.min_iou)
           pairs.push_back({iou, p, n});
   std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {

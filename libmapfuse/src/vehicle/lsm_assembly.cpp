@@ -110,6 +110,16 @@ std::vector<Instance> groupInstances(const std::vector<RangedMarking>& markings,
       for (const auto& p : m.points) grid.add(p, inst);
     }
   }
+  // The line style by majority over the frames that typed it (real frames type a piece only
+  // when the camera saw the evidence, line_style.hpp); untyped when none did.
+  for (auto& inst : out) {
+    int votes[3] = {0, 0, 0};
+    for (const auto* p : inst.parts) ++votes[int(p->attributes.style)];
+    if (votes[int(LineStyle::kSolid)] + votes[int(LineStyle::kDashed)] > 0)
+      inst.attributes.style = votes[int(LineStyle::kSolid)] >= votes[int(LineStyle::kDashed)]
+                                  ? LineStyle::kSolid
+                                  : LineStyle::kDashed;
+  }
   return out;
 }
 

@@ -74,6 +74,9 @@ struct AerialObservation {
   /// Empty = use the box (centre for signs, bottom / top centre for lights and poles).
   std::vector<Eigen::Vector2d> points;
   double confidence = 1.0;  ///< detector confidence in [0, 1] (segmentation: mean probability)
+  /// Detector of the box: 0 = the input or the segmentation network, 1 = colour cues
+  /// (vehicle/aerial_colour.hpp); optical-flow tracks never join boxes of two detectors.
+  int detector = 0;
 };
 
 /// Everything perceived in one camera frame.

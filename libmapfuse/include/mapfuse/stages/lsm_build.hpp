@@ -71,8 +71,9 @@ struct LoadedDrive : vehicle::DriveData {
   std::string input_kind, semantics, egomotion;  ///< what was actually used
   double perception_seconds = 0.0;               ///< fallback perception time (network incl.)
   double network_seconds = 0.0;                  ///< of which the segmentation network
-  int cached_frames = 0;      ///< segmentations read from perception.segmentation_cache
-  int aerial_detections = 0;  ///< sign/light/pole boxes of the fallback perception
+  int cached_frames = 0;                 ///< segmentations read from perception.segmentation_cache
+  int aerial_detections = 0;             ///< sign/light/pole boxes of the fallback perception
+  vehicle::LaneStyleCounts lane_styles;  ///< lane pieces typed by the fallback perception
 };
 
 /// @brief Reads a drive according to the params (auto-detection of layout, semantics and
@@ -109,6 +110,7 @@ struct LsmBuildRun {
   double perception_seconds = 0.0, network_seconds = 0.0;  ///< segmenter only
   vehicle::LsmBuildResult build;
   int cached_frames = 0, aerial_detections = 0;  ///< segmenter only (LoadedDrive's)
+  vehicle::LaneStyleCounts lane_styles;          ///< segmenter only (LoadedDrive's)
 };
 
 /// @brief The counts and timings of buildLsm, as lsm-build.summary.json holds them.

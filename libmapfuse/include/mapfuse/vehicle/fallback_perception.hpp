@@ -14,8 +14,10 @@
 
 #include "mapfuse/core/drive_records.hpp"
 #include "mapfuse/core/param.hpp"
+#include "mapfuse/vehicle/aerial_colour.hpp"
 #include "mapfuse/vehicle/aerial_detection.hpp"
 #include "mapfuse/vehicle/camera.hpp"
+#include "mapfuse/vehicle/line_style.hpp"
 
 namespace mapfuse::vehicle {
 
@@ -28,6 +30,8 @@ struct PerceptionSettings {
   std::string segmentation_cache;  ///< folder of <frame>.seg.png class maps; "" = none
   int road_user_margin = 6;        ///< px, road-user mask dilation (outline, shadow edge)
   AerialDetectSettings aerial;     ///< signs, lights, poles from the segmentation
+  ColourCueSettings colour;        ///< signs and lights from colour and shape (not the network)
+  LineStyleSettings line_style;    ///< solid / dashed typing of the lane lines
   double track_min_box_side = 16;  ///< px, FlowSettings::min_box_side of the segmenter's boxes
   int track_max_gap = 5;           ///< frames, FlowSettings::max_gap of the segmenter's boxes
 
@@ -44,6 +48,8 @@ struct PerceptionSettings {
       "dilation of the vehicle/person mask kept free of markings and of the BEV mosaic",
       param::in(0, 1000));
     aerial.visit(v);
+    colour.visit(v);
+    line_style.visit(v);
     v("track_min_box_side", track_min_box_side, "px",
       "segmenter boxes: sides shorter than this are widened for the frame-to-frame IoU test "
       "(thin poles)",
@@ -94,6 +100,7 @@ struct LaneDetectSettings {
   double min_length = 1.5;       ///< m, shorter blobs are not markings
   double max_width = 0.45;       ///< m, wider blobs are not markings (mean width)
   double sample_step = 0.25;     ///< m, spacing of the centre-line samples
+  LineStyleSettings style;       ///< solid / dashed typing (line_style.hpp)
 };
 
 /// Result of the lane detector for one frame.
@@ -103,14 +110,21 @@ struct LaneDetection {
   cv::Mat bev_road;                      ///< BEV of the road mask
   cv::Mat bev_markings;                  ///< BEV binary marking mask (after filtering)
   std::vector<std::vector<Eigen::Vector2d>> lanes_ground;  ///< (forward, left) m on the plane
+  std::vector<PieceStyle> styles;  ///< per lane: solid / dashed and its evidence (line_style.hpp)
 };
 
 /// @brief Lane markings inside `road_mask` (CV_8U, 255 = road) of `bgr`, in the BEV of the
 /// calibration's nominal ground plane. Pixels of `road_users` (CV_8U, 255 = masked; may be
 /// empty) are kept out of the markings and are 0 (= not seen) in bev_gray, so the mosaic fills
-/// them from other frames.
+/// them from other frames. Each lane piece is typed solid / dashed (settings.style).
 LaneDetection detectLanes(const cv::Mat& bgr, const cv::Mat& road_mask, const CameraCalib& calib,
                           const LaneDetectSettings& settings, const cv::Mat& road_users = {});
+
+/// The lane pieces of a drive by style (line_style.hpp), over all frames.
+struct LaneStyleCounts {
+  int solid = 0, dashed = 0, untyped = 0;  ///< lane pieces (one per marking component and frame)
+  double dash_period = 0.0;  ///< m, median dash + gap over the frames that measured one; 0 = none
+};
 
 /// Lane lines the fallback perception found in every frame of a drive.
 struct LanePerception {
@@ -120,10 +134,12 @@ struct LanePerception {
   double network_seconds = 0.0;           ///< s, of which the segmentation network
   int cached_frames = 0;                  ///< segmentations read from the cache
   int aerial_detections = 0;              ///< sign/light/pole boxes over all frames
+  LaneStyleCounts lane_styles;            ///< lane pieces typed solid / dashed over all frames
 };
 
 /// @brief Segmentation (ENet, `model`, or settings.segmentation_cache), road users masked, BEV
-/// lane detection (LaneDetectSettings{}) and aerial boxes (settings.aerial) on each image, one
+/// lane detection (LaneDetectSettings{}) and aerial boxes (settings.aerial, settings.colour) on
+/// each image, one
 /// after the other: the network uses OpenCV's own threads. The model is loaded only when a
 /// frame is not in the cache.
 /// @param stamps s per image

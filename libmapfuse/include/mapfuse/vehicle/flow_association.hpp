@@ -26,7 +26,7 @@ struct FlowSettings {
 };
 
 /// @brief Gives every box in `next` a track id: the id of the flowed `prev` box it overlaps
-/// most (same class, IoU >= min_iou), else a fresh id from `next_id` (incremented).
+/// most (same class and detector, IoU >= min_iou), else a fresh id from `next_id` (incremented).
 /// `prev` boxes must already carry ids. Images are 8-bit grey of equal size.
 /// @param moved when given, receives the flowed box of every `prev` box (next frame's pixels)
 void associateByFlow(const cv::Mat& prev_gray, const cv::Mat& next_gray,

@@ -27,6 +27,9 @@ struct TriangulationSettings {
   double max_reprojection_rms = 4.0;  ///< px, tracks fitting worse are rejected
   double max_range = 30.0;            ///< m, > 0: tracks never seen closer than this are rejected
   int max_iterations = 30;            ///< Levenberg-Marquardt iterations
+  /// m: triangulated tracks of one class closer than this (horizontally) are one element seen by
+  /// two detectors or as two broken tracks: the one with more frames is kept; 0 = off
+  double duplicate_radius = 1.0;
 
   template <class V>
   void visit(V& v) {
@@ -42,6 +45,10 @@ struct TriangulationSettings {
       gt(0) & le(1e6));
     v("max_track_range", max_range, "m", "aerial tracks never seen closer are rejected",
       gt(0) & le(100000));
+    v("duplicate_radius", duplicate_radius, "m",
+      "triangulated aerial elements of one class closer than this are one (the element seen in "
+      "more frames is kept); 0 = off",
+      in(0, 100));
   }
 };
 
