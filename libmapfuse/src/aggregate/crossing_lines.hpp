@@ -11,9 +11,9 @@
 namespace mapfuse::aggregate {
 
 /// @brief True when a and b cross: of the points of a (its vertices and samples every `step` m)
-/// that lie within `near` m of b, more than half have a local direction that differs from b's
-/// at the nearest point by more than `max_angle` (rad, undirected: lines observed in opposite
-/// travel directions agree). False when no point of a comes that near.
+/// that lie within `near` m of b, more than half have a local direction that differs by more
+/// than `max_angle` (rad, undirected: lines observed in opposite travel directions agree) from
+/// that of every segment of b within `near` of them. False when no point of a comes that near.
 bool piecesCross(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen::Vector2d>& b,
                  double near, double max_angle, double step = 0.25);
 

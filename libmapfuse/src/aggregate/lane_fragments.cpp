@@ -9,6 +9,7 @@
 #include <numeric>
 
 #include "box2d.hpp"
+#include "crossing_lines.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
 #include "mapfuse/core/union_find.hpp"
 #include "mapfuse/core/vector_map.hpp"
@@ -20,6 +21,8 @@ namespace bg = boost::geometry;
 namespace bgi = boost::geometry::index;
 using BoxValue = std::pair<Box2, std::size_t>;
 
+constexpr double kMinSpan = 0.5;  // m, shorter centrelines have no reliable direction
+
 // Fraction of a's centreline points within `tol` of b's centreline.
 double coveredFraction(const Fragment& a, const Fragment& b, double tol) {
   if (a.centreline.empty()) return 0.0;
@@ -30,28 +33,21 @@ double coveredFraction(const Fragment& a, const Fragment& b, double tol) {
 }
 
 // Whether two fragments run within `max_angle` (rad, undirected) of each other where they meet:
-// crossing lines are not one line (crossing_lines.hpp). The shorter one's principal axis against
-// the other's centreline segment nearest to its centre (a long fragment may curve). Fragments too
-// short for a direction agree with any.
-bool sameDirection(const Fragment& a, const Fragment& b, double max_angle) {
-  constexpr double kMinSpan = 0.5;  // m, shorter centrelines have no reliable direction
+// crossing lines are not one line (crossing_lines.hpp). Local directions, the shorter
+// centreline's against the other's where they come within `near` (a principal axis of a whole
+// curved fragment differed from the other's local direction by 30-40 deg on the Karlsruhe
+// curves). Fragments too short for a direction agree with any.
+bool sameDirection(const Fragment& a, const Fragment& b, double max_angle, double near) {
   const double la = polylineLength(a.centreline), lb = polylineLength(b.centreline);
   if (la < kMinSpan || lb < kMinSpan) return true;
+  auto xy = [](const std::vector<Eigen::Vector3d>& c) {
+    std::vector<Eigen::Vector2d> out;
+    for (const auto& p : c) out.push_back(p.head<2>());
+    return out;
+  };
   const Fragment& s = la <= lb ? a : b;
   const Fragment& l = la <= lb ? b : a;
-  const Eigen::Vector2d ds = principalAxis2d(s.samples.empty() ? s.centreline : s.samples);
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const auto& p : s.centreline) c += p;
-  c /= double(s.centreline.size());
-  double best = 1e300;
-  Eigen::Vector2d dl = ds;
-  for (std::size_t k = 1; k < l.centreline.size(); ++k) {
-    const Eigen::Vector2d d = (l.centreline[k] - l.centreline[k - 1]).head<2>();
-    if (d.norm() < 1e-9) continue;
-    const double dist = distanceToSegment2d(c, l.centreline[k - 1], l.centreline[k]);
-    if (dist < best) best = dist, dl = d.normalized();
-  }
-  return std::abs(ds.dot(dl)) >= std::cos(max_angle);
+  return !piecesCross(xy(s.centreline), xy(l.centreline), near, max_angle);
 }
 
 // Pools fragments into the union-find roots of `parent`; centrelines recomputed.
@@ -88,16 +84,22 @@ void mergeSideBySide(std::vector<Fragment>& frags, const LaneInstantiationParams
   const auto tree = fragmentBoxes(frags, tol);
   std::vector<int> parent(frags.size());
   std::iota(parent.begin(), parent.end(), 0);
+  // Fragments too short for a direction are left to absorbStubs, which gives each to one
+  // fragment: here, agreeing with any, they chained two crossing lines into one.
+  std::vector<char> directed(frags.size());
+  for (std::size_t i = 0; i < frags.size(); ++i)
+    directed[i] = polylineLength(frags[i].centreline) >= kMinSpan;
   bool merged = false;
   for (std::size_t i = 0; i < frags.size(); ++i) {
+    if (!directed[i]) continue;
     std::vector<BoxValue> hits;
     tree.query(bgi::intersects(boxOf(frags[i].centreline, tol)), std::back_inserter(hits));
     for (const auto& h : hits) {
       const std::size_t j = h.second;
-      if (j <= i) continue;
+      if (j <= i || !directed[j]) continue;
       if (std::max(coveredFraction(frags[i], frags[j], tol),
                    coveredFraction(frags[j], frags[i], tol)) >= 0.5 &&
-          sameDirection(frags[i], frags[j], max_angle)) {
+          sameDirection(frags[i], frags[j], max_angle, tol)) {
         parent[findRoot(parent, int(j))] = findRoot(parent, int(i));
         merged = true;
       }
@@ -123,7 +125,8 @@ void absorbStubs(std::vector<Fragment>& frags, const LaneInstantiationParams& p)
     double best = tol;
     int target = -1;
     for (const auto& h : hits) {
-      if (h.second == i || stub[h.second] || !sameDirection(frags[i], frags[h.second], max_angle))
+      if (h.second == i || stub[h.second] ||
+          !sameDirection(frags[i], frags[h.second], max_angle, tol))
         continue;
       for (const auto& q : frags[i].centreline) {
         const double d = distanceToPolyline2d(q, frags[h.second].centreline);

@@ -6,6 +6,8 @@
 #include <set>
 #include <unordered_map>
 
+#include "ring_index.hpp"
+
 namespace mapfuse::io {
 
 namespace {
@@ -192,6 +194,9 @@ namespace {
 /// start after an unmarked stretch.
 void addConnectors(LaneletPlan& plan, const std::vector<DrivePath>& drives) {
   std::map<Cell, std::vector<std::size_t>> grid;
+  std::vector<detail::RingIndex> rings;  // the test of every drive sample against the rings
+  rings.reserve(plan.lanelets.size());
+  for (const auto& ll : plan.lanelets) rings.emplace_back(ll.ring);
   for (std::size_t l = 0; l < plan.lanelets.size(); ++l) {
     const auto& ll = plan.lanelets[l];
     if (!ll.direction_known) continue;
@@ -206,7 +211,7 @@ void addConnectors(LaneletPlan& plan, const std::vector<DrivePath>& drives) {
     if (it == grid.end()) return -1;
     for (std::size_t l : it->second) {
       const auto& ll = plan.lanelets[l];
-      if (!insideRingXY(ll.ring, p)) continue;
+      if (!rings[l].contains(p)) continue;
       const Eigen::Vector2d d = (ll.centre.back() - ll.centre.front()).head<2>();
       if (d.dot(t) > 0) return static_cast<long>(l);
     }
@@ -462,12 +467,13 @@ LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& dri
     for (const auto& p : ll.ring) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
     const Cell a = cellOf(lo.x(), lo.y()), b = cellOf(hi.x(), hi.y());
     const auto cc = arcLengths(ll.centre);
+    const detail::RingIndex ring(ll.ring);
     for (int64_t x = a.first; x <= b.first; ++x)
       for (int64_t y = a.second; y <= b.second; ++y) {
         const auto it = drive_grid.find({x, y});
         if (it == drive_grid.end()) continue;
         for (const auto& [p, t] : it->second) {
-          if (!insideRingXY(ll.ring, p)) continue;
+          if (!ring.contains(p)) continue;
           // Lanelet axis at the nearest centre vertex.
           std::size_t best = 0;
           for (std::size_t k = 1; k < ll.centre.size(); ++k)

@@ -15,6 +15,8 @@ namespace {
 
 /// A crosswalk is a quadrilateral (a parallelogram where the road meets the junction skewed).
 constexpr std::size_t kCrosswalkVertices = 4;
+/// m, complete corner lists of one marking agree within this (area_outline.hpp).
+constexpr double kMaxCornerSpread = 0.5;
 
 /// True when some observation has exactly `n` vertices (areaOutline averaged complete ones).
 bool sameVertexCount(const std::vector<std::vector<Eigen::Vector3d>>& rings, std::size_t n) {
@@ -275,7 +277,11 @@ Lsm assembleLsm(const std::vector<Pose3>& poses, const std::vector<double>& stam
         rings.push_back(m->points);
         for (const auto& c : m->covariances) C += c, ++n;
       }
-      std::vector<Eigen::Vector3d> pts = areaOutline(rings, s.min_observations, kCrosswalkVertices);
+      // crosswalks: only rings of four corners are complete (one corner out of the range band
+      // leaves a partial view), and a hull of three corners is completed (area_outline.hpp)
+      std::vector<Eigen::Vector3d> pts =
+          areaOutline(rings, s.min_observations, kCrosswalkVertices, kMaxCornerSpread,
+                      inst.cls == CrowdClass::kCrosswalk ? kCrosswalkVertices : 0);
       if (inst.cls != CrowdClass::kCrosswalk && !sameVertexCount(rings, pts.size()))
         pts = minAreaRectangle(rings);  // an arrow seen only in parts: its hull is no outline
       addElement(inst.cls, inst.attributes, pts,

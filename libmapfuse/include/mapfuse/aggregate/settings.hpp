@@ -14,7 +14,7 @@ namespace mapfuse::aggregate {
 struct LaneInstantiationParams {
   double buffer_width = 0.2;         ///< m, half width of the buffer polygon (stage 1)
   double min_overlap_ratio = 0.3;    ///< stage-1 eps: overlap area / smaller polygon area
-  double piece_angle_deg = 45.0;     ///< deg, stage 1: pieces crossing at more are not neighbours
+  double piece_angle_deg = 20.0;     ///< deg, stage 1: pieces crossing at more are not neighbours
   int min_pts = 3;                   ///< stage-1 MinPts (capped by the number of drives)
   double tile_size = 10.0;           ///< m, edge of the square tiles observations are cut at
   double resample_step = 0.25;       ///< m, spacing of the points averaged into centrelines

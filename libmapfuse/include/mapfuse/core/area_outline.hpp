@@ -25,13 +25,23 @@ std::vector<Eigen::Vector3d> simplifyRing(std::vector<Eigen::Vector3d> ring,
 std::vector<Eigen::Vector3d> alignRing(const std::vector<Eigen::Vector3d>& ref,
                                        const std::vector<Eigen::Vector3d>& c);
 
+/// @brief The parallelogram through three of its corners: the fourth is added opposite the
+/// corner of the widest angle (a + c - b): right for rectangles and mild skews; three corners
+/// of a strongly skewed one (60 deg) fit another parallelogram better. Other sizes are returned
+/// unchanged.
+std::vector<Eigen::Vector3d> completeParallelogram(const std::vector<Eigen::Vector3d>& tri);
+
 /// @brief The outline of one area marking from its per-frame observations (each a ring, the
 /// points ranged in the frame): the vertex-wise mean of the observations that have the most
-/// common vertex count (>= 3) when at least `min_complete` do and they agree (median over them
-/// of the largest vertex distance to the mean <= max_corner_spread, m), else the simplified
-/// convex hull of all points (at most `max_vertices` vertices).
+/// common vertex count (>= 3; only `corner_count` when > 0: a ring missing a corner that fell
+/// out of the range band is partial) when at least `min_complete` do and they agree (median
+/// over them of the largest vertex distance to the mean <= max_corner_spread, m), else the
+/// simplified convex hull of all points (at most `max_vertices` vertices). With corner_count 4
+/// (a crosswalk, a parallelogram) a hull that is a triangle (one corner never seen) is
+/// completed by completeParallelogram.
 std::vector<Eigen::Vector3d> areaOutline(const std::vector<std::vector<Eigen::Vector3d>>& rings,
                                          int min_complete, std::size_t max_vertices,
-                                         double max_corner_spread = 0.5);
+                                         double max_corner_spread = 0.5,
+                                         std::size_t corner_count = 0);
 
 }  // namespace mapfuse
