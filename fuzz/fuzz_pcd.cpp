@@ -1,18 +1,9 @@
 // Binary PCD clouds (lidar-semantic-map's map.pcd): read, written, read back.
-#include "fuzz_support.hpp"
-#include "mapfuse/core/classes.hpp"
+#include "fuzz_cloud.hpp"
 #include "mapfuse/io/pcd.hpp"
 
 using namespace mapfuse;
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
-  LabeledCloud c;
-  if (!fuzz::accepts([&] { c = io::parsePcd(fuzz::bytesOf(data, size), "map.pcd"); })) return 0;
-  for (uint8_t l : c.labels) MAPFUSE_FUZZ_CHECK(l < kNumLidarClasses);
-  const auto path = fuzz::scratchDir() / "map.pcd";
-  io::writePcd(path, c);
-  const LabeledCloud back = io::readPcd(path);
-  MAPFUSE_FUZZ_CHECK(back.points == c.points && back.labels == c.labels &&
-                     back.confidence == c.confidence);
-  return 0;
+  return fuzz::cloudRoundTrip(data, size, "map.pcd", io::parsePcd, io::writePcd, io::readPcd);
 }

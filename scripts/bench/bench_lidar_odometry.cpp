@@ -366,13 +366,8 @@ int main(int argc, char** argv) {
       return io::readKittiCalibration(dir);
     }();
     const Pose3 T_imu_velo = calib.T_velo_imu.inverse();
-    const sim::LidarScene scene = sim::generateStreet([&] {
-      sim::StreetParams s = P.lidar.street;
-      s.seed = static_cast<uint64_t>(P.seed);
-      return s;
-    }());
-    const sim::EgoDrive ego{P.lidar.street.ego_start, P.lidar.street.ego_speed,
-                            -0.5 * P.lidar.street.profile.lane_width, P.lidar.velo_height};
+    const sim::LidarDrive drive(P.lidar, calib, static_cast<uint64_t>(P.seed));
+    const sim::LidarScene& scene = drive.scene();
     std::vector<std::vector<Eigen::Vector3f>> scans;
     std::vector<std::vector<uint8_t>> vehicle_masks;  // truth: cars, parked or moving
     std::vector<Pose3> gt;
@@ -380,7 +375,7 @@ int main(int argc, char** argv) {
     omp_set_num_threads(omp_get_num_procs());  // casting only; the odometry runs on one core
     for (int k = 0; k < P.lidar.frames; ++k) {
       const double t = k / P.lidar.frame_rate;
-      const Pose3 T = sim::egoImuPose(scene.road(), ego, T_imu_velo, t) * T_imu_velo;
+      const Pose3 T = drive.imuPose(t) * T_imu_velo;
       const auto scan =
           sim::scanLidar(scene, T, t, P.lidar.sensor, sim::hashKey(uint64_t(seed), uint64_t(k), 1));
       std::vector<Eigen::Vector3f> pts;

@@ -202,10 +202,15 @@ with open(json_lsm) as fh:
     base = json.load(fh)
 
 
-def damaged(name, mutate):
-    doc = json.loads(json.dumps(base))
+def damaged_copy(good, file_name, mutate):
+    """Writes a deep copy of the JSON document `good`, changed by `mutate`, as BAD/file_name."""
+    doc = json.loads(json.dumps(good))
     mutate(doc)
-    return write(name + ".lsm.json", json.dumps(doc))
+    return write(file_name, json.dumps(doc))
+
+
+def damaged(name, mutate):
+    return damaged_copy(base, name + ".lsm.json", mutate)
 
 
 def set_path(doc, path, value):
@@ -279,9 +284,7 @@ with open(truth) as fh:
 
 
 def damaged_map(name, mutate):
-    doc = json.loads(json.dumps(truth_doc))
-    mutate(doc)
-    return write(name + ".map.json", json.dumps(doc))
+    return damaged_copy(truth_doc, name + ".map.json", mutate)
 
 
 def first_point_list(doc):

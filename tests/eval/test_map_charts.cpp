@@ -27,6 +27,16 @@ int pixelsOf(const cv::Mat& bgr, const std::array<uint8_t, 3>& rgb) {
     }
   return n;
 }
+
+/// The chart `write` draws into a fresh file named `name`, read back (BGR).
+template <class Write>
+cv::Mat chartOf(const std::string& name, Write write) {
+  const std::filesystem::path path = test::tempDir("map_charts_" + name) / name;
+  write(path);
+  const cv::Mat img = cv::imread(path.string(), cv::IMREAD_COLOR);
+  REQUIRE(!img.empty());
+  return img;
+}
 }  // namespace
 
 TEST_CASE("error_per_class.png: every class's bar stands out from the white paper",
@@ -41,10 +51,9 @@ TEST_CASE("error_per_class.png: every class's bar stands out from the white pape
     c.absolute.mean = 0.08 + 0.01 * i;
     entry.metrics.classes.push_back(c);
   }
-  const auto dir = test::tempDir("map_charts");
-  eval::writeErrorPerClassPng(dir / "error_per_class.png", entry);
-  const cv::Mat img = cv::imread((dir / "error_per_class.png").string(), cv::IMREAD_COLOR);
-  REQUIRE(!img.empty());
+  const cv::Mat img = chartOf("error_per_class.png", [&](const std::filesystem::path& p) {
+    eval::writeErrorPerClassPng(p, entry);
+  });
   for (int i = 0; i < kNumCrowdClasses; ++i) {
     const auto cls = static_cast<CrowdClass>(i);
     const auto col = crowdClassPaperColor(cls);
@@ -86,10 +95,9 @@ TEST_CASE("error_vs_traversals.png: every class's line and legend in its own col
       maps[m].metrics.classes.push_back(c);
     }
   }
-  const auto dir = test::tempDir("map_charts_traversals");
-  eval::writeErrorVsTraversalsPng(dir / "error_vs_traversals.png", maps);
-  const cv::Mat img = cv::imread((dir / "error_vs_traversals.png").string(), cv::IMREAD_COLOR);
-  REQUIRE(!img.empty());
+  const cv::Mat img = chartOf("error_vs_traversals.png", [&](const std::filesystem::path& p) {
+    eval::writeErrorVsTraversalsPng(p, maps);
+  });
   for (int i = 0; i < kNumCrowdClasses; ++i) {
     const auto cls = static_cast<CrowdClass>(i);
     INFO(crowdClassName(cls));

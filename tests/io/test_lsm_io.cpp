@@ -81,48 +81,40 @@ TEST_CASE("malformed LSM files are refused with file, field and problem", "[io][
       }
     }
   };
-  SECTION("missing field") {
+  // Each case damages one field of a good LSM.
+  struct Case {
+    const char* what;
+    void (*damage)(io::Json&);
+    const char* field;
+    const char* problem;
+  };
+  const Case cases[] = {
+      {"missing field", [](io::Json& d) { d["elements"][0].erase("anchor"); }, "elements[0].anchor",
+       "missing"},
+      {"wrong type", [](io::Json& d) { d["keyframes"][1]["stamp"] = "noon"; }, "keyframes[1].stamp",
+       "expected a number"},
+      {"unknown key", [](io::Json& d) { d["elements"][1]["colour"] = "white"; },
+       "elements[1].colour", "unknown key"},
+      {"unknown class", [](io::Json& d) { d["elements"][0]["class"] = "lane"; },
+       "elements[0].class", "unknown class"},
+      {"wrong format tag", [](io::Json& d) { d["format"] = "mapfuse.vector_map"; }, "format",
+       "expected \"mapfuse.lsm\""},
+      {"wrong version", [](io::Json& d) { d["version"] = 99; }, "version", "unsupported version"},
+      {"non-unit quaternion",
+       [](io::Json& d) {
+         d["keyframes"][0]["pose"]["q"] = {2.0, 0.0, 0.0, 0.0};
+       },
+       "keyframes[0].pose.q", "quaternion norm"},
+      {"covariance count differs from point count",
+       [](io::Json& d) { d["elements"][0]["cov"].erase(0); }, "elements[0].cov",
+       "one covariance per point"},
+      {"enu without origin", [](io::Json& d) { d.erase("origin"); }, "origin", "missing"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.what);
     auto d = good;
-    d["elements"][0].erase("anchor");
-    expectParseError(d, "elements[0].anchor", "missing");
-  }
-  SECTION("wrong type") {
-    auto d = good;
-    d["keyframes"][1]["stamp"] = "noon";
-    expectParseError(d, "keyframes[1].stamp", "expected a number");
-  }
-  SECTION("unknown key") {
-    auto d = good;
-    d["elements"][1]["colour"] = "white";
-    expectParseError(d, "elements[1].colour", "unknown key");
-  }
-  SECTION("unknown class") {
-    auto d = good;
-    d["elements"][0]["class"] = "lane";
-    expectParseError(d, "elements[0].class", "unknown class");
-  }
-  SECTION("wrong format tag and version") {
-    auto d = good;
-    d["format"] = "mapfuse.vector_map";
-    expectParseError(d, "format", "expected \"mapfuse.lsm\"");
-    d = good;
-    d["version"] = 99;
-    expectParseError(d, "version", "unsupported version");
-  }
-  SECTION("non-unit quaternion") {
-    auto d = good;
-    d["keyframes"][0]["pose"]["q"] = {2.0, 0.0, 0.0, 0.0};
-    expectParseError(d, "keyframes[0].pose.q", "quaternion norm");
-  }
-  SECTION("covariance count differs from point count") {
-    auto d = good;
-    d["elements"][0]["cov"].erase(0);
-    expectParseError(d, "elements[0].cov", "one covariance per point");
-  }
-  SECTION("enu without origin") {
-    auto d = good;
-    d.erase("origin");
-    expectParseError(d, "origin", "missing");
+    c.damage(d);
+    expectParseError(d, c.field, c.problem);
   }
 }
 

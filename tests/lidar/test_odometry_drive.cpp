@@ -63,22 +63,17 @@ TEST_CASE("odometry follows a simulated drive with moving cars (truth: the simul
   P.seed = 3;
   const fs::path dir = test::tempDir("odo_sim");
   io::writeKittiCalibration(dir);
-  const Pose3 T_imu_velo = io::readKittiCalibration(dir).T_velo_imu.inverse();
-  const sim::LidarScene scene = sim::generateStreet([&] {
-    sim::StreetParams s = P.lidar.street;
-    s.seed = static_cast<uint64_t>(P.seed);
-    return s;
-  }());
-  const sim::EgoDrive ego{P.lidar.street.ego_start, P.lidar.street.ego_speed,
-                          -0.5 * P.lidar.street.profile.lane_width, P.lidar.velo_height};
+  const io::KittiCalibration calib = io::readKittiCalibration(dir);
+  const Pose3 T_imu_velo = calib.T_velo_imu.inverse();
+  const sim::LidarDrive drive(P.lidar, calib, static_cast<uint64_t>(P.seed));
   sim::LidarSensorParams sensor = P.lidar.sensor;
   sensor.azimuth_steps = 1200;  // coarser than the default 2150: a quicker test
   lidar::ScanOdometry odo(lidar::OdometrySettings{});
   std::vector<Pose3> truth;
   for (int k = 0; k < 40; ++k) {
     const double t = k * kFramePeriod;
-    truth.push_back(sim::egoImuPose(scene.road(), ego, T_imu_velo, t) * T_imu_velo);
-    const auto scan = sim::scanLidar(scene, truth.back(), t, sensor, sim::hashKey(3, k, 1));
+    truth.push_back(drive.imuPose(t) * T_imu_velo);
+    const auto scan = sim::scanLidar(drive.scene(), truth.back(), t, sensor, sim::hashKey(3, k, 1));
     std::vector<Eigen::Vector3f> pts;
     for (const auto& p : scan.points) pts.emplace_back(p.head<3>());
     const auto& st = odo.add(pts, kFramePeriod);

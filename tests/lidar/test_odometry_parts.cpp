@@ -2,6 +2,7 @@
 // definitions they implement: the bounded local voxel map, scan normals, the geometric split of
 // a scan, SE(3) helpers and the step verdict.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <random>
 
 #include "mapfuse/core/error.hpp"
@@ -163,4 +164,33 @@ TEST_CASE("step verdict: each check names its figure, a sound step is trusted",
   reg.converged = false;
   a = lidar::assessStep(reg, prev, nullptr, 0.1, 0.1, s);
   CHECK_THAT(a.reasons, Catch::Contains("did not converge"));
+}
+
+TEST_CASE("odometry settings: a bad value of each struct is a ConfigError naming owner and key",
+          "[lidar][odometry]") {
+  CHECK_NOTHROW(lidar::ScanOdometry(lidar::OdometrySettings{}));  // the defaults are valid
+  struct Case {
+    const char* message;
+    void (*spoil)(lidar::OdometrySettings&);
+  };
+  const Case cases[] = {
+      {"OdometrySettings::max_range", [](lidar::OdometrySettings& s) { s.max_range = 2.0; }},
+      {"OdometrySettings::source_spacing",
+       [](lidar::OdometrySettings& s) { s.source_spacing = 0.25; }},
+      {"OdometrySettings::registration.max_iterations",
+       [](lidar::OdometrySettings& s) { s.registration.max_iterations = 0; }},
+      {"SceneGeometrySettings::ground_window",
+       [](lidar::OdometrySettings& s) { s.geometry.ground_window = 51; }},
+      {"TrustSettings::min_inlier_share",
+       [](lidar::OdometrySettings& s) { s.trust.min_inlier_share = 1.5; }},
+      {"TrustSettings::max_speed",
+       [](lidar::OdometrySettings& s) { s.trust.max_speed = std::nan(""); }},
+  };
+  for (const Case& c : cases) {
+    INFO(c.message);
+    lidar::OdometrySettings s;
+    c.spoil(s);
+    CHECK_THROWS_AS(lidar::ScanOdometry(s), ConfigError);  // exit 2
+    CHECK_THROWS_WITH(lidar::ScanOdometry(s), Catch::Contains(c.message));
+  }
 }

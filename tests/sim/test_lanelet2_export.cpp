@@ -102,6 +102,16 @@ std::vector<io::DrivePath> lanePaths(const sim::World& world) {
   return drives;
 }
 
+/// The procedural world's true map exported as Lanelet2 and read back by the project's reader.
+struct Exported {
+  sim::World world = proceduralWorld();
+  io::Lanelet2ExportStats stats;
+  io::Lanelet2Map osm;
+  Exported()
+      : osm(io::parseLanelet2Osm(io::vectorMapToOsm(world.truth, lanePaths(world), &stats),
+                                 "export.osm")) {}
+};
+
 std::vector<eval::TrueLane> trueLanes(const sim::World& world) {
   std::vector<eval::TrueLane> lanes;
   for (const auto& l : world.lanes) lanes.push_back({l.centerline, l.width});
@@ -111,10 +121,8 @@ std::vector<eval::TrueLane> trueLanes(const sim::World& world) {
 
 TEST_CASE("Lanelet2 export: the true map round-trips through the Lanelet2 reader within 0.05 m",
           "[sim][osm][export]") {
-  const sim::World world = proceduralWorld();
-  io::Lanelet2ExportStats stats;
-  const std::string xml = io::vectorMapToOsm(world.truth, lanePaths(world), &stats);
-  const io::Lanelet2Map osm = io::parseLanelet2Osm(xml, "export.osm");
+  const Exported e;
+  const auto& [world, stats, osm] = e;
   const sim::World back = sim::worldFromLanelet2(osm, world.truth.origin);
   const double worst = compareMaps(world.truth, back.truth);
   CHECK(worst < kRoundTripTolerance);
@@ -129,10 +137,8 @@ TEST_CASE("Lanelet2 export: the true map round-trips through the Lanelet2 reader
 
 TEST_CASE("Lanelet2 export: lanelets with both bounds cover the marked lanes, driving right",
           "[sim][osm][export]") {
-  const sim::World world = proceduralWorld();
-  io::Lanelet2ExportStats stats;
-  const std::string xml = io::vectorMapToOsm(world.truth, lanePaths(world), &stats);
-  const io::Lanelet2Map osm = io::parseLanelet2Osm(xml, "export.osm");
+  const Exported e;
+  const auto& [world, stats, osm] = e;
   const auto shapes = eval::laneletShapes(osm, world.truth.origin);
   const eval::LaneletCoverage cov =
       eval::measureLaneletCoverage(trueLanes(world), world.truth, shapes);

@@ -91,12 +91,8 @@ TEST_CASE("simulate: untyped ways warn once naming the count and no markings exi
   const fs::path dir = test::tempDir("map_import_app");
   test::writeText(dir / "typed.osm", commonRoadMap(true));
   test::writeText(dir / "untyped.osm", commonRoadMap(false));
-  const std::string sim = test::appPath("simulate").string();
   auto run = [&](const std::string& map, const std::string& extra, const std::string& name) {
-    return test::runCommand(sim + " --map " + (dir / map).string() +
-                            " --traversals 1 --route-length 60 --level truth " + extra + " -o " +
-                            (dir / name).string() + " > /dev/null 2> " +
-                            (dir / (name + ".err")).string());
+    return test::simulateTruthOn(dir, map, extra, name);
   };
   // Warning: exit 0, one line naming the 2 untyped ways.
   CHECK(run("typed.osm", "", "typed") == 0);

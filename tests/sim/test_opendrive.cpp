@@ -446,12 +446,8 @@ TEST_CASE("simulate --map on OpenDRIVE: bad maps and maps without markings exit 
       bare.replace(at, 5 + std::string(type).size(), "type=\"none\"");
   bare.replace(bare.find("<signals>"), bare.find("</objects>") + 10 - bare.find("<signals>"), "");
   test::writeText(dir / "bare.xodr", bare);
-  const std::string sim = test::appPath("simulate").string();
   auto run = [&](const std::string& map, const std::string& extra, const std::string& name) {
-    return test::runCommand(sim + " --map " + (dir / map).string() +
-                            " --traversals 1 --route-length 60 --level truth " + extra + " -o " +
-                            (dir / name).string() + " > /dev/null 2> " +
-                            (dir / (name + ".err")).string());
+    return test::simulateTruthOn(dir, map, extra, name);
   };
   CHECK(run("junction.xodr", "", "ok") == 0);
   CHECK(fs::exists(dir / "ok" / "truth" / "vector_map.json"));

@@ -42,6 +42,13 @@ int runCommand(const std::string& command) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
+int simulateTruthOn(const std::filesystem::path& dir, const std::string& map,
+                    const std::string& extra, const std::string& name) {
+  return runCommand(appPath("simulate").string() + " --map " + (dir / map).string() +
+                    " --traversals 1 --route-length 60 --level truth " + extra + " -o " +
+                    (dir / name).string() + " > /dev/null 2> " + (dir / (name + ".err")).string());
+}
+
 void writeText(const std::filesystem::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;

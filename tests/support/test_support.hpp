@@ -23,6 +23,12 @@ std::filesystem::path appPath(const std::string& tool);
 /// @brief Runs a shell command; returns its exit status (0-255).
 int runCommand(const std::string& command);
 
+/// @brief Runs `simulate --map <dir>/<map> --traversals 1 --route-length 60 --level truth
+/// <extra> -o <dir>/<name>` (a map import in one short truth-only run), stdout dropped, stderr
+/// in `<dir>/<name>.err`. @return its exit status.
+int simulateTruthOn(const std::filesystem::path& dir, const std::string& map,
+                    const std::string& extra, const std::string& name);
+
 /// @brief Writes text to a file (test fixtures).
 void writeText(const std::filesystem::path& path, const std::string& text);
 

@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "mapfuse/core/param_check.hpp"
 
 namespace mapfuse::param {
 
@@ -41,6 +44,22 @@ std::string OneOf::describe(const std::string& key) const {
   std::string text = key.empty() ? "one of " : key + " one of ";
   for (std::size_t i = 0; i < names.size(); ++i) text += (i ? ", " : "") + names[i];
   return text;
+}
+
+// The JSON library's own formatting, so that a message shows a value as the config file holds it
+// (shortest round-trip digits, "1.0" for a whole double).
+std::string showNumber(double value) {
+  if (!std::isfinite(value)) return std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf");
+  return nlohmann::json(value).dump();
+}
+std::string showNumber(int64_t value) {
+  return nlohmann::json(value).dump();
+}
+std::string showNumber(uint64_t value) {
+  return nlohmann::json(value).dump();
+}
+std::string showText(const std::string& value) {
+  return nlohmann::json(value).dump();
 }
 
 }  // namespace mapfuse::param

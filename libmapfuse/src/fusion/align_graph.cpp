@@ -8,6 +8,7 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "graph_covariances.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/fusion/align.hpp"
 #include "mapfuse/fusion/voxel_hash.hpp"
@@ -53,18 +54,12 @@ void addPriorsAndOdometry(PoseProblem<D>& P, const std::vector<Lsm>& priors,
   for (int l = 0; l < int(priors.size()); ++l) {
     const auto& kfs = priors[l].keyframes;
     for (int k = 0; k < int(kfs.size()); ++k) {
-      Matrix6d cov = Matrix6d::Zero();
-      cov.topLeftCorner<3, 3>() = kfs[k].covariance.topLeftCorner<3, 3>();
-      cov.diagonal().tail<3>().setConstant(s.prior_rotation_sigma * s.prior_rotation_sigma);
-      cov.topLeftCorner<3, 3>().diagonal().array() += 1e-6;
-      P.addPrior(P.poseIndex(l, k), PoseVar::from(kfs[k].T_frame_body), sqrtInformation(cov));
+      P.addPrior(P.poseIndex(l, k), PoseVar::from(kfs[k].T_frame_body),
+                 sqrtInformation(detail::priorCovariance(kfs[k], s)));
       if (k == 0) continue;
       const Pose3 rel = kfs[k - 1].T_frame_body.inverse() * kfs[k].T_frame_body;
-      const double d = rel.translation().norm();
-      const Matrix6d oc =
-          diagonalCovariance(std::max(s.odom_min_sigma, s.odom_sigma_per_m * d),
-                             std::max(0.1 * s.odom_min_sigma, 0.1 * s.odom_sigma_per_m * d));
-      P.addRelative(P.poseIndex(l, k - 1), P.poseIndex(l, k), rel, sqrtInformation(oc));
+      P.addRelative(P.poseIndex(l, k - 1), P.poseIndex(l, k), rel,
+                    sqrtInformation(detail::odometryCovariance(rel, s)));
     }
   }
 }

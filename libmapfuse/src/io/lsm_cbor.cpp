@@ -262,6 +262,22 @@ void require(bool ok) {
   if (!ok) throw Fallback{};
 }
 
+// The members of one object: `read(i)` reads the value of keys[i]. Each key at most once; any
+// other key sends the file to the general reader. @return the keys present (bit i: keys[i]).
+template <std::size_t N, class F>
+Seen readMembers(Reader& r, const std::string_view (&keys)[N], F&& read) {
+  Seen seen;
+  for (std::size_t n = r.map(); n > 0; --n) {
+    const std::string_view k = r.text();
+    std::size_t i = 0;
+    while (i < N && k != keys[i]) ++i;
+    if (i == N) throw Fallback{};
+    seen.mark(static_cast<int>(i));
+    read(i);
+  }
+  return seen;
+}
+
 // Values beyond the readers' bounds go to the general reader, which refuses them with its own
 // message (io/bounds.hpp: kMaxCoordinate for any metric coordinate, kMaxElementRange for
 // body-frame element points; readLsm checks the others on the decoded LSM).
@@ -272,21 +288,14 @@ bool within(const Eigen::Vector3d& v, double limit) {
 }
 
 Pose3 readPose(Reader& r) {
-  Seen seen;
   Eigen::Vector4d q;
   Eigen::Vector3d t;
-  for (std::size_t n = r.map(); n > 0; --n) {
-    const std::string_view k = r.text();
-    if (k == "q") {
-      seen.mark(0);
+  const Seen seen = readMembers(r, {"q", "t"}, [&](std::size_t i) {
+    if (i == 0)
       q = r.fixed<4>();
-    } else if (k == "t") {
-      seen.mark(1);
+    else
       t = r.fixed<3>();
-    } else {
-      throw Fallback{};
-    }
-  }
+  });
   require(seen.has(0) && seen.has(1) && std::abs(q.norm() - 1.0) <= 1e-3 &&
           within(t, kMaxCoordinate));
   Pose3 T = Pose3::Identity();
@@ -296,76 +305,45 @@ Pose3 readPose(Reader& r) {
 }
 
 geo::GeoOrigin readOrigin(Reader& r) {
-  Seen seen;
   geo::GeoOrigin o{};
-  for (std::size_t n = r.map(); n > 0; --n) {
-    const std::string_view k = r.text();
-    if (k == "lat") {
-      seen.mark(0), o.lat = r.number();
-    } else if (k == "lon") {
-      seen.mark(1), o.lon = r.number();
-    } else if (k == "alt") {
-      seen.mark(2), o.alt = r.number();
-    } else {
-      throw Fallback{};
-    }
-  }
+  double* const value[] = {&o.lat, &o.lon, &o.alt};
+  const Seen seen =
+      readMembers(r, {"lat", "lon", "alt"}, [&](std::size_t i) { *value[i] = r.number(); });
   require(seen.has(0) && seen.has(1) && seen.has(2) && std::abs(o.lat) <= 90.0 &&
           std::abs(o.lon) <= 180.0);
   return o;
 }
 
 Keyframe readKeyframe(Reader& r) {
-  Seen seen;
   Keyframe k;
-  for (std::size_t n = r.map(); n > 0; --n) {
-    const std::string_view key = r.text();
-    if (key == "id") {
-      seen.mark(0), k.id = r.integer();
-    } else if (key == "stamp") {
-      seen.mark(1), k.stamp = r.number();
-    } else if (key == "pose") {
-      seen.mark(2), k.T_frame_body = readPose(r);
-    } else if (key == "sigma") {
-      seen.mark(3);
+  const Seen seen = readMembers(r, {"id", "stamp", "pose", "sigma", "cov"}, [&](std::size_t i) {
+    if (i == 0) {
+      k.id = r.integer();
+    } else if (i == 1) {
+      k.stamp = r.number();
+    } else if (i == 2) {
+      k.T_frame_body = readPose(r);
+    } else if (i == 3) {
       const Vector6d s = r.fixed<6>();
       require(s.minCoeff() >= 0.0);
       k.covariance = s.cwiseAbs2().asDiagonal();
-    } else if (key == "cov") {
-      seen.mark(4);
+    } else {
       require(r.array() == 21);
       for (int a = 0; a < 6; ++a)
         for (int b = a; b < 6; ++b) k.covariance(a, b) = k.covariance(b, a) = r.number();
       require(k.covariance.diagonal().minCoeff() >= 0.0);
-    } else {
-      throw Fallback{};
     }
-  }
+  });
   require(seen.has(0) && seen.has(1) && seen.has(2) && seen.has(3) != seen.has(4));
   return k;
 }
 
 GpsFix readGps(Reader& r) {
-  Seen seen;
   GpsFix g;
-  for (std::size_t n = r.map(); n > 0; --n) {
-    const std::string_view k = r.text();
-    if (k == "stamp") {
-      seen.mark(0), g.stamp = r.number();
-    } else if (k == "lat") {
-      seen.mark(1), g.position.lat = r.number();
-    } else if (k == "lon") {
-      seen.mark(2), g.position.lon = r.number();
-    } else if (k == "alt") {
-      seen.mark(3), g.position.alt = r.number();
-    } else if (k == "sigma_h") {
-      seen.mark(4), g.sigma_h = r.number();
-    } else if (k == "sigma_v") {
-      seen.mark(5), g.sigma_v = r.number();
-    } else {
-      throw Fallback{};
-    }
-  }
+  double* const value[] = {&g.stamp,        &g.position.lat, &g.position.lon,
+                           &g.position.alt, &g.sigma_h,      &g.sigma_v};
+  const Seen seen = readMembers(r, {"stamp", "lat", "lon", "alt", "sigma_h", "sigma_v"},
+                                [&](std::size_t i) { *value[i] = r.number(); });
   for (int i = 0; i < 6; ++i) require(seen.has(i));
   require(std::abs(g.position.lat) <= 90.0 && std::abs(g.position.lon) <= 180.0 &&
           g.sigma_h > 0.0 && g.sigma_v > 0.0);
@@ -388,55 +366,55 @@ Eigen::Matrix3d readCov(Reader& r) {
 }
 
 Element readElement(Reader& r) {
-  Seen seen;
   Element e;
-  for (std::size_t n = r.map(); n > 0; --n) {
-    const std::string_view k = r.text();
-    if (k == "id") {
-      seen.mark(0), e.id = r.integer();
-    } else if (k == "class") {
-      seen.mark(1);
-      const auto c = crowdClassFromName(std::string(r.text()));
-      require(c.has_value());
-      e.cls = *c;
-    } else if (k == "style") {
-      seen.mark(2);
-      const auto s = lineStyleFromName(std::string(r.text()));
-      require(s.has_value());
-      e.attributes.style = *s;
-    } else if (k == "color") {
-      seen.mark(3);
-      const auto c = lineColorFromName(std::string(r.text()));
-      require(c.has_value());
-      e.attributes.color = *c;
-    } else if (k == "anchor") {
-      seen.mark(4), e.anchor = r.integer();
-    } else if (k == "points") {
-      seen.mark(5);
-      e.points_body.resize(r.array());
-      for (auto& p : e.points_body) {
-        p = r.fixed<3>();
-        require(within(p, kMaxElementRange));
+  // "sigma" instead of "cov" is not among the keys: rare, the general path reads it
+  static constexpr std::string_view kKeys[] = {"id",           "class",  "style",   "color",
+                                               "anchor",       "points", "cov",     "confidence",
+                                               "observations", "height", "truth_id"};
+  const Seen seen = readMembers(r, kKeys, [&](std::size_t i) {
+    switch (i) {
+      case 0: e.id = r.integer(); break;
+      case 1: {
+        const auto c = crowdClassFromName(std::string(r.text()));
+        require(c.has_value());
+        e.cls = *c;
+        break;
       }
-    } else if (k == "cov") {
-      seen.mark(6);
-      e.covariances.resize(r.array());
-      for (auto& C : e.covariances) C = readCov(r);
-    } else if (k == "confidence") {
-      seen.mark(7), e.confidence = r.number();
-    } else if (k == "observations") {
-      seen.mark(8);
-      const int64_t o = r.integer();  // checked before narrowing to int
-      require(o >= 1 && o <= std::numeric_limits<int>::max());
-      e.observations = int(o);
-    } else if (k == "height") {
-      seen.mark(9), e.height = r.number();
-    } else if (k == "truth_id") {
-      seen.mark(10), e.truth_id = r.integer();
-    } else {
-      throw Fallback{};  // "sigma" instead of "cov" too: rare, the general path reads it
+      case 2: {
+        const auto s = lineStyleFromName(std::string(r.text()));
+        require(s.has_value());
+        e.attributes.style = *s;
+        break;
+      }
+      case 3: {
+        const auto c = lineColorFromName(std::string(r.text()));
+        require(c.has_value());
+        e.attributes.color = *c;
+        break;
+      }
+      case 4: e.anchor = r.integer(); break;
+      case 5:
+        e.points_body.resize(r.array());
+        for (auto& p : e.points_body) {
+          p = r.fixed<3>();
+          require(within(p, kMaxElementRange));
+        }
+        break;
+      case 6:
+        e.covariances.resize(r.array());
+        for (auto& C : e.covariances) C = readCov(r);
+        break;
+      case 7: e.confidence = r.number(); break;
+      case 8: {
+        const int64_t o = r.integer();  // checked before narrowing to int
+        require(o >= 1 && o <= std::numeric_limits<int>::max());
+        e.observations = int(o);
+        break;
+      }
+      case 9: e.height = r.number(); break;
+      default: e.truth_id = r.integer();
     }
-  }
+  });
   for (int i : {0, 1, 4, 5, 6, 7, 8}) require(seen.has(i));
   require(!e.points_body.empty() && e.covariances.size() == e.points_body.size() &&
           e.confidence >= 0.0 && e.confidence <= 1.0 && e.observations >= 1);
@@ -481,43 +459,39 @@ std::optional<Lsm> decodeLsmCbor(std::string_view bytes) {
   try {
     Reader r(bytes);
     Lsm lsm;
-    Seen seen;
-    for (std::size_t n = r.map(); n > 0; --n) {
-      const std::string_view k = r.text();
-      if (k == "format") {
-        seen.mark(0);
-        require(r.text() == kLsmFormat);
-      } else if (k == "version") {
-        seen.mark(1);
-        const int64_t v = r.integer();
-        require(v >= 1 && v <= kLsmVersion);
-      } else if (k == "drive_id") {
-        seen.mark(2), lsm.drive_id = std::string(r.text());
-      } else if (k == "vehicle_id") {
-        seen.mark(3), lsm.vehicle_id = std::string(r.text());
-      } else if (k == "frame") {
-        seen.mark(4);
-        const std::string_view f = r.text();
-        require(f == "enu" || f == "odom");
-        lsm.frame = f == "enu" ? LsmFrame::kEnu : LsmFrame::kOdom;
-      } else if (k == "origin") {
-        seen.mark(5), lsm.origin = readOrigin(r);
-      } else if (k == "keyframes") {
-        seen.mark(6);
-        lsm.keyframes.resize(r.array());
-        for (auto& kf : lsm.keyframes) kf = readKeyframe(r);
-      } else if (k == "gps") {
-        seen.mark(7);
-        lsm.gps.resize(r.array());
-        for (auto& g : lsm.gps) g = readGps(r);
-      } else if (k == "elements") {
-        seen.mark(8);
-        lsm.elements.resize(r.array());
-        for (auto& e : lsm.elements) e = readElement(r);
-      } else {
-        throw Fallback{};
+    static constexpr std::string_view kKeys[] = {"format",     "version", "drive_id",
+                                                 "vehicle_id", "frame",   "origin",
+                                                 "keyframes",  "gps",     "elements"};
+    const Seen seen = readMembers(r, kKeys, [&](std::size_t i) {
+      switch (i) {
+        case 0: require(r.text() == kLsmFormat); break;
+        case 1: {
+          const int64_t v = r.integer();
+          require(v >= 1 && v <= kLsmVersion);
+          break;
+        }
+        case 2: lsm.drive_id = std::string(r.text()); break;
+        case 3: lsm.vehicle_id = std::string(r.text()); break;
+        case 4: {
+          const std::string_view f = r.text();
+          require(f == "enu" || f == "odom");
+          lsm.frame = f == "enu" ? LsmFrame::kEnu : LsmFrame::kOdom;
+          break;
+        }
+        case 5: lsm.origin = readOrigin(r); break;
+        case 6:
+          lsm.keyframes.resize(r.array());
+          for (auto& kf : lsm.keyframes) kf = readKeyframe(r);
+          break;
+        case 7:
+          lsm.gps.resize(r.array());
+          for (auto& g : lsm.gps) g = readGps(r);
+          break;
+        default:
+          lsm.elements.resize(r.array());
+          for (auto& e : lsm.elements) e = readElement(r);
       }
-    }
+    });
     require(r.done());
     for (int i : {0, 1, 2, 4, 6, 8}) require(seen.has(i));
     require(lsm.frame != LsmFrame::kEnu || lsm.origin.has_value());

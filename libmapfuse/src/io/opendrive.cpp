@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <pugixml.hpp>
+#include <tuple>
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
@@ -56,6 +57,15 @@ class Reader {
   OdrPoly3 poly(const pugi::xml_node& n, const char* s_attr) const {
     return {bounded(n, s_attr, 0.0, bounds::kMaxOdrRoadLength), number(n, "a"), number(n, "b"),
             number(n, "c"), number(n, "d")};
+  }
+  /// Where a signal or object stands on its road: s, t, zOffset and the heading attribute
+  /// `heading` (a signal's hOffset, an object's hdg), read in that order.
+  std::tuple<double, double, double, double> placement(const pugi::xml_node& n,
+                                                       const char* heading) const {
+    const double s = bounded(n, "s", 0.0, bounds::kMaxOdrRoadLength);
+    const double t = bounded(n, "t", -kMaxOffset, kMaxOffset);
+    const double z = bounded(n, "zOffset", 0.0, -kMaxOffset, kMaxOffset);
+    return {s, t, z, bounded(n, heading, 0.0, -bounds::kMaxAngle, bounds::kMaxAngle)};
   }
   [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
     throw ParseError(file_, where_ + (field.empty() ? "" : " " + field), problem);
@@ -202,10 +212,7 @@ OdrRoad readRoad(const pugi::xml_node& r, const std::string& file) {
     sig.id = s.attribute("id").value();
     sig.name = s.attribute("name").value();
     const Reader RS(file, where + " signal " + sig.id);
-    sig.s = RS.bounded(s, "s", 0.0, kMaxOdrRoadLength);
-    sig.t = RS.bounded(s, "t", -kMaxOffset, kMaxOffset);
-    sig.z_offset = RS.bounded(s, "zOffset", 0.0, -kMaxOffset, kMaxOffset);
-    sig.h_offset = RS.bounded(s, "hOffset", 0.0, -bounds::kMaxAngle, bounds::kMaxAngle);
+    std::tie(sig.s, sig.t, sig.z_offset, sig.h_offset) = RS.placement(s, "hOffset");
     sig.height = RS.bounded(s, "height", 0.0, 0.0, bounds::kMaxElementHeight);
     sig.width = RS.bounded(s, "width", 0.0, 0.0, kMaxOffset);
     sig.type = s.attribute("type").value();
@@ -221,10 +228,7 @@ OdrRoad readRoad(const pugi::xml_node& r, const std::string& file) {
     obj.name = o.attribute("name").value();
     obj.type = o.attribute("type").value();
     const Reader RO(file, where + " object " + obj.id);
-    obj.s = RO.bounded(o, "s", 0.0, kMaxOdrRoadLength);
-    obj.t = RO.bounded(o, "t", -kMaxOffset, kMaxOffset);
-    obj.z_offset = RO.bounded(o, "zOffset", 0.0, -kMaxOffset, kMaxOffset);
-    obj.hdg = RO.bounded(o, "hdg", 0.0, -bounds::kMaxAngle, bounds::kMaxAngle);
+    std::tie(obj.s, obj.t, obj.z_offset, obj.hdg) = RO.placement(o, "hdg");
     obj.length = RO.bounded(o, "length", 0.0, 0.0, kMaxOffset);
     obj.width = RO.bounded(o, "width", 0.0, 0.0, kMaxOffset);
     obj.height = RO.bounded(o, "height", 0.0, 0.0, bounds::kMaxElementHeight);

@@ -26,37 +26,23 @@ int typeSize(const std::string& t) {
   return 0;
 }
 
+// One value of type T at p (unaligned; host order, little-endian on the supported machines).
+template <class T>
+double load(const char* p) {
+  T v;
+  std::memcpy(&v, p, sizeof v);
+  return static_cast<double>(v);
+}
+
 double readValue(const char* p, const std::string& t) {
-  if (t == "float" || t == "float32") {
-    float f;
-    std::memcpy(&f, p, 4);
-    return f;
-  }
-  if (t == "double" || t == "float64") {
-    double d;
-    std::memcpy(&d, p, 8);
-    return d;
-  }
-  if (t == "uchar" || t == "uint8") return static_cast<uint8_t>(*p);
-  if (t == "char" || t == "int8") return static_cast<int8_t>(*p);
-  if (t == "ushort" || t == "uint16") {
-    uint16_t v;
-    std::memcpy(&v, p, 2);
-    return v;
-  }
-  if (t == "short" || t == "int16") {
-    int16_t v;
-    std::memcpy(&v, p, 2);
-    return v;
-  }
-  if (t == "uint" || t == "uint32") {
-    uint32_t v;
-    std::memcpy(&v, p, 4);
-    return v;
-  }
-  int32_t v;
-  std::memcpy(&v, p, 4);
-  return v;
+  if (t == "float" || t == "float32") return load<float>(p);
+  if (t == "double" || t == "float64") return load<double>(p);
+  if (t == "uchar" || t == "uint8") return load<uint8_t>(p);
+  if (t == "char" || t == "int8") return load<int8_t>(p);
+  if (t == "ushort" || t == "uint16") return load<uint16_t>(p);
+  if (t == "short" || t == "int16") return load<int16_t>(p);
+  if (t == "uint" || t == "uint32") return load<uint32_t>(p);
+  return load<int32_t>(p);
 }
 
 }  // namespace

@@ -5,7 +5,6 @@
 #include <cstdio>
 
 #include "mapfuse/core/error.hpp"
-#include "setting_check.hpp"
 
 namespace mapfuse::lidar {
 namespace {
@@ -22,19 +21,6 @@ void addReason(std::string& r, const char* fmt, double a, double b) {
   r += buf;
 }
 }  // namespace
-
-void TrustSettings::validate() const {
-  const detail::SettingCheck need{"TrustSettings"};
-  need(min_inlier_share >= 0 && min_inlier_share <= 1, "min_inlier_share", min_inlier_share,
-       "in [0, 1]");
-  need(min_constraint >= 0 && min_constraint <= 1.0 / 3, "min_constraint", min_constraint,
-       "in [0, 1/3]");
-  need(max_speed > 0, "max_speed", max_speed, "> 0");
-  need(max_rotation_rate > 0, "max_rotation_rate", max_rotation_rate, "> 0");
-  need(max_acceleration > 0, "max_acceleration", max_acceleration, "> 0");
-  need(max_angular_acceleration > 0, "max_angular_acceleration", max_angular_acceleration, "> 0");
-  need(max_deviation_floor >= 0, "max_deviation_floor", max_deviation_floor, ">= 0");
-}
 
 double translationConstraint(const LocalVoxelMap& map, const std::vector<Eigen::Vector3d>& source,
                              const Pose3& T, double max_distance, int stride) {

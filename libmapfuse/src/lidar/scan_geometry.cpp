@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "mapfuse/core/error.hpp"
-#include "setting_check.hpp"
+#include "mapfuse/core/param_check.hpp"
 
 namespace mapfuse::lidar {
 namespace {
@@ -64,23 +64,11 @@ GroundGrid groundGrid(const std::vector<Eigen::Vector3d>& pts, double cell, int 
 
 }  // namespace
 
-void SceneGeometrySettings::validate() const {
-  const detail::SettingCheck need{"SceneGeometrySettings"};
-  need(ground_cell > 0, "ground_cell", ground_cell, "> 0");
-  need(ground_window >= 0 && ground_window <= 50, "ground_window", ground_window, "in 0..50");
-  need(ground_tolerance >= 0, "ground_tolerance", ground_tolerance, ">= 0");
-  need(ground_slope >= 0, "ground_slope", ground_slope, ">= 0");
-  need(column_cell > 0, "column_cell", column_cell, "> 0");
-  need(max_gap > 0, "max_gap", max_gap, "> 0");
-  need(max_height > 0, "max_height", max_height, "> 0");
-  need(max_bottom >= 0, "max_bottom", max_bottom, ">= 0");
-}
-
 std::vector<ScanPointKind> splitScanGeometry(const std::vector<Eigen::Vector3d>& pts,
                                              const SceneGeometrySettings& s,
                                              SceneGeometryStats* stats,
                                              std::vector<double>* heights) {
-  s.validate();
+  param::validate(s);
   std::vector<ScanPointKind> kind(pts.size(), ScanPointKind::kStatic);
   SceneGeometryStats st;
   if (pts.empty()) {

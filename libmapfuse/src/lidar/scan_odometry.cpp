@@ -3,9 +3,9 @@
 #include <cmath>
 
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/core/param_check.hpp"
 #include "mapfuse/core/voxel_grid.hpp"
 #include "mapfuse/lidar/scan_normals.hpp"
-#include "setting_check.hpp"
 
 namespace mapfuse::lidar {
 namespace {
@@ -74,35 +74,11 @@ Pose3 scaleMotion(const Pose3& T, double alpha) {
   return expSE3(alpha * logSE3(T));
 }
 
-void OdometrySettings::validate() const {
-  const detail::SettingCheck need{"OdometrySettings"};
-  need(min_range >= 0, "min_range", min_range, ">= 0");
-  need(max_range > min_range, "max_range", max_range, "> min_range");
-  need(voxel_size > 0, "voxel_size", voxel_size, "> 0");
-  need(scan_spacing > 0, "scan_spacing", scan_spacing, "> 0");
-  need(source_spacing >= scan_spacing, "source_spacing", source_spacing, ">= scan_spacing");
-  need(normal_neighbors >= 3 && normal_neighbors <= 32, "normal_neighbors", normal_neighbors,
-       "in 3..32");
-  need(normal_radius > 0, "normal_radius", normal_radius, "> 0");
-  need(keyframe_distance >= 0, "keyframe_distance", keyframe_distance, ">= 0");
-  need(keyframe_angle >= 0, "keyframe_angle", keyframe_angle, ">= 0");
-  need(fine_threshold > 0, "fine_threshold", fine_threshold, "> 0");
-  need(max_points_per_voxel >= 1 && max_points_per_voxel <= 255, "max_points_per_voxel",
-       max_points_per_voxel, "in 1..255");
-  need(sweep_period > 0, "sweep_period", sweep_period, "> 0");
-  need(geometry_spacing > 0, "geometry_spacing", geometry_spacing, "> 0");
-  need(initial_threshold > 0, "initial_threshold", initial_threshold, "> 0");
-  need(min_motion >= 0, "min_motion", min_motion, ">= 0");
-  need(registration.max_iterations >= 1, "registration.max_iterations", registration.max_iterations,
-       ">= 1");
-  need(registration.convergence > 0, "registration.convergence", registration.convergence, "> 0");
-  geometry.validate();
-  trust.validate();
-}
-
 ScanOdometry::ScanOdometry(const OdometrySettings& s)
     : s_(s), map_([&] {
-        s.validate();
+        param::validate(s);
+        param::validate(s.geometry);
+        param::validate(s.trust);
         return LocalMapSettings{s.voxel_size, s.max_points_per_voxel, s.max_range};
       }()) {
   model_sse_ = s.initial_threshold * s.initial_threshold;

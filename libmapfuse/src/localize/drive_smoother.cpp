@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "mapfuse/solver/quiet_solve.hpp"
 #include "matching.hpp"
 #include "residuals.hpp"
 
@@ -98,14 +99,10 @@ void smoothDrive(const MapIndex& map, const DriveObservations& d, const Localize
                 new detail::MotionResidual(motionBetween(d, k - 1, k, T[k - 1], T[k], sm))),
             nullptr, x[k - 1].data(), x[k].data());
     }
-    ceres::Solver::Options options;
-    options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-    options.max_num_iterations = s.max_solver_iterations;
-    options.num_threads = 1;
-    options.logging_type = ceres::SILENT;
-    ceres::Solver::Summary summary;
-    ceres::Solve(options, &problem, &summary);
-    result.solver_iterations += static_cast<long>(summary.iterations.size());
+    result.solver_iterations +=
+        solver::solveQuietly(problem, solver::LinearSolver::kSparseNormalCholesky,
+                             s.max_solver_iterations)
+            .iterations;
     for (std::size_t k = 0; k < n; ++k) T[k] = corrected(T[k], x[k]);
   }
   for (std::size_t k = 0; k < n; ++k) {  // the residual at the final poses

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mapfuse/core/voxel_grid.hpp"
+
 namespace mapfuse::localize {
 
 int matchKey(CrowdClass cls, const Attributes& attributes, bool use_attributes) {
@@ -53,33 +55,27 @@ void MapIndex::insert(int key, const MapTarget& t) {
   const auto idx = static_cast<uint32_t>(targets_.size());
   targets_.push_back(t);
   // every cell of the segment's bounding box (segments are short polyline pieces)
-  const auto x0 = static_cast<int64_t>(std::floor(std::min(t.a.x(), t.b.x()) / cell_));
-  const auto x1 = static_cast<int64_t>(std::floor(std::max(t.a.x(), t.b.x()) / cell_));
-  const auto y0 = static_cast<int64_t>(std::floor(std::min(t.a.y(), t.b.y()) / cell_));
-  const auto y1 = static_cast<int64_t>(std::floor(std::max(t.a.y(), t.b.y()) / cell_));
-  for (int64_t ix = x0; ix <= x1; ++ix)
-    for (int64_t iy = y0; iy <= y1; ++iy) cells_[cellKey(key, ix, iy)].push_back(idx);
+  voxel_grid::forEachCell2d(
+      std::min(t.a.x(), t.b.x()), std::min(t.a.y(), t.b.y()), std::max(t.a.x(), t.b.x()),
+      std::max(t.a.y(), t.b.y()), cell_,
+      [&](int64_t ix, int64_t iy) { cells_[cellKey(key, ix, iy)].push_back(idx); });
 }
 
 TargetMatch MapIndex::nearest(int key, const Eigen::Vector2d& p, double radius) const {
   TargetMatch best;
   best.distance = radius;
-  const auto x0 = static_cast<int64_t>(std::floor((p.x() - radius) / cell_));
-  const auto x1 = static_cast<int64_t>(std::floor((p.x() + radius) / cell_));
-  const auto y0 = static_cast<int64_t>(std::floor((p.y() - radius) / cell_));
-  const auto y1 = static_cast<int64_t>(std::floor((p.y() + radius) / cell_));
-  for (int64_t ix = x0; ix <= x1; ++ix)
-    for (int64_t iy = y0; iy <= y1; ++iy) {
-      const auto it = cells_.find(cellKey(key, ix, iy));
-      if (it == cells_.end()) continue;
-      for (uint32_t i : it->second) {
-        const double d = targetDistance(targets_[i], p);
-        if (d <= best.distance) {
-          best.distance = d;
-          best.target = &targets_[i];
-        }
-      }
-    }
+  voxel_grid::forEachCell2d(p.x() - radius, p.y() - radius, p.x() + radius, p.y() + radius, cell_,
+                            [&](int64_t ix, int64_t iy) {
+                              const auto it = cells_.find(cellKey(key, ix, iy));
+                              if (it == cells_.end()) return;
+                              for (uint32_t i : it->second) {
+                                const double d = targetDistance(targets_[i], p);
+                                if (d <= best.distance) {
+                                  best.distance = d;
+                                  best.target = &targets_[i];
+                                }
+                              }
+                            });
   return best;
 }
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "mapfuse/solver/quiet_solve.hpp"
 #include "residuals.hpp"
 
 namespace mapfuse::localize::detail {
@@ -51,17 +52,12 @@ SolveOutput solvePlanarCorrection(const SolveInput& in) {
   problem.AddResidualBlock(PriorResidual::create(in.c, in.yaw, in.gps), nullptr, x);
   if (in.motion)
     problem.AddResidualBlock(PriorResidual::create(in.c, in.yaw, *in.motion), nullptr, x);
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.max_num_iterations = in.max_iterations;
-  options.num_threads = 1;
-  options.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
+  const solver::QuietSolveResult solved =
+      solver::solveQuietly(problem, solver::LinearSolver::kDenseQr, in.max_iterations);
   SolveOutput out;
   out.x = Eigen::Vector3d(x[0], x[1], x[2]);
-  out.iterations = static_cast<int>(summary.iterations.size());
-  out.converged = summary.termination_type == ceres::CONVERGENCE;
+  out.iterations = solved.iterations;
+  out.converged = solved.converged;
   out.information = informationAt(in, out.x);
   return out;
 }

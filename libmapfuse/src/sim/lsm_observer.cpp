@@ -7,6 +7,7 @@
 #include <set>
 
 #include "draw_order.hpp"
+#include "mapfuse/core/voxel_grid.hpp"
 
 namespace mapfuse::sim {
 
@@ -31,15 +32,12 @@ PieceIndex::PieceIndex(const World& world, double point_spacing) {
 
 std::vector<int> PieceIndex::near(const Eigen::Vector3d& c, double radius) const {
   std::set<int> out;
-  const int64_t x0 = static_cast<int64_t>(std::floor((c.x() - radius) / cell_));
-  const int64_t x1 = static_cast<int64_t>(std::floor((c.x() + radius) / cell_));
-  const int64_t y0 = static_cast<int64_t>(std::floor((c.y() - radius) / cell_));
-  const int64_t y1 = static_cast<int64_t>(std::floor((c.y() + radius) / cell_));
-  for (int64_t x = x0; x <= x1; ++x)
-    for (int64_t y = y0; y <= y1; ++y) {
-      const auto it = grid_.find(key(x, y));
-      if (it != grid_.end()) out.insert(it->second.begin(), it->second.end());
-    }
+  voxel_grid::forEachCell2d(c.x() - radius, c.y() - radius, c.x() + radius, c.y() + radius, cell_,
+                            [&](int64_t x, int64_t y) {
+                              const auto it = grid_.find(key(x, y));
+                              if (it != grid_.end())
+                                out.insert(it->second.begin(), it->second.end());
+                            });
   return {out.begin(), out.end()};
 }
 

@@ -49,14 +49,7 @@ void addOpenDriveElements(const OdrContext& ctx, World& world) {
   const OpenDriveAssumptions& A = ctx.assumptions;
   int64_t next_id = 1;
   auto add = [&](CrowdClass cls, Polyline pts, const std::string& note) -> MapInstance& {
-    MapInstance m;
-    m.id = next_id++;
-    m.cls = cls;
-    m.points = std::move(pts);
-    m.note = note;
-    m.source_ids = {m.id};
-    world.truth.instances.push_back(std::move(m));
-    return world.truth.instances.back();
+    return world.addTruth(next_id++, cls, std::move(pts), note);
   };
   std::map<std::string, int> skipped_marks, skipped_objects;
   int signs = 0, lights = 0, poles = 0, crosswalks = 0, stop_lines = 0, placed_poles = 0;

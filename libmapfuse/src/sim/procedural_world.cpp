@@ -35,15 +35,9 @@ struct Builder {
     world.lanes.push_back(std::move(lane));
   }
   MapInstance& addInstance(CrowdClass cls, Polyline points, const std::string& note = "") {
-    MapInstance m;
-    m.id = next_instance++;
-    m.cls = cls;
-    m.points = std::move(points);
-    m.note = note;
-    m.source_ids = {m.id};
+    MapInstance& m = world.addTruth(next_instance++, cls, std::move(points), note);
     if (cls == CrowdClass::kLaneLine) m.attributes.color = LineColor::kWhite;
-    world.truth.instances.push_back(std::move(m));
-    return world.truth.instances.back();
+    return m;
   }
   void addLine(const Polyline& line, LineStyle style) {
     addInstance(CrowdClass::kLaneLine, line).attributes.style = style;

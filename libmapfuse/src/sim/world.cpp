@@ -10,6 +10,17 @@ double World::laneLength() const {
   return total;
 }
 
+MapInstance& World::addTruth(int64_t id, CrowdClass cls, Polyline points, const std::string& note) {
+  MapInstance m;
+  m.id = id;
+  m.cls = cls;
+  m.points = std::move(points);
+  m.note = note;
+  m.source_ids = {m.id};
+  truth.instances.push_back(std::move(m));
+  return truth.instances.back();
+}
+
 namespace {
 Eigen::Vector3d direction(const Polyline& line, bool at_end) {
   const std::size_t n = line.size();

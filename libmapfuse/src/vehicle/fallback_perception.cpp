@@ -10,6 +10,7 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/progress.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/png_decode.hpp"
 #include "mapfuse/vehicle/centerline.hpp"
 #include "mapfuse/vehicle/segmentation_cache.hpp"
 
@@ -17,16 +18,7 @@ namespace mapfuse::vehicle {
 
 cv::Mat readColorImage(const std::filesystem::path& path) {
   if (!std::filesystem::exists(path)) throw IoError(path.string(), "image missing");
-  const std::string bytes = io::readBytes(path);
-  cv::Mat img;
-  try {
-    img = cv::imdecode(cv::Mat(1, int(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data())),
-                       cv::IMREAD_COLOR);
-  } catch (const cv::Exception&) {
-    img = cv::Mat();
-  }
-  if (img.empty()) throw ParseError(path.string(), "", "not a decodable image (corrupt PNG?)");
-  return img;
+  return io::decodePng(io::readBytes(path), path.string(), cv::IMREAD_COLOR);
 }
 
 struct RoadSegmenter::Impl {

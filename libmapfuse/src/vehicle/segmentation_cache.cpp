@@ -4,6 +4,7 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/png_decode.hpp"
 
 namespace mapfuse::vehicle {
 namespace fs = std::filesystem;
@@ -14,15 +15,7 @@ fs::path segmentationCachePath(const fs::path& folder, const fs::path& image) {
 
 std::optional<Segmentation> readCachedSegmentation(const fs::path& file, const cv::Size& size) {
   if (!fs::exists(file)) return std::nullopt;
-  const std::string bytes = io::readBytes(file);
-  cv::Mat img;
-  try {
-    img = cv::imdecode(cv::Mat(1, int(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data())),
-                       cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception&) {
-    img = cv::Mat();
-  }
-  if (img.empty()) throw ParseError(file.string(), "", "not a decodable PNG");
+  const cv::Mat img = io::decodePng(io::readBytes(file), file.string(), cv::IMREAD_UNCHANGED);
   if (img.type() != CV_8UC3)
     throw ParseError(file.string(), "", "a segmentation cache file must be 8-bit, 3 channels");
   if (img.size() != size)

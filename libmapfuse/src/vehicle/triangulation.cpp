@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "mapfuse/solver/quiet_solve.hpp"
+
 namespace mapfuse::vehicle {
 namespace {
 
@@ -92,16 +94,10 @@ TriangulationResult triangulateTrack(const Eigen::Matrix3d& K,
         new ReprojectionCost(K, o.T_world_cam.inverse(), o.pixel, s.sigma_pixel));
     problem.AddResidualBlock(cost, new ceres::HuberLoss(s.huber_delta), p);
   }
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  options.max_num_iterations = s.max_iterations;
-  options.num_threads = 1;
-  options.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
-  r.iterations = int(summary.iterations.size());
-  r.converged = summary.termination_type == ceres::CONVERGENCE;
+  const solver::QuietSolveResult solved =
+      solver::solveQuietly(problem, solver::LinearSolver::kDenseQr, s.max_iterations);
+  r.iterations = solved.iterations;
+  r.converged = solved.converged;
   P = Eigen::Vector3d(p[0], p[1], p[2]);
 
   // Final RMS (pixels) and covariance from the Gauss-Newton normal matrix.

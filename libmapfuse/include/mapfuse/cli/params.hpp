@@ -21,21 +21,14 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/param.hpp"
+#include "mapfuse/core/param_check.hpp"
 #include "mapfuse/io/json_view.hpp"
 
 namespace mapfuse {
 
 namespace detail {
-template <class T>
-constexpr bool kIsNumber = std::is_arithmetic_v<T> && !std::is_same_v<T, bool>;
-
-/// @brief "-1.0", "30", "\"spread\"": a value as it reads in a config file.
-template <class T>
-std::string showValue(const T& value) {
-  if constexpr (std::is_floating_point_v<T>)
-    if (!std::isfinite(value)) return std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf");
-  return nlohmann::json(value).dump();
-}
+using param::kIsNumber;
+using param::showValue;
 
 struct ToJsonVisitor {
   nlohmann::json& j;
@@ -125,42 +118,6 @@ struct FromJsonVisitor {
   void relation(const char*, const T&, bool, const char*) {}
 };
 
-/// Checks every rule; the first violation throws "<Owner>::<key> = <value>. Violated
-/// constraint: <rule>".
-struct ValidateVisitor {
-  const char* owner;
-
-  [[noreturn]] void fail(const char* key, const std::string& value, const std::string& rule) {
-    throw ConfigError(std::string(owner) + "::" + key + " = " + value +
-                      ". Violated constraint: " + rule);
-  }
-  template <class T>
-  void operator()(const char* key, T& value, const char*, const char*, const param::Range& range) {
-    static_assert(kIsNumber<T>, "a Range rules numbers");
-    if (!range.contains(static_cast<double>(value)))
-      fail(key, showValue(value), range.describe(key));
-  }
-  /// bool and free text have no rule; a number without one must still be finite.
-  template <class T>
-  void operator()(const char* key, T& value, const char*, const char*) {
-    if constexpr (std::is_floating_point_v<T>)
-      if (!std::isfinite(value)) fail(key, showValue(value), std::string(key) + " finite");
-  }
-  void operator()(const char* key, std::string& value, const char*, const char*,
-                  const param::OneOf& names) {
-    if (!names.contains(value)) fail(key, showValue(value), names.describe(key));
-  }
-  void operator()(const char* key, std::string& value, const char*, const char*,
-                  const param::TextRule& rule) {
-    if (!rule.ok(value)) fail(key, showValue(value), rule.text);
-  }
-  template <class E>
-  void operator()(const char*, E&, const char*, const char*, const param::Names<E>&) {}
-  template <class T>
-  void relation(const char* key, const T& value, bool ok, const char* rule) {
-    if (!ok) fail(key, showValue(value), std::string(key) + " " + rule);
-  }
-};
 }  // namespace detail
 
 /// Where and how a parameter is declared (for the "declared once" test and the docs).
@@ -255,9 +212,7 @@ void paramsFromJson(Params& params, const nlohmann::json& j, const std::string& 
 /// stage's Params name (Params::kName) unless given.
 template <class Params>
 void validateParams(const Params& params, const char* owner = Params::kName) {
-  Params copy = params;
-  detail::ValidateVisitor v{owner};
-  copy.visit(v);
+  param::validate(params, owner);
 }
 
 /// @brief Reads a config file (JSON) into `params`: like paramsFromJson, and an unreadable,

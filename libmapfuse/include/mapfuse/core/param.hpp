@@ -12,8 +12,9 @@
 ///   }
 ///
 /// Numbers always carry a Range (finite values only; integers are range-checked before they are
-/// narrowed). The visitors in mapfuse/cli/params.hpp and mapfuse/cli/app.hpp turn that one list
-/// into the command-line options, the config-file reader, validation and the resolved config, so
+/// narrowed). The visitors in mapfuse/core/param_check.hpp (validation, for any area's
+/// settings), mapfuse/cli/params.hpp and mapfuse/cli/app.hpp turn that one list into the
+/// command-line options, the config-file reader, validation and the resolved config, so
 /// a parameter's name, default and rule cannot drift apart. Ceres names its rules the same way
 /// (`OPTION_GE(max_num_iterations, 0)`).
 #include <initializer_list>

@@ -47,6 +47,19 @@ inline constexpr CellOffset kNeighbourOrder[27] = {
     {1, 0, 1},   {0, -1, -1}, {0, -1, 1},  {0, 1, -1}, {0, 1, 1},   {-1, -1, -1}, {-1, -1, 1},
     {-1, 1, -1}, {-1, 1, 1},  {1, -1, -1}, {1, -1, 1}, {1, 1, -1},  {1, 1, 1}};
 
+/// @brief Calls f(ix, iy) for every cell of side `cell` (m) of a 2-D grid that the box from
+/// (x_lo, y_lo) to (x_hi, y_hi) touches: floor(lo / cell) .. floor(hi / cell) on each axis, x
+/// outer.
+template <class F>
+void forEachCell2d(double x_lo, double y_lo, double x_hi, double y_hi, double cell, F&& f) {
+  const auto x0 = static_cast<int64_t>(std::floor(x_lo / cell));
+  const auto x1 = static_cast<int64_t>(std::floor(x_hi / cell));
+  const auto y0 = static_cast<int64_t>(std::floor(y_lo / cell));
+  const auto y1 = static_cast<int64_t>(std::floor(y_hi / cell));
+  for (int64_t ix = x0; ix <= x1; ++ix)
+    for (int64_t iy = y0; iy <= y1; ++iy) f(ix, iy);
+}
+
 /// @brief Along one axis, the distance from a query at `local` within its cell (0..size) to the
 /// neighbouring cell at offset d (-1, 0, 1): the squared sum over the axes bounds the distance
 /// to any point of that cell.

@@ -4,6 +4,7 @@
 /// constrain every direction of translation, and the motion is one a road vehicle can make.
 #include <string>
 
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/core/se3.hpp"
 #include "mapfuse/lidar/local_voxel_map.hpp"
 #include "mapfuse/lidar/map_registration.hpp"
@@ -23,8 +24,21 @@ struct TrustSettings {
   /// simulated drives, 0.2 m: registration noise, not motion)
   double max_deviation_floor = 0.5;
 
-  /// @throws ConfigError naming the field when a value is out of range.
-  void validate() const;
+  static constexpr const char* kName = "TrustSettings";  ///< names the owner in messages
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    v("min_inlier_share", min_inlier_share, "", "share of registered points on the map", in(0, 1));
+    v("min_constraint", min_constraint, "",
+      "smallest eigenvalue of the mean n n^T of the matched normals", in(0, 1.0 / 3));
+    v("max_speed", max_speed, "m/s", "fastest plausible motion", gt(0));
+    v("max_rotation_rate", max_rotation_rate, "deg/s", "fastest plausible turn", gt(0));
+    v("max_acceleration", max_acceleration, "m/s^2", "largest change of velocity", gt(0));
+    v("max_angular_acceleration", max_angular_acceleration, "deg/s^2",
+      "largest change of turn rate", gt(0));
+    v("max_deviation_floor", max_deviation_floor, "m, deg",
+      "deviations below this are never implausible", ge(0));
+  }
 };
 
 /// Motion and registration figures of one step, and the verdict.

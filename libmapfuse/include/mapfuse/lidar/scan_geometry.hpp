@@ -15,6 +15,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "mapfuse/core/param.hpp"
+
 namespace mapfuse::lidar {
 
 struct SceneGeometrySettings {
@@ -27,8 +29,19 @@ struct SceneGeometrySettings {
   double max_height = 4.3;        ///< m above ground, top of the tallest road user
   double max_bottom = 2.0;        ///< m above ground, highest start of a road user's segment
 
-  /// @throws ConfigError naming the field when a value is out of range.
-  void validate() const;
+  static constexpr const char* kName = "SceneGeometrySettings";  ///< names the owner in messages
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    v("ground_cell", ground_cell, "m", "cell of the ground height grid", gt(0));
+    v("ground_window", ground_window, "", "cells each side of the lowest-return filter", in(0, 50));
+    v("ground_tolerance", ground_tolerance, "m", "this close above the ground is ground", ge(0));
+    v("ground_slope", ground_slope, "", "steepest ground (rise over run)", ge(0));
+    v("column_cell", column_cell, "m", "x-y cell of the vertical columns", gt(0));
+    v("max_gap", max_gap, "m", "a wider vertical gap starts a new segment", gt(0));
+    v("max_height", max_height, "m", "top of the tallest road user above ground", gt(0));
+    v("max_bottom", max_bottom, "m", "highest start of a road user's segment", ge(0));
+  }
 };
 
 enum class ScanPointKind : uint8_t { kGround = 0, kStatic = 1, kRoadUser = 2 };

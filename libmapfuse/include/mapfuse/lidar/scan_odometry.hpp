@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mapfuse/core/param.hpp"
 #include "mapfuse/core/se3.hpp"
 #include "mapfuse/lidar/local_voxel_map.hpp"
 #include "mapfuse/lidar/map_registration.hpp"
@@ -42,8 +43,36 @@ struct OdometrySettings {
   MapRegistrationSettings registration;
   TrustSettings trust;
 
-  /// @throws ConfigError naming the field when a value is out of range.
-  void validate() const;
+  /// Declares this struct's own rules; `geometry` and `trust` declare theirs (ScanOdometry
+  /// checks all three).
+  static constexpr const char* kName = "OdometrySettings";  ///< names the owner in messages
+  template <class V>
+  void visit(V& v) {
+    using namespace param;
+    v("min_range", min_range, "m", "closer returns are dropped", ge(0));
+    v("max_range", max_range, "m", "farther returns are dropped", gt(0));
+    v.relation("max_range", max_range, max_range > min_range, "> min_range");
+    v("voxel_size", voxel_size, "m", "local-map voxel", gt(0));
+    v("max_points_per_voxel", max_points_per_voxel, "", "local-map points per voxel", in(1, 255));
+    v("scan_spacing", scan_spacing, "m", "thinning of the sweep for the map", gt(0));
+    v("source_spacing", source_spacing, "m", "thinning of the sweep for the registration", gt(0));
+    v.relation("source_spacing", source_spacing, source_spacing >= scan_spacing, ">= scan_spacing");
+    v("normal_neighbors", normal_neighbors, "", "k of the keyframe normals", in(3, 32));
+    v("normal_radius", normal_radius, "m", "search radius of the normals", gt(0));
+    v("keyframe_distance", keyframe_distance, "m", "distance moved that makes a keyframe", ge(0));
+    v("keyframe_angle", keyframe_angle, "deg", "angle turned that makes a keyframe", ge(0));
+    v("deskew", deskew, "", "constant-velocity motion compensation");
+    v("sweep_period", sweep_period, "s", "one turn of the sensor", gt(0));
+    v("exclude_road_users", exclude_road_users, "", "leave possible road users out");
+    v("geometry_spacing", geometry_spacing, "m", "thinning of the sweep for the road-user rule",
+      gt(0));
+    v("initial_threshold", initial_threshold, "m", "adaptive threshold before any motion", gt(0));
+    v("min_motion", min_motion, "m", "smaller deviations do not adapt the threshold", ge(0));
+    v("fine_threshold", fine_threshold, "m", "correspondence threshold of the second pass", gt(0));
+    v("registration.max_iterations", registration.max_iterations, "", "Gauss-Newton iterations",
+      ge(1));
+    v("registration.convergence", registration.convergence, "", "|dx| of convergence", gt(0));
+  }
 };
 
 /// Registration quality and trust of one scan.

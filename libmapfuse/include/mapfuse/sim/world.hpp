@@ -35,6 +35,9 @@ struct World {
 
   /// @brief Total centreline length of the lanes, m.
   double laneLength() const;
+  /// @brief Appends a true element made by the world builder (its own source, `id`).
+  /// @return the element, for its attributes.
+  MapInstance& addTruth(int64_t id, CrowdClass cls, Polyline points, const std::string& note);
 };
 
 /// What a world holds, for the summary.
