@@ -8,10 +8,12 @@
 #include "fixtures.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/align_registrations.hpp"
+#include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/tiles_manifest.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
+#include "support/test_support.hpp"
 
 using namespace mapfuse;
 using Catch::Contains;
@@ -43,6 +45,41 @@ TEST_CASE("CBOR and JSON nested deeper than the limit are a ParseError, not a st
       ParseError);
   CHECK_THROWS_WITH(io::parseDocument("", io::Encoding::kCbor, "empty.cbor"),
                     Contains("file is empty"));
+}
+
+TEST_CASE("CBOR text that is not UTF-8 is a ParseError, through both LSM readers",
+          "[io][bounds][lsm]") {
+  // fuzz_lsm (10-minute run of 2026-11-25): a CBOR LSM whose drive_id held the byte 0xFF was
+  // accepted, then writing it as JSON threw (info: exit 1 "internal error"; georef: exit 0).
+  Lsm lsm = test::makeLsm();
+  lsm.drive_id = "drive-\xFF";
+  const io::Json doc = io::lsmToJson(lsm);
+  const std::vector<uint8_t> cbor = io::Json::to_cbor(doc);
+  const std::string bytes(cbor.begin(), cbor.end());
+  CHECK_THROWS_WITH(io::parseDocument(bytes, io::Encoding::kCbor, "bad.lsm.cbor"),
+                    Contains("bad.lsm.cbor") && Contains("not valid UTF-8"));
+  // The fast CBOR decoder of readLsm declines it, and the generic reader names the problem.
+  const auto dir = test::tempDir("utf8_lsm");
+  io::writeBytesAtomic(dir / "bad.lsm.cbor", bytes);
+  CHECK_THROWS_WITH(io::readLsm(dir / "bad.lsm.cbor"), Contains("not valid UTF-8"));
+  // Well-formed multi-byte text passes; overlong forms, surrogates and truncation do not.
+  lsm.drive_id =
+      "stra\xC3\x9F"
+      "e-\xE2\x82\xAC-\xF0\x9F\x9A\x97";
+  const std::vector<uint8_t> ok = io::Json::to_cbor(io::lsmToJson(lsm));
+  CHECK(io::lsmFromJson(
+            io::parseDocument(std::string(ok.begin(), ok.end()), io::Encoding::kCbor, "ok.cbor"),
+            "ok.cbor")
+            .drive_id == lsm.drive_id);
+  for (const std::string bad : {"\xC0\xAF", "\xED\xA0\x80", "\xF4\x90\x80\x80", "\xE2\x82"}) {
+    io::Json j = io::Json::object();
+    j[std::string("k")] = "x";
+    std::vector<uint8_t> c = io::Json::to_cbor(j);  // {"k": "x"}: a1 61 6b 61 78
+    std::string b(c.begin(), c.end() - 2);
+    b += char(0x60 + bad.size());
+    b += bad;
+    CHECK_THROWS_AS(io::parseDocument(b, io::Encoding::kCbor, "t.cbor"), ParseError);
+  }
 }
 
 TEST_CASE("the LSM reader refuses coordinates, stamps, sigmas and counts outside the bounds",

@@ -3,6 +3,7 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/bounds.hpp"
+#include "utf8.hpp"
 
 namespace mapfuse::io {
 namespace {
@@ -23,10 +24,10 @@ class DepthLimitedSax {
   bool number_float(Json::number_float_t v, const std::string& s) {
     return dom_.number_float(v, s);
   }
-  bool string(std::string& s) { return dom_.string(s); }
+  bool string(std::string& s) { return text(s, "a text string") && dom_.string(s); }
   bool binary(Json::binary_t& b) { return dom_.binary(b); }
   bool start_object(std::size_t n) { return enter() && dom_.start_object(n); }
-  bool key(std::string& k) { return dom_.key(k); }
+  bool key(std::string& k) { return text(k, "a key") && dom_.key(k); }
   bool end_object() {
     --depth_;
     return dom_.end_object();
@@ -45,6 +46,12 @@ class DepthLimitedSax {
   const std::string& error() const { return error_; }
 
  private:
+  // CBOR text is not checked by the parser; JSON's is (its lexer refuses bad UTF-8).
+  bool text(const std::string& s, const char* what) {
+    if (validUtf8(s)) return true;
+    error_ = std::string(what) + " is not valid UTF-8";
+    return false;
+  }
   bool enter() {
     if (++depth_ <= bounds::kMaxNesting) return true;
     error_ = "nested deeper than " + std::to_string(bounds::kMaxNesting) + " arrays or objects";

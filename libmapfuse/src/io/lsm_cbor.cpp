@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "mapfuse/io/lsm_io.hpp"
+#include "utf8.hpp"
 
 namespace mapfuse::io::detail {
 namespace {
@@ -178,6 +179,7 @@ class Reader {
     const uint64_t n = head(3);
     if (uint64_t(end_ - p_) < n) throw Fallback{};
     const std::string_view s(reinterpret_cast<const char*>(p_), n);
+    if (!validUtf8(s)) throw Fallback{};  // the generic reader names the problem
     p_ += n;
     return s;
   }
