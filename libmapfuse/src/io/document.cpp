@@ -15,7 +15,9 @@ using Json = nlohmann::json;
 // bounds::kMaxNesting in start_array / start_object stops it before the recursion goes deeper.
 class DepthLimitedSax {
  public:
-  explicit DepthLimitedSax(Json& root) : dom_(root, /*allow_exceptions=*/true) {}
+  /// `check_text`: check strings and keys as UTF-8 (CBOR; JSON's lexer already refuses bad UTF-8).
+  DepthLimitedSax(Json& root, bool check_text)
+      : dom_(root, /*allow_exceptions=*/true), check_text_(check_text) {}
 
   bool null() { return dom_.null(); }
   bool boolean(bool v) { return dom_.boolean(v); }
@@ -46,9 +48,8 @@ class DepthLimitedSax {
   const std::string& error() const { return error_; }
 
  private:
-  // CBOR text is not checked by the parser; JSON's is (its lexer refuses bad UTF-8).
   bool text(const std::string& s, const char* what) {
-    if (validUtf8(s)) return true;
+    if (!check_text_ || validUtf8(s)) return true;
     error_ = std::string(what) + " is not valid UTF-8";
     return false;
   }
@@ -58,6 +59,7 @@ class DepthLimitedSax {
     return false;
   }
   nlohmann::detail::json_sax_dom_parser<Json> dom_;
+  bool check_text_;
   int depth_ = 0;
   std::string error_;
 };
@@ -75,7 +77,7 @@ Json parseDocument(const std::string& bytes, Encoding encoding, const std::strin
   const char* what = encoding == Encoding::kCbor ? "invalid CBOR: " : "invalid JSON: ";
   if (bytes.empty()) throw ParseError(file, "", "file is empty");
   Json doc;
-  DepthLimitedSax sax(doc);
+  DepthLimitedSax sax(doc, /*check_text=*/encoding == Encoding::kCbor);
   bool ok = false;
   try {
     ok = encoding == Encoding::kCbor
