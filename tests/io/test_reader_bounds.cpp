@@ -10,6 +10,7 @@
 #include "mapfuse/io/align_registrations.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/document.hpp"
+#include "mapfuse/io/drive_frames.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/tiles_manifest.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
@@ -202,6 +203,12 @@ TEST_CASE("tiles.json: folder names and LSM paths stay below the manifest, no du
   doc["tiles"][0]["lsms"][0] = "tile_0_0/../../x.cbor";
   refuses(doc, "tiles[0].lsms[0]");
   doc = good;
+  doc["tiles"][0]["lsms"][0] = "tile_0_0/" + std::string(300, 'a') + ".cbor";  // > NAME_MAX
+  refuses(doc, "tiles[0].lsms[0]");
+  doc = good;
+  doc["tiles"][0]["name"] = std::string(300, 't');
+  refuses(doc, "tiles[0].name");
+  doc = good;
   doc["tiles"][1]["ix"] = 0;
   refuses(doc, "tiles[1].iy");
   doc = good;
@@ -210,6 +217,33 @@ TEST_CASE("tiles.json: folder names and LSM paths stay below the manifest, no du
   doc = good;
   doc["margin"] = 60.0;
   refuses(doc, "margin");
+}
+
+TEST_CASE("a drive folder naming files the file system cannot hold is bad input, not a crash",
+          "[io][bounds]") {
+  // fuzz_drive_frames (CI's 20 s pass): a 2 KB calibration name made std::filesystem::exists
+  // throw "File name too long" out of the reader, an uncaught exception.
+  const auto dir = test::tempDir("drive_long_names");
+  const io::Json frames = {{"format", io::kFramesFormat},
+                           {"version", 1},
+                           {"drive_id", "d"},
+                           {"calibration", std::string(2000, 'c')},
+                           {"imu", "imu.csv"},
+                           {"wheel", "wheel.csv"},
+                           {"frames", "frames.csv"}};
+  test::writeText(dir / "frames.json", frames.dump());
+  CHECK_THROWS_WITH(io::readDriveFrames(dir), Contains("frames.json") && Contains("calibration") &&
+                                                  Contains("2000 bytes long"));
+  io::Json escape = frames;
+  escape["calibration"] = "../calibration.json";  // the folder's files stay in the folder
+  test::writeText(dir / "frames.json", escape.dump());
+  CHECK_THROWS_WITH(io::readDriveFrames(dir),
+                    Contains("calibration") && Contains("not a path below the folder"));
+  // A name below a regular file: missing, an IoError (exit 4), not std::filesystem's error.
+  io::Json under_file = frames;
+  under_file["calibration"] = "frames.json/calibration.json";
+  test::writeText(dir / "frames.json", under_file.dump());
+  CHECK_THROWS_AS(io::readDriveFrames(dir), IoError);
 }
 
 TEST_CASE("align summary: registrations name inputs that exist", "[io][bounds][tiles]") {

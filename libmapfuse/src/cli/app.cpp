@@ -1,5 +1,6 @@
 #include "mapfuse/cli/app.hpp"
 
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 
@@ -70,6 +71,11 @@ int run(CLI::App& app, int argc, char** argv, const std::function<void()>& body)
   } catch (const Error& e) {
     std::cerr << tool << ": error: " << e.what() << '\n';
     return static_cast<int>(e.exitCode());
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A file-system call no reader wrapped (a name too long, a permission denied): still an
+    // I/O error naming the path, not an internal one.
+    std::cerr << tool << ": error: " << e.what() << '\n';
+    return static_cast<int>(ExitCode::kIo);
   } catch (const std::bad_alloc&) {
     std::cerr << tool << ": error: out of memory\n";
     return static_cast<int>(ExitCode::kInternal);

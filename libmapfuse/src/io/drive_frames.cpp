@@ -14,6 +14,7 @@
 #include "mapfuse/io/json_geometry.hpp"
 #include "mapfuse/io/kitti_poses.hpp"
 #include "mapfuse/io/png_decode.hpp"
+#include "relative_path.hpp"
 
 namespace mapfuse::io {
 namespace fs = std::filesystem;
@@ -181,7 +182,7 @@ std::vector<FrameObservations> readObservations(const fs::path& path) {
 
 DriveFrames readDriveFrames(const fs::path& dir) {
   const fs::path manifest = dir / "frames.json";
-  if (!fs::exists(manifest)) throw IoError(manifest.string(), "no such file (not a drive folder)");
+  if (!fileExists(manifest)) throw IoError(manifest.string(), "no such file (not a drive folder)");
   const Json doc = readDocument(manifest);
   const JsonView v(doc, manifest.string());
   v.checkFormat(kFramesFormat, 1);
@@ -193,11 +194,13 @@ DriveFrames readDriveFrames(const fs::path& dir) {
   auto file = [&](const char* key) -> fs::path {
     const auto f = v.find(key);
     if (!f) v.at(key);  // throws "missing"
-    return dir / f->string();
+    const std::string name = f->string();
+    if (const std::string why = relativeNameProblem(name); !why.empty()) f->fail(why);
+    return dir / name;
   };
 
   const fs::path calib_path = file("calibration");
-  if (!fs::exists(calib_path)) throw IoError(calib_path.string(), "camera calibration missing");
+  if (!fileExists(calib_path)) throw IoError(calib_path.string(), "camera calibration missing");
   d.calib = readCameraCalib(calib_path);
 
   {
@@ -250,7 +253,11 @@ DriveFrames readDriveFrames(const fs::path& dir) {
         throw ParseError(c.file, "line " + std::to_string(c.line_numbers[r]) + " index",
                          "expected frame " + std::to_string(r));
       f.index = int(r);
-      if (!c.rows[r][2].empty()) f.mask = dir / c.rows[r][2];
+      if (const std::string& name = c.rows[r][2]; !name.empty()) {
+        if (const std::string why = relativeNameProblem(name); !why.empty())
+          throw ParseError(c.file, "line " + std::to_string(c.line_numbers[r]) + " mask", why);
+        f.mask = dir / name;
+      }
       d.frames.push_back(f);
     }
   }
@@ -260,7 +267,7 @@ DriveFrames readDriveFrames(const fs::path& dir) {
       throw InputError(manifest.string() + ": frame_count is " + std::to_string(fc->integer()) +
                        " but " + file("frames").string() + " lists " +
                        std::to_string(d.frames.size()) + " frames");
-  if (v.has("observations") && fs::exists(file("observations"))) {
+  if (v.has("observations") && fileExists(file("observations"))) {
     d.observations = readObservations(file("observations"));
     if (d.observations.size() != d.frames.size())
       throw InputError(file("observations").string() + " has " +
@@ -271,7 +278,7 @@ DriveFrames readDriveFrames(const fs::path& dir) {
         throw ParseError(file("observations").string(), "line " + std::to_string(i + 1) + " frame",
                          "expected frame " + std::to_string(d.frames[i].index));
   }
-  if (v.has("truth_poses") && fs::exists(file("truth_poses"))) {
+  if (v.has("truth_poses") && fileExists(file("truth_poses"))) {
     const Csv c =
         readCsv(file("truth_poses"), {"index", "stamp", "tx", "ty", "tz", "qw", "qx", "qy", "qz"});
     for (std::size_t r = 0; r < c.rows.size(); ++r) {
@@ -290,7 +297,7 @@ DriveFrames readDriveFrames(const fs::path& dir) {
 }
 
 cv::Mat readMask(const fs::path& path, int width, int height) {
-  if (!fs::exists(path)) throw IoError(path.string(), "mask image missing");
+  if (!fileExists(path)) throw IoError(path.string(), "mask image missing");
   const cv::Mat img = decodePng(readBytes(path), path.string(), cv::IMREAD_UNCHANGED);
   if (img.type() != CV_8UC1)
     throw ParseError(path.string(), "", "mask must be an 8-bit single-channel image");

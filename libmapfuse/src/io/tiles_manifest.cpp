@@ -6,22 +6,9 @@
 #include "mapfuse/io/bounds.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
+#include "relative_path.hpp"
 
 namespace mapfuse::io {
-namespace {
-
-/// A relative path below the manifest's folder: no root, no "." or ".." part, no empty part,
-/// no control characters.
-bool staysBelow(const std::string& path) {
-  if (path.empty() || path.front() == '/' || path.back() == '/') return false;
-  for (unsigned char c : path)
-    if (c < 0x20 || c == 0x7f || c == '\\') return false;
-  for (const auto& part : std::filesystem::path(path))
-    if (part.empty() || part == "." || part == "..") return false;
-  return path.find("//") == std::string::npos;
-}
-
-}  // namespace
 
 TilesManifest tilesManifestFromJson(const Json& doc, const std::string& file) {
   const JsonView v(doc, file);
@@ -41,8 +28,8 @@ TilesManifest tilesManifestFromJson(const Json& doc, const std::string& file) {
     t.onlyKeys({"name", "ix", "iy", "core", "lsms"});
     TilesManifestTile tile;
     tile.name = t.at("name").string();
-    if (!staysBelow(tile.name) || tile.name.find('/') != std::string::npos)
-      t.at("name").fail("'" + tile.name + "' is not a folder name");
+    if (!relativeNameProblem(tile.name).empty() || tile.name.find('/') != std::string::npos)
+      t.at("name").fail("'" + tile.name.substr(0, 80) + "' is not a folder name");
     if (!names.insert(tile.name).second) t.at("name").fail("'" + tile.name + "' given twice");
     tile.ix = t.at("ix").integer(-max_index, max_index);
     tile.iy = t.at("iy").integer(-max_index, max_index);
@@ -52,7 +39,7 @@ TilesManifest tilesManifestFromJson(const Json& doc, const std::string& file) {
     const JsonView lsms = t.at("lsms");
     for (std::size_t k = 0; k < lsms.size(); ++k) {
       const std::string f = lsms.at(k).string();
-      if (!staysBelow(f)) lsms.at(k).fail("'" + f + "' is not a path below the manifest's folder");
+      if (const std::string why = relativeNameProblem(f); !why.empty()) lsms.at(k).fail(why);
       if (!files.insert(f).second) lsms.at(k).fail("'" + f + "' is listed twice");
       tile.lsms.push_back(f);
     }
