@@ -100,6 +100,7 @@ int main(int argc, char** argv) {
   // as used); true height (normal as used); normal from the window over the TRUE poses (what
   // the window leaves of the suspension motion, no gyro error) with the true height.
   Accum used, true_normal, true_height, window_only, lever;
+  Accum others;  // stop lines, arrows, crosswalks; bands of forward distance / 2.5
   std::vector<double> pitch_err, roll_err, height_err, pitch_win, roll_win, pitch_true,
       frame_lat_far, frame_scale_pred, lever_err;
   for (const auto& dir : drives) {
@@ -161,7 +162,18 @@ int main(int argc, char** argv) {
       double lat_sum = 0, scale_sum = 0;
       int lat_n = 0;
       for (const auto& g : d.frames[i].ground) {
-        if (g.cls != CrowdClass::kLaneLine) continue;
+        if (g.cls != CrowdClass::kLaneLine) {
+          // Stop lines, arrows, crosswalks: horizontal error per band of forward distance.
+          const Eigen::Matrix3d K_inv = d.calib.K.inverse();
+          for (const auto& px : g.pixels) {
+            const auto X = vehicle::rangeGroundPixel(px, d.calib.K, truth, rs);
+            const auto Y = vehicle::backProjectToGround(px, K_inv, est);
+            if (!X || !Y) continue;
+            const Eigen::Vector3d a = R_body_cam * X->p_cam, b = R_body_cam * *Y;
+            others.add(a.x() / 2.5, (b - a).head<2>().norm());
+          }
+          continue;
+        }
         for (const auto& px : g.pixels) {
           const auto X = vehicle::rangeGroundPixel(px, d.calib.K, truth, rs);
           if (!X) continue;
@@ -200,7 +212,10 @@ int main(int argc, char** argv) {
             << "| window over the true poses (no gyro error), true height |" << window_only.row()
             << "\n"
             << "| lsm-build's normal, height moved with it (pivot at the body origin) |"
-            << lever.row() << "\n\n";
+            << lever.row() << "\n\n"
+            << "| other ground markings, horizontal RMS at 0-7.5 m ahead | 7.5-15 m | 15-22.5 m | "
+               "22.5-30 m |\n|---|---|---|---|\n|"
+            << others.row() << "\n\n";
   std::cout << "| per-frame quantity (" << pitch_err.size() << " frames) | RMS |\n|---|---|\n"
             << "| true body pitch against the road [rad] | " << rms(pitch_true) << " |\n"
             << "| pitch error of the normal used [rad] | " << rms(pitch_err) << " |\n"
