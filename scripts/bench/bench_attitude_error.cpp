@@ -101,6 +101,7 @@ int main(int argc, char** argv) {
   // the window leaves of the suspension motion, no gyro error) with the true height.
   Accum used, true_normal, true_height, window_only, lever;
   Accum others;  // stop lines, arrows, crosswalks; bands of forward distance / 2.5
+  std::vector<double> pitch_err_ends, pitch_err_inner;
   std::vector<double> pitch_err, roll_err, height_err, pitch_win, roll_win, pitch_true,
       frame_lat_far, frame_scale_pred, lever_err;
   for (const auto& dir : drives) {
@@ -145,6 +146,12 @@ int main(int argc, char** argv) {
           tiltBetween(Eigen::Vector3d::UnitZ(), R_body_cam * truth.normal_cam);
       roll_err.push_back(e.x());
       pitch_err.push_back(e.y());
+      // Frames whose window is cut by the drive's start or end.
+      const double half = 0.5 * s.tilt_window;
+      if (d.stamps[i] - d.stamps.front() < half || d.stamps.back() - d.stamps[i] < half)
+        pitch_err_ends.push_back(e.y());
+      else
+        pitch_err_inner.push_back(e.y());
       roll_win.push_back(w.x());
       pitch_win.push_back(w.y());
       pitch_true.push_back(tp.y());
@@ -219,6 +226,9 @@ int main(int argc, char** argv) {
   std::cout << "| per-frame quantity (" << pitch_err.size() << " frames) | RMS |\n|---|---|\n"
             << "| true body pitch against the road [rad] | " << rms(pitch_true) << " |\n"
             << "| pitch error of the normal used [rad] | " << rms(pitch_err) << " |\n"
+            << "| ... frames whose window is whole / cut by the drive's ends ("
+            << pitch_err_ends.size() << " frames) [rad] | " << rms(pitch_err_inner) << " / "
+            << rms(pitch_err_ends) << " |\n"
             << "| roll error of the normal used [rad] | " << rms(roll_err) << " |\n"
             << "| pitch error, window over true poses [rad] | " << rms(pitch_win) << " |\n"
             << "| roll error, window over true poses [rad] | " << rms(roll_win) << " |\n"
