@@ -98,13 +98,13 @@ void addParamOptions(CLI::App& app, Params& params, const char* group = "Paramet
 /// it with its exit code instead of the process aborting.
 void deferError(std::exception_ptr error);
 
+/// @brief The file of "--config FILE" / "--config=FILE" in argv, or empty.
+std::string configArgument(int argc, char** argv);
+
 /// @brief Finds "--config FILE" / "--config=FILE" in argv before CLI11 parses, so that the
 /// file's values become the defaults and command-line options override them. A bad file
 /// (unknown key, wrong type, out of range, empty, not JSON: ConfigError; unreadable: IoError)
 /// is reported by run().
-/// @brief The file of "--config FILE" / "--config=FILE" in argv, or empty.
-std::string configArgument(int argc, char** argv);
-
 template <class Params>
 void preloadConfig(int argc, char** argv, Params& params) {
   try {
