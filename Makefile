@@ -33,10 +33,10 @@ build: configure
 demo: build
 	bash scripts/demo.sh $(BUILD)/bin out/demo
 
-# CI (.ci/run) and the README's test command: the release build and all its tests. The
-# sanitizer pass (`make sanitizer-pass`) joins it once a cold run of both has been timed on a
-# clean 2-core machine (docs/reliability.md "CI time": estimated 43-46 min, not yet verified).
+# CI (.ci/run) and the README's test command: the release build and all its tests, then the
+# sanitizer and fuzz pass (docs/reliability.md "CI time").
 test: test-release
+	$(MAKE) --no-print-directory sanitizer-pass
 
 # Only the release build's tests (unit tests, e2e scripts, the Slurm test): the quick check.
 test-release: build
