@@ -11,11 +11,9 @@ namespace {
 
 using namespace mapfuse;
 
-struct MapCommandState {
-  stages::EvaluateMapParams params;
-  stages::EvaluateMapInputs inputs;
-  std::vector<std::string> lsm_args;
-  std::string out_dir;
+struct MapCommandState
+    : apps::StageCommandState<stages::EvaluateMapParams, stages::EvaluateMapInputs> {
+  std::vector<std::string> lsm_args;  ///< --lsm as given (lists expanded when the action runs)
 };
 
 apps::CommandAction setupMap(CLI::App& sub) {
@@ -30,12 +28,9 @@ apps::CommandAction setupMap(CLI::App& sub) {
                  "folder of <drive>.trajectory.json (simulate truth/), needed with --lsm");
   sub.add_option("--traversals", st->inputs.traversals,
                  "traversals per --map (default: from aggregate.summary.json beside each map)");
-  sub.add_option("-o,--out", st->out_dir, "output folder")->required();
-  cli::addParamOptions(sub, st->params);
-  return [st, &sub] {
-    cli::applyCommandConfig(sub, st->params);
-    st->inputs.lsms = cli::expandInputList(st->lsm_args);
-    const auto run = stages::runEvaluateMap(st->inputs, st->out_dir, st->params);
+  return apps::stageCommand(sub, st, "output folder", [](MapCommandState& state) {
+    state.inputs.lsms = cli::expandInputList(state.lsm_args);
+    const auto run = stages::runEvaluateMap(state.inputs, state.out_dir, state.params);
     const nlohmann::json summary = stages::toJson(run);
     nlohmann::json brief = nlohmann::json::array();
     for (const auto& m : summary["maps"]) {
@@ -48,7 +43,7 @@ apps::CommandAction setupMap(CLI::App& sub) {
       brief.push_back({{"map", m["map"]}, {"traversals", m["traversals"]}, {"classes", classes}});
     }
     std::cout << brief.dump() << "\n";
-  };
+  });
 }
 
 MAPFUSE_EVALUATE_COMMAND(kMapCommand, "map",

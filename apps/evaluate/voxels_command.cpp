@@ -12,11 +12,8 @@ namespace {
 
 using namespace mapfuse;
 
-struct VoxelsCommandState {
-  stages::EvaluateVoxelsParams params;
-  stages::EvaluateVoxelsInputs inputs;
-  std::string out_dir;
-};
+using VoxelsCommandState =
+    apps::StageCommandState<stages::EvaluateVoxelsParams, stages::EvaluateVoxelsInputs>;
 
 apps::CommandAction setupVoxels(CLI::App& sub) {
   auto st = std::make_shared<VoxelsCommandState>();
@@ -27,13 +24,11 @@ apps::CommandAction setupVoxels(CLI::App& sub) {
   auto* pred = sub.add_option("--predicted-labels", st->inputs.predicted_labels,
                               "folder of per-scan <frame>.label predictions to score");
   map->excludes(pred);
-  sub.add_option("-o,--out", st->out_dir, "output folder (voxels.json, voxels.md)")->required();
-  cli::addParamOptions(sub, st->params);
-  return [st, &sub] {
-    cli::applyCommandConfig(sub, st->params);
-    const auto doc = stages::runEvaluateVoxels(st->inputs, st->out_dir, st->params);
-    std::cout << doc["markdown"].get<std::string>();
-  };
+  return apps::stageCommand(
+      sub, st, "output folder (voxels.json, voxels.md)", [](VoxelsCommandState& state) {
+        const auto doc = stages::runEvaluateVoxels(state.inputs, state.out_dir, state.params);
+        std::cout << doc["markdown"].get<std::string>();
+      });
 }
 
 }  // namespace

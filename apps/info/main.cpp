@@ -3,17 +3,13 @@
 #include <iomanip>
 #include <iostream>
 
+#include "about.hpp"
 #include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/info.hpp"
 
-static const char* const kAbout =
-    "Describe mapfuse files (LSM, vector map, tiles, summary) as JSON lines on stdout; with "
-    "--origin print the ENU origin \"lat,lon,alt\" of the first LSM (its origin, else its "
-    "first GPS fix), the value per-drive georef jobs of one batch share.";
-
 int main(int argc, char** argv) {
   using namespace mapfuse;
-  cli::StageTool<stages::InfoParams> tool("info", kAbout);
+  cli::StageTool<stages::InfoParams> tool("info", apps::about::kInfo);
   const auto& paths = tool.inputs("files", "mapfuse files, @list.txt, or - for a list on stdin");
   bool origin = false;
   tool.app().add_flag("--origin", origin,

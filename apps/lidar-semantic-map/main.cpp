@@ -1,26 +1,10 @@
 // lidar-semantic-map: KITTI raw drive -> semantic voxel map (Jeong et al. 2018; docs/lidar.md).
 // `lidar-semantic-map DRIVE -o OUT` builds the map; `lidar-semantic-map train DRIVE... -o DIR`
 // fits the per-label cluster classifiers from drives with labels/<frame>.label files.
+#include "about.hpp"
 #include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/lidar_semantic_map.hpp"
 
-static const char* const kAbout =
-    "Build a semantic voxel map from a KITTI raw drive or a KITTI odometry / SemanticKITTI\n"
-    "sequence folder: poses (OXTS, poses file or LiDAR odometry), per-pixel semantics (ENet or\n"
-    "precomputed semantics_02), projection onto image_02, cluster error minimisation, Bayesian\n"
-    "voxel fusion, batch refinement. Outputs below --out: map.ply, map.pcd,\n"
-    "labels/<frame>.label, topdown.png, poses.txt (KITTI T_world_cam0), poses_velo.txt\n"
-    "(T_map_velo), lidar-semantic-map.{config,summary}.json. Untrusted odometry steps are\n"
-    "listed on stderr and in the summary; more than --odom-max-untrusted stop the run (exit 3).\n"
-    "A failed run leaves the previous outputs in the folder unchanged.\n"
-    "Error minimisation is on by default with the forests the build generates from simulated\n"
-    "drives (--classifier-dir auto = <bin>/../models/lidar-classifiers; none = off); the summary\n"
-    "names them and their provenance. Retrain: scripts/train-classifiers.sh BIN_DIR DIR "
-    "(simulated\n"
-    "drives), or `train DRIVE... --validation DRIVE... -o DIR` on drives with\n"
-    "labels/<frame>.label (validation drives choose each label's threshold), then\n"
-    "--classifier-dir DIR.\n"
-    "Exit codes: 0 ok, 2 usage/config, 3 bad input, 4 I/O.";
 static const char* const kDrive =
     "KITTI raw drive (<date>/<date>_drive_<name>_sync) or sequence (sequences/NN)";
 
@@ -47,7 +31,8 @@ TrainArgs addTrain(CLI::App& app) {
 
 int main(int argc, char** argv) {
   using namespace mapfuse;
-  cli::StageTool<stages::LidarSemanticMapParams> tool("lidar-semantic-map", kAbout);
+  cli::StageTool<stages::LidarSemanticMapParams> tool("lidar-semantic-map",
+                                                      apps::about::kLidarSemanticMap);
   std::string drive, out;
   tool.app().add_option("drive", drive, kDrive);
   tool.app().add_option("-o,--out", out, "Output folder");

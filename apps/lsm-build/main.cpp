@@ -1,15 +1,12 @@
 // lsm-build: one raw drive -> one local semantic map (LSM) (Song et al. 2023 §3).
 
+#include "about.hpp"
 #include "mapfuse/cli/app.hpp"
 #include "mapfuse/stages/lsm_build.hpp"
 
-static const char* const kAbout =
-    "Build a local semantic map (LSM) from one drive: camera semantics + ego-motion "
-    "(docs/lsm-build.md).";
-
 int main(int argc, char** argv) {
   using namespace mapfuse;
-  cli::StageTool<stages::LsmBuildParams> tool("lsm-build", kAbout);
+  cli::StageTool<stages::LsmBuildParams> tool("lsm-build", apps::about::kLsmBuild);
   std::string drive, poses, drive_id;
   CLI::App& app = tool.app();
   app.add_option("drive", drive, "Drive folder: frames.json layout or a KITTI raw *_sync folder")

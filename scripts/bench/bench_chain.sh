@@ -7,13 +7,9 @@
 # afterwards, untimed. -> docs/performance-chain.md
 # usage: scripts/bench/bench_chain.sh [BIN_DIR=<root>/build/bin]   (about 10 minutes)
 set -euo pipefail
-root=$(cd "$(dirname "$0")/../.." && pwd)
-bin=$(cd "${1:-$root/build/bin}" && pwd)
+source "$(dirname "$0")/lib.sh" "$@"  # root, bin, tmp (removed on exit), load
 shared=$(realpath -m "${MAPFUSE_SHARED:-$root/../shared}")
 osm="$shared/data/maps/lanelet2_karlsruhe_mapping_example.osm"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-load=$(cut -d' ' -f1-3 /proc/loadavg)
 rows="$tmp/rows.jsonl"
 : > "$rows"
 

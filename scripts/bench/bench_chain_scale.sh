@@ -14,16 +14,13 @@
 #   TILED_ONLY=1 only the tiled run (the untiled row already recorded stays).
 # About 10 minutes on a quiet 2-core machine, most of it simulate and the 20 km row.
 set -euo pipefail
-root=$(cd "$(dirname "$0")/../.." && pwd)
-bin=$(cd "${1:-$root/build/bin}" && pwd)
+source "$(dirname "$0")/lib.sh" "$@"  # root, bin, tmp (removed on exit), load
 shift || true
 rows_wanted=("$@")
 [[ ${#rows_wanted[@]} -gt 0 ]] || rows_wanted=(2:50 5:50 10:50 20:50 2:100)
 tile=${TILE_SIZE:-}
 nice_n=${NICE:-0}
 jsonl="$root/docs/performance-chain-scale.jsonl"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 touch "$jsonl"
 
 # Procedural world grid per route length: big enough that the route need not repeat itself.

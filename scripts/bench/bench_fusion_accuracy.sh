@@ -7,13 +7,10 @@
 # env: KARLSRUHE_SEEDS="1 2 3 4 5 6 7" (further simulate seeds of the one-route Karlsruhe world,
 # summarised as means over all seeds with the default 42; empty: none)
 set -euo pipefail
-root="$(cd "$(dirname "$0")/../.." && pwd)"
-bin="$(cd "${1:-$root/build/bin}" && pwd)"
+source "$(dirname "$0")/lib.sh" "$@"  # root, bin, tmp (removed on exit), load
 n="${2:-20}"
 shared="${MAPFUSE_SHARED:-$root/../shared}"
 osm="$shared/data/maps/lanelet2_karlsruhe_mapping_example.osm"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 out="$root/docs/performance-fusion-accuracy.md"
 
 now() { date +%s.%N; }

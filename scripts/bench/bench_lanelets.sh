@@ -7,12 +7,8 @@
 #  - scripts/check-geojson.py (GEOS) on map.geojson: invalid features, clockwise exteriors.
 # Writes docs/performance-lanelets.md. Usage: scripts/bench/bench_lanelets.sh [BIN_DIR] [N]
 set -euo pipefail
-root=$(cd "$(dirname "$0")/../.." && pwd)
-bin=$(cd "${1:-$root/build/bin}" && pwd)
+source "$(dirname "$0")/lib.sh" "$@"  # root, bin, tmp (removed on exit), load
 n=${2:-50}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-load=$(cut -d' ' -f1-3 /proc/loadavg)
 "$bin/simulate" -q --traversals "$n" -o "$tmp/sim" >/dev/null
 make -s -j2 -f "$root/scripts/crowd.mk" BIN="$bin" LSM_DIR="$tmp/sim/lsm" WORK="$tmp/work" \
   TRUTH="$tmp/sim/truth/vector_map.json" TRUTH_TRAJ="$tmp/sim/truth" >/dev/null

@@ -15,11 +15,7 @@
 # -> docs/performance-localize.md, docs/images/localize_errors.png
 # usage: scripts/bench/bench_localize.sh [BIN_DIR=<root>/build/bin]   (about 5-10 minutes)
 set -euo pipefail
-root=$(cd "$(dirname "$0")/../.." && pwd)
-bin=$(cd "${1:-$root/build/bin}" && pwd)
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-load=$(cut -d' ' -f1-3 /proc/loadavg)
+source "$(dirname "$0")/lib.sh" "$@"  # root, bin, tmp (removed on exit), load
 traversals=50
 held_out=5
 seed=42

@@ -15,14 +15,10 @@
 # -> docs/performance-map-bound.md
 # usage: scripts/bench/bench_map_bound.sh [BIN_DIR=<root>/build/bin] [SEED...]   (~1-2 min a seed)
 set -euo pipefail
-root=$(cd "$(dirname "$0")/../.." && pwd)
-bin=$(cd "${1:-$root/build/bin}" && pwd)
+source "$(dirname "$0")/lib.sh" "$@"  # root, bin, tmp (removed on exit), load
 shift || true
 seeds=("$@")
 [[ ${#seeds[@]} -gt 0 ]] || seeds=(42 1 2 3 7)
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-load=$(cut -d' ' -f1-3 /proc/loadavg)
 traversals=50
 rows="$tmp/rows.jsonl"
 

@@ -4,15 +4,11 @@
 # align gba_sgicp, aggregate) -> evaluate map. Writes docs/performance-opendrive.md (the world,
 # the drives, the map and evaluate's table). Usage: scripts/bench/bench_opendrive.sh [BIN] [N]
 set -euo pipefail
-root=$(cd "$(dirname "$0")/../.." && pwd)
-bin=$(cd "${1:-$root/build/bin}" && pwd)
+source "$(dirname "$0")/lib.sh" "$@"  # root, bin, tmp (removed on exit), load
 n=${2:-20}
 shared=$(realpath -m "${MAPFUSE_SHARED:-$root/../shared}")
 xodr="$shared/data/maps/MONAEast.xodr"
 if [[ ! -f "$xodr" ]]; then echo "bench_opendrive: $xodr absent, skipped" >&2; exit 0; fi
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-load=$(cut -d' ' -f1-3 /proc/loadavg)
 sim_cmd=("$bin/simulate" -q --map "$xodr" --traversals "$n" --route-length 800 -o "$tmp/sim")
 "${sim_cmd[@]}" > /dev/null
 t0=$(date +%s.%N)

@@ -6,11 +6,8 @@
 # georef output) and one `evaluate map` over the four maps: error versus traversals.
 # Usage: scripts/bench/bench_quality.sh [BIN_DIR] [TRAVERSALS]   (about 2 minutes at 50)
 set -euo pipefail
-root="$(cd "$(dirname "$0")/../.." && pwd)"
-bin=$(cd "${1:-$root/build/bin}" && pwd)
+source "$(dirname "$0")/lib.sh" "$@"  # root, bin, tmp (removed on exit), load
 n="${2:-50}"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 "$bin/simulate" -q --traversals "$n" -o "$tmp/sim" >/dev/null
 t0=$(date +%s.%N)
 make -s -j2 -f "$root/scripts/crowd.mk" BIN="$bin" LSM_DIR="$tmp/sim/lsm" WORK="$tmp/work" \

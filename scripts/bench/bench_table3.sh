@@ -6,12 +6,8 @@
 # map. -> docs/performance-table3.md
 # usage: scripts/bench/bench_table3.sh [BIN_DIR=<root>/build/bin]   (about 3 minutes)
 set -euo pipefail
-root=$(cd "$(dirname "$0")/../.." && pwd)
-bin=$(cd "${1:-$root/build/bin}" && pwd)
+source "$(dirname "$0")/lib.sh" "$@"  # root, bin, tmp (removed on exit), load
 out="$root/docs/performance-table3.md"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-load=$(cut -d' ' -f1-3 /proc/loadavg)
 sim_args=(--traversals 50 --routes 1 --route-length 2000 --world-grid-size 3 --seed 42)
 
 nice -n 10 "$bin/simulate" -q "${sim_args[@]}" -o "$tmp/sim" > /dev/null

@@ -8,11 +8,7 @@
 #    docs/images/traversal-curve.png
 # usage: scripts/bench/bench_traversal_curve.sh [BIN_DIR=<root>/build/bin]   (about 5 minutes)
 set -euo pipefail
-root=$(cd "$(dirname "$0")/../.." && pwd)
-bin=$(cd "${1:-$root/build/bin}" && pwd)
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-load=$(cut -d' ' -f1-3 /proc/loadavg)
+source "$(dirname "$0")/lib.sh" "$@"  # root, bin, tmp (removed on exit), load
 counts=(10 20 50 100)
 world=(--routes 1 --route-length 2000 --world-grid-size 3 --seed 42)
 

@@ -15,14 +15,22 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Writes the LSMs of a synthetic world as CBOR files; returns their paths.
-std::vector<std::string> writeLsms(const test::SynthWorld& w, const fs::path& dir) {
+// A synthetic world of `drives` drives over `length` m of road and its LSMs, written as CBOR
+// files below `dir` (their paths in `files`).
+struct SynthLsms {
+  test::SynthWorld world;
   std::vector<std::string> files;
-  for (const auto& l : w.lsms) {
-    files.push_back((dir / (l.drive_id + ".lsm.cbor")).string());
-    io::writeLsm(files.back(), l);
+};
+SynthLsms writeSynthLsms(const fs::path& dir, int drives, double length) {
+  test::SynthOptions o;
+  o.drives = drives;
+  o.length = length;
+  SynthLsms s{test::makeSynthWorld(o), {}};
+  for (const auto& l : s.world.lsms) {
+    s.files.push_back((dir / (l.drive_id + ".lsm.cbor")).string());
+    io::writeLsm(s.files.back(), l);
   }
-  return files;
+  return s;
 }
 
 std::string quoted(const fs::path& p) {
@@ -47,10 +55,7 @@ TEST_CASE("configs/aggregate.json mirrors the defaults, which are valid", "[aggr
 
 TEST_CASE("the aggregate stage writes every output and a size summary", "[aggregate][stage]") {
   const auto dir = test::tempDir("agg-stage");
-  test::SynthOptions o;
-  o.drives = 6;
-  const auto w = test::makeSynthWorld(o);
-  const auto files = writeLsms(w, dir);
+  const auto [w, files] = writeSynthLsms(dir, 6, test::SynthOptions{}.length);
   const auto out = dir / "out";
   const auto summary = stages::toJson(stages::runAggregate(files, out, stages::AggregateParams{}));
   for (const char* f : {"map.cbor", "map.json", "map.geojson", "map.osm", "map.png",
@@ -90,11 +95,7 @@ TEST_CASE("the aggregate stage writes every output and a size summary", "[aggreg
 TEST_CASE("aggregate app: exit codes, lists and intact outputs after a failure",
           "[aggregate][app]") {
   const auto dir = test::tempDir("agg-app");
-  test::SynthOptions o;
-  o.drives = 3;
-  o.length = 100;
-  const auto w = test::makeSynthWorld(o);
-  const auto files = writeLsms(w, dir);
+  const auto [w, files] = writeSynthLsms(dir, 3, 100);
   const auto out = dir / "out";
   test::writeText(dir / "list.txt", files[0] + "\n" + files[1] + "\n# comment\n" + files[2] + "\n");
   REQUIRE(runAggregateApp("-o " + quoted(out) + " @" + quoted(dir / "list.txt")) == 0);
@@ -136,10 +137,7 @@ TEST_CASE("aggregate app: exit codes, lists and intact outputs after a failure",
 TEST_CASE("aggregate app: --method grid_vote runs the Qin baseline and says so",
           "[aggregate][app][grid_vote]") {
   const auto dir = test::tempDir("agg-grid");
-  test::SynthOptions o;
-  o.drives = 4;
-  o.length = 100;
-  const auto files = writeLsms(test::makeSynthWorld(o), dir);
+  const auto files = writeSynthLsms(dir, 4, 100).files;
   std::string inputs;
   for (const auto& f : files) inputs += " " + quoted(fs::path(f));
   REQUIRE(runAggregateApp("--method grid_vote -o " + quoted(dir / "grid") + inputs) == 0);

@@ -3,10 +3,7 @@
 # the trajectory, error table, plot and summary; a map with nothing near the drives is lost:
 # exit 3 naming the rule, previous outputs byte-identical; bad inputs named (file and field).
 set -euo pipefail
-BIN="${MAPFUSE_BIN_DIR:?}"
-TMP="$(mktemp -d)"
-trap 'rm -rf "$TMP"' EXIT
-cd "$TMP"
+source "$(dirname "$0")/lib/scratch.sh"  # BIN; TMP, the working folder
 fail() { echo "localize e2e: $*" >&2; exit 1; }
 
 "$BIN/simulate" -q --traversals 2 --route-length 500 -o sim >/dev/null

@@ -6,10 +6,7 @@
 # Bad inputs named: a frames folder without the drive (exit 4), an LSM of another drive's frames
 # (exit 3), --lsm-build-config at the LSM level (exit 2).
 set -euo pipefail
-BIN="${MAPFUSE_BIN_DIR:?}"
-TMP="$(mktemp -d)"
-trap 'rm -rf "$TMP"' EXIT
-cd "$TMP"
+source "$(dirname "$0")/lib/scratch.sh"  # BIN; TMP, the working folder
 fail() { echo "localize_frames e2e: $*" >&2; exit 1; }
 
 "$BIN/simulate" -q --level frames --frames-masks 0 --traversals 2 --route-length 400 -o sim \

@@ -4,10 +4,7 @@
 # shift across each true lane line (computed here from the truth file, length-weighted); the GPS
 # columns do not depend on the map; the oracle writes every georeferenced LSM back.
 set -euo pipefail
-BIN="${MAPFUSE_BIN_DIR:?}"
-TMP="$(mktemp -d)"
-trap 'rm -rf "$TMP"' EXIT
-cd "$TMP"
+source "$(dirname "$0")/lib/scratch.sh"  # BIN; TMP, the working folder
 fail() { echo "map_bound e2e: $*" >&2; exit 1; }
 
 "$BIN/simulate" -q --traversals 4 --route-length 600 -o sim >/dev/null

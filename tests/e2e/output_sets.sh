@@ -6,10 +6,7 @@
 # is refused before any work (exit 4). Duplicate inputs are refused (exit 2) naming both.
 set -euo pipefail
 HERE="$(cd "$(dirname "$0")" && pwd)"
-BIN="${MAPFUSE_BIN_DIR:?}"
-TMP="$(mktemp -d)"
-trap 'rm -rf "$TMP"' EXIT
-cd "$TMP"
+source "$HERE/lib/scratch.sh"  # BIN; TMP, the working folder
 NAME=output_sets
 source "$HERE/lib/output_set_check.sh"
 

@@ -31,15 +31,20 @@ MapInstance inst(int64_t id, CrowdClass c, std::vector<Vec3> pts, double h = 0) 
   return m;
 }
 
-// three parallel lane lines 3.5 m apart, 100 m long; poles at x = 0, 20, 50 (y = -3)
-VectorMap truthMap() {
+// A map of `instances` in ENU of the tests' origin.
+VectorMap mapOf(std::vector<MapInstance> instances) {
   VectorMap t;
   t.origin = {49.0, 8.4, 110.0};
-  t.instances = {
-      inst(1, CrowdClass::kLaneLine, line(0)),      inst(2, CrowdClass::kLaneLine, line(3.5)),
-      inst(3, CrowdClass::kLaneLine, line(7)),      inst(4, CrowdClass::kPole, {{0, -3, 0}}, 6),
-      inst(5, CrowdClass::kPole, {{20, -3, 0}}, 6), inst(6, CrowdClass::kPole, {{50, -3, 0}}, 6)};
+  t.instances = std::move(instances);
   return t;
+}
+
+// three parallel lane lines 3.5 m apart, 100 m long; poles at x = 0, 20, 50 (y = -3)
+VectorMap truthMap() {
+  return mapOf(
+      {inst(1, CrowdClass::kLaneLine, line(0)), inst(2, CrowdClass::kLaneLine, line(3.5)),
+       inst(3, CrowdClass::kLaneLine, line(7)), inst(4, CrowdClass::kPole, {{0, -3, 0}}, 6),
+       inst(5, CrowdClass::kPole, {{20, -3, 0}}, 6), inst(6, CrowdClass::kPole, {{50, -3, 0}}, 6)});
 }
 
 // Poses every 1 m along +x from x = 0 to x = 100, heading east.
@@ -177,13 +182,12 @@ TEST_CASE("coverage keeps what is beside or ahead of a drive, not what lies behi
           "[eval][map]") {
   // A drive along +x from x = 0 to x = 100 (poses every 1 m, heading east), radius 12 m.
   const std::vector<Pose3> poses = driveAlongX();
-  VectorMap t;
-  t.origin = {49.0, 8.4, 110.0};
-  t.instances = {inst(1, CrowdClass::kLaneLine, line(3.0, 160.0, -30.0)),
-                 inst(2, CrowdClass::kStopLine, {{-5, -2, 0}, {-5, 2, 0}}),    // behind the start
-                 inst(3, CrowdClass::kStopLine, {{105, -2, 0}, {105, 2, 0}}),  // ahead of the end
-                 inst(4, CrowdClass::kPole, {{50, 11, 0}}, 6),                 // beside, in range
-                 inst(5, CrowdClass::kPole, {{50, 13, 0}}, 6)};                // beside, too far
+  VectorMap t =
+      mapOf({inst(1, CrowdClass::kLaneLine, line(3.0, 160.0, -30.0)),
+             inst(2, CrowdClass::kStopLine, {{-5, -2, 0}, {-5, 2, 0}}),    // behind the start
+             inst(3, CrowdClass::kStopLine, {{105, -2, 0}, {105, 2, 0}}),  // ahead of the end
+             inst(4, CrowdClass::kPole, {{50, 11, 0}}, 6),                 // beside, in range
+             inst(5, CrowdClass::kPole, {{50, 13, 0}}, 6)});               // beside, too far
   const VectorMap c = clipToCoverage(t, poses, CoverageWedge{12.0, 12.0, 90.0, 0.0});
   std::vector<int64_t> ids;
   double lane_length = 0;
@@ -246,11 +250,9 @@ TEST_CASE("map elements of true elements outside the scored scope count neither 
   // also holds elements of what it left out (a pole behind the start, the line's part behind the
   // start) and one false pole.
   const std::vector<Pose3> poses = driveAlongX();
-  VectorMap t;
-  t.origin = {49.0, 8.4, 110.0};
-  t.instances = {inst(1, CrowdClass::kLaneLine, line(3.0, 140.0, -40.0)),
-                 inst(2, CrowdClass::kPole, {{50, -3, 0}}, 6),
-                 inst(3, CrowdClass::kPole, {{-20, -3, 0}}, 6)};  // behind the start
+  VectorMap t = mapOf({inst(1, CrowdClass::kLaneLine, line(3.0, 140.0, -40.0)),
+                       inst(2, CrowdClass::kPole, {{50, -3, 0}}, 6),
+                       inst(3, CrowdClass::kPole, {{-20, -3, 0}}, 6)});  // behind the start
   VectorMap outside;
   const VectorMap scored = clipToCoverage(t, poses, CoverageWedge{12.0, 12.0, 90.0, 0.0}, &outside);
   REQUIRE(scored.instances.size() == 2);
@@ -289,10 +291,8 @@ TEST_CASE("map elements of true elements outside the scored scope count neither 
 TEST_CASE("a stop line mapped in part matches along its segment with its offset across it",
           "[eval][map]") {
   // truth: two stop lines across the road (x = 30 and x = 60, y from 0 to 3.5)
-  VectorMap truth;
-  truth.origin = {49.0, 8.4, 110.0};
-  truth.instances = {inst(1, CrowdClass::kStopLine, {{30, 0, 0}, {30, 3.5, 0}}),
-                     inst(2, CrowdClass::kStopLine, {{60, 0, 0}, {60, 3.5, 0}})};
+  VectorMap truth = mapOf({inst(1, CrowdClass::kStopLine, {{30, 0, 0}, {30, 3.5, 0}}),
+                           inst(2, CrowdClass::kStopLine, {{60, 0, 0}, {60, 3.5, 0}})});
   // map: the first seen only from y = 2 to 3.5 (centre 1.0 m from the true centre, beyond
   // nothing) and 0.1 m too far along x; the second whole, 0.2 m short
   VectorMap map = truth;
@@ -320,10 +320,8 @@ TEST_CASE("a stop line mapped in part matches along its segment with its offset 
 TEST_CASE("a stop line's centre lies along its length, whatever its vertices", "[eval][map]") {
   // A stitched stop line keeps the vertex where its two tiles' pieces were joined (here 1 m
   // from one end of a 7 m line); its errors must equal those of the same segment as 2 points.
-  VectorMap truth;
-  truth.origin = {49.0, 8.4, 110.0};
-  truth.instances = {inst(1, CrowdClass::kStopLine, {{30, 0, 0}, {30, 7, 0}}),
-                     inst(2, CrowdClass::kStopLine, {{60, 0, 0}, {60, 7, 0}})};
+  VectorMap truth = mapOf({inst(1, CrowdClass::kStopLine, {{30, 0, 0}, {30, 7, 0}}),
+                           inst(2, CrowdClass::kStopLine, {{60, 0, 0}, {60, 7, 0}})});
   VectorMap segment = truth, joined = truth;
   segment.instances[0].points = {{30.2, 0, 0}, {30.2, 7, 0}};
   joined.instances[0].points = {{30.2, 0, 0}, {30.2, 1, 0}, {30.2, 7, 0}};

@@ -351,3 +351,63 @@ TEST_CASE("pose solver: GBA's normal equations hold a bounded number of blocks p
   CHECK(per_keyframe[24] < kBlocksPerKeyframe);
   CHECK(per_keyframe[24] < 1.3 * per_keyframe[6]);
 }
+
+TEST_CASE("pose solver: GBA gives the same poses, bit for bit, on 1, 2 or 3 threads",
+          "[fusion][solver]") {
+  // linearize adds the element terms on several threads, each into the blocks of its poses in
+  // pair order: the sums of the serial loop. 3 chains of 40 keyframes, every point tied to the
+  // next chain's, each pair listed 30 times: > 40000 pairs, more than one chunk of terms.
+  constexpr int kChains = 3, kKeyframes = 40, kRepeat = 30;
+  auto solveWith = [&](int threads) {
+    std::mt19937 rng(7);
+    std::normal_distribution<double> n01;
+    std::vector<detail::PoseVar> x0;
+    std::vector<Pose3> truth;
+    for (int c = 0; c < kChains; ++c)
+      for (int k = 0; k < kKeyframes; ++k) {
+        truth.push_back(poseFromXyzRpy(8.0 * k, 0.3 * c, 0, 0, 0, 0.01 * std::sin(0.2 * k)));
+        x0.push_back(detail::PoseVar::from(
+            poseFromXyzRpy(8.0 * k + 0.3 * n01(rng), 0.3 * c + 0.3 * n01(rng), 0.1 * n01(rng), 0, 0,
+                           0.01 * std::sin(0.2 * k) + 0.01 * n01(rng))));
+      }
+    detail::PoseProblem<4> P(std::vector<int>(kChains, kKeyframes), x0);
+    P.setElementHuber(1.0);
+    std::vector<int> first(kChains + 1, 0);
+    for (int c = 0; c < kChains; ++c) {
+      for (int k = 0; k < kKeyframes; ++k) {
+        const int i = P.poseIndex(c, k);
+        P.addPrior(i, x0[i], Matrix6d::Identity());
+        if (k > 0)
+          P.addRelative(i - 1, i, truth[i - 1].inverse() * truth[i], Matrix6d::Identity() * 50.0);
+        for (double y : {-1.75, 1.75})
+          for (double x = 4; x < 12; x += 1.5) {
+            const Eigen::Vector3d w(8.0 * k + x, y + 0.01 * n01(rng), 0.3 * (y > 0));
+            P.addElementPoint(i, truth[i].inverse() * w,
+                              truth[i].linear().transpose() * Eigen::Vector3d::UnitX(), y > 0,
+                              20.0);
+          }
+      }
+      first[c + 1] = first[c] + kKeyframes * 12;
+    }
+    for (int r = 0; r < kRepeat; ++r)
+      for (int c = 0; c < kChains; ++c)
+        for (int k = 0; k < first[c + 1] - first[c]; ++k)
+          P.addElementPair(first[c] + k, first[(c + 1) % kChains] + k);
+    REQUIRE(P.elementPairs() > 40000);
+    detail::PoseProblemSettings ps;
+    ps.pcg.threads = threads;
+    const auto res = P.solve(ps);
+    CHECK(res.iterations > 1);
+    return P.poses();
+  };
+  const auto one = solveWith(1);
+  for (int threads : {2, 3}) {
+    const auto many = solveWith(threads);
+    REQUIRE(many.size() == one.size());
+    int differ = 0;
+    for (std::size_t i = 0; i < one.size(); ++i)
+      differ += !(many[i].t == one[i].t && many[i].q.coeffs() == one[i].q.coeffs());
+    CAPTURE(threads);
+    CHECK(differ == 0);
+  }
+}

@@ -80,6 +80,28 @@ TEST_CASE("PCD round-trip keeps points, labels, confidence and count", "[lidar][
   CHECK_THROWS_MATCHES(io::readPcd(dir / "a.pcd"), ParseError, test::ParseErrorAt("DATA"));
 }
 
+TEST_CASE("PLY and PCD writers refuse a cloud whose arrays differ in size, writing nothing",
+          "[lidar][io]") {
+  const auto dir = test::tempDir("cloud-sizes");
+  LabeledCloud fewer_labels = sampleCloud(10), fewer_scores = sampleCloud(10);
+  fewer_labels.labels.pop_back();
+  fewer_scores.confidence.pop_back();
+  for (const auto* cloud : {&fewer_labels, &fewer_scores}) {
+    for (const char* name : {"m.ply", "m.pcd"}) {
+      const auto path = dir / name;
+      const auto write = [&] {
+        if (path.extension() == ".ply")
+          io::writePly(path, *cloud);
+        else
+          io::writePcd(path, *cloud);
+      };
+      CHECK_THROWS_WITH(write(), Catch::Contains(path.string()) &&
+                                     Catch::Contains("labels and confidence differ in size"));
+      CHECK_FALSE(std::filesystem::exists(path));
+    }
+  }
+}
+
 TEST_CASE("SemanticKITTI .label round-trip and truncation", "[lidar][io]") {
   const auto dir = test::tempDir("label");
   std::vector<uint32_t> labels = {0, 40, 48, (7u << 16) | 10u, 70, 80};

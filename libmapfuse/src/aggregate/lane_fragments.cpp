@@ -11,6 +11,7 @@
 #include "box2d.hpp"
 #include "crossing_lines.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
+#include "mapfuse/core/parallel_for.hpp"
 #include "mapfuse/core/union_find.hpp"
 #include "mapfuse/core/vector_map.hpp"
 
@@ -64,7 +65,9 @@ void poolFragments(std::vector<Fragment>& frags, std::vector<int>& parent, doubl
     f.samples.insert(f.samples.end(), frags[i].samples.begin(), frags[i].samples.end());
     f.obs.insert(frags[i].obs.begin(), frags[i].obs.end());
   }
-  for (auto& f : out) f.centreline = binnedCentreline(f.samples, station_step);
+  parallelFor(out.size(), [&](std::size_t k) {  // fragments are independent
+    out[k].centreline = binnedCentreline(out[k].samples, station_step);
+  });
   frags = std::move(out);
 }
 

@@ -19,6 +19,7 @@
 #include "line_buffer.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/core/parallel_for.hpp"
 #include "mapfuse/io/bounds.hpp"
 #include "partner_drives.hpp"
 #include "polygon_overlap.hpp"
@@ -313,14 +314,18 @@ std::vector<Fragment> clusterFragments(const std::vector<Piece>& pieces,
                                        const DbscanResult& clusters,
                                        const LaneInstantiationParams& p) {
   std::vector<Fragment> frags(std::size_t(clusters.num_clusters));
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    if (clusters.labels[i] < 0) continue;
-    Fragment& f = frags[std::size_t(clusters.labels[i])];
-    const auto r = resamplePolyline(pieces[i].points, p.resample_step);
-    f.samples.insert(f.samples.end(), r.begin(), r.end());
-    f.obs.insert(pieces[i].obs);
-  }
-  for (auto& f : frags) f.centreline = binnedCentreline(f.samples, p.station_step);
+  std::vector<std::vector<std::size_t>> members(frags.size());  // piece order
+  for (std::size_t i = 0; i < pieces.size(); ++i)
+    if (clusters.labels[i] >= 0) members[std::size_t(clusters.labels[i])].push_back(i);
+  parallelFor(frags.size(), [&](std::size_t c) {  // fragments are independent
+    Fragment& f = frags[c];
+    for (std::size_t i : members[c]) {
+      const auto r = resamplePolyline(pieces[i].points, p.resample_step);
+      f.samples.insert(f.samples.end(), r.begin(), r.end());
+      f.obs.insert(pieces[i].obs);
+    }
+    f.centreline = binnedCentreline(f.samples, p.station_step);
+  });
   return frags;
 }
 

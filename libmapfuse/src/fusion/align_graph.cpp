@@ -1,6 +1,8 @@
 // Multi-trajectory pose graph (eq. (8)-(11)) and GBA (eq. (12)-(14)), Song et al. 2023, solved
 // by Levenberg-Marquardt with PCG steps over the keyframe poses (pose_problem.hpp): every
 // iteration costs O(keyframes + residuals), whatever the number of traversals at a place.
+#include <omp.h>
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -10,6 +12,7 @@
 
 #include "graph_covariances.hpp"
 #include "mapfuse/core/log.hpp"
+#include "mapfuse/core/parallel_for.hpp"
 #include "mapfuse/fusion/align.hpp"
 #include "mapfuse/fusion/voxel_hash.hpp"
 #include "pose_problem.hpp"
@@ -167,12 +170,15 @@ void associate(PoseProblem<D>& P, const std::vector<AnchoredPoint>& pts,
   // the radius), not 27.
   const double radius = 2.0 * std::max(0.1, s.gba_association_distance);
   std::vector<VoxelIndex> index(lsms);
-  for (int l = 0; l < lsms; ++l) {
-    std::vector<Eigen::Vector3d> w;
-    w.reserve(members[l].size());
-    for (int i : members[l]) w.push_back(world[i]);
-    if (!w.empty()) index[l] = VoxelIndex(w, radius);
-  }
+  parallelFor(
+      std::size_t(lsms),
+      [&](std::size_t l) {
+        std::vector<Eigen::Vector3d> w;
+        w.reserve(members[l].size());
+        for (int i : members[l]) w.push_back(world[i]);
+        if (!w.empty()) index[l] = VoxelIndex(w, radius);
+      },
+      s.threads);
   auto cellKey = [&](const Eigen::Vector3d& p) {
     return (uint64_t(uint32_t(int32_t(std::floor(p.x() / kCell)))) << 32) |
            uint32_t(int32_t(std::floor(p.y() / kCell)));
@@ -187,12 +193,15 @@ void associate(PoseProblem<D>& P, const std::vector<AnchoredPoint>& pts,
     v.erase(std::unique(v.begin(), v.end()), v.end());
   }
   const double r2 = s.gba_association_distance * s.gba_association_distance;
-  std::vector<std::pair<int, int>> found;  // (point a, point b)
+  // (point a, point b) per thread; a static schedule gives each thread one contiguous range of
+  // points, in thread order: the lists joined in thread order run in point order, whose ids
+  // rise with the point (a sort by (a, b) then only has to order each point's few partners).
+  std::vector<std::vector<std::pair<int, int>>> found(std::max(1, s.threads));
 #pragma omp parallel num_threads(s.threads)
   {
-    std::vector<std::pair<int, int>> local;
+    std::vector<std::pair<int, int>>& local = found[omp_get_thread_num()];
     std::vector<int> others, chosen;
-#pragma omp for schedule(static, 1024)
+#pragma omp for schedule(static)
     for (int i = 0; i < n; ++i) {
       const auto& here = present.at(cellKey(world[i]));
       others.clear();
@@ -218,11 +227,16 @@ void associate(PoseProblem<D>& P, const std::vector<AnchoredPoint>& pts,
         }
       }
     }
-#pragma omp critical
-    found.insert(found.end(), local.begin(), local.end());
   }
-  std::sort(found.begin(), found.end());  // deterministic order whatever the threads did
-  for (const auto& [a, b] : found) P.addElementPair(a, b);
+  for (auto& list : found) {
+    for (std::size_t k = 0; k < list.size();) {  // one point's partners: by partner id
+      std::size_t e = k + 1;
+      while (e < list.size() && list[e].first == list[k].first) ++e;
+      std::sort(list.begin() + k, list.begin() + e);
+      k = e;
+    }
+    for (const auto& [a, b] : list) P.addElementPair(a, b);
+  }
 }
 
 template <int D>

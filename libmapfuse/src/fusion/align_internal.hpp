@@ -30,8 +30,8 @@ struct Submap {
 };
 
 /// @brief Submaps of `length` m of keyframe path; submaps with < 10 points are dropped.
-/// O(keyframes + element points) per LSM.
-std::vector<Submap> buildSubmaps(const std::vector<Lsm>& lsms, double length);
+/// O(keyframes + element points) per LSM, the LSMs on `threads` OpenMP threads (0: default).
+std::vector<Submap> buildSubmaps(const std::vector<Lsm>& lsms, double length, int threads = 0);
 
 /// @brief The registration cloud of a submap (elementCloud of its keyframe range); of solid lane
 /// lines (free along the line) only every `solid_stride`-th point.

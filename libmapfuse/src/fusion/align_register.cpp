@@ -26,7 +26,7 @@ std::vector<InterConstraint> registerSubmaps(const std::vector<Lsm>& lsms, const
                   << what << " " << std::chrono::duration<double>(t - dbg_t0).count() << " s");
     dbg_t0 = t;
   };
-  const std::vector<Submap> maps = buildSubmaps(lsms, s.submap_length);
+  const std::vector<Submap> maps = buildSubmaps(lsms, s.submap_length, s.threads);
   dbg("submaps");
   const std::vector<SubmapPair> pairs = selectPairs(maps, s);
   dbg("pairs");

@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "align_internal.hpp"
+#include "mapfuse/core/parallel_for.hpp"
 #include "mapfuse/fusion/voxel_hash.hpp"
 
 namespace mapfuse::fusion {
@@ -54,9 +55,10 @@ std::vector<double> labelWeights(const std::vector<double>& class_weights) {
 
 namespace {
 
-// Element points of the listed elements in the LSM frame, with geometry covariances; of solid
-// lane lines only every `solid_stride`-th point.
-Cloud cloudOf(const Lsm& lsm, const std::vector<int>& elements, double sigma, int solid_stride) {
+// Element points of the listed elements in the LSM frame, with geometry covariances (unless
+// `points_only`: points and labels); of solid lane lines only every `solid_stride`-th point.
+Cloud cloudOf(const Lsm& lsm, const std::vector<int>& elements, double sigma, int solid_stride,
+              bool points_only = false) {
   Cloud c;
   for (int ei : elements) {
     const Element& e = lsm.elements[ei];
@@ -64,8 +66,15 @@ Cloud cloudOf(const Lsm& lsm, const std::vector<int>& elements, double sigma, in
     std::vector<Eigen::Vector3d> pts;
     for (const auto& p : e.points_body) pts.push_back(T * p);
     const GeometryKind kind = geometryKind(e.cls);
-    const Eigen::Vector3d n = kind == GeometryKind::kPlanar ? planeNormal(pts) : Eigen::Vector3d();
     const auto label = uint8_t(detail::alignLabel(e));
+    if (points_only) {
+      for (const auto& p : pts) {
+        c.points.push_back(p);
+        c.labels.push_back(label);
+      }
+      continue;
+    }
+    const Eigen::Vector3d n = kind == GeometryKind::kPlanar ? planeNormal(pts) : Eigen::Vector3d();
     // Solid lines are cut at keyframe boundaries, so their ends mean nothing: free along the
     // line. Dashes and stop lines are whole elements whose ends are real: nearly isotropic.
     const bool solid_line = kind == GeometryKind::kLine && e.cls == CrowdClass::kLaneLine &&
@@ -107,43 +116,52 @@ Cloud submapCloud(const std::vector<Lsm>& lsms, const Submap& m, int solid_strid
   return cloudOf(lsms[m.lsm], m.elements, 0.05, solid_stride);
 }
 
-std::vector<Submap> buildSubmaps(const std::vector<Lsm>& lsms, double length) {
-  std::vector<Submap> out;
-  for (int l = 0; l < int(lsms.size()); ++l) {
-    const auto& kfs = lsms[l].keyframes;
-    // Elements by anchor keyframe (stable: file order within a keyframe).
-    std::vector<std::vector<int>> by_kf(kfs.size());
-    for (int i = 0; i < int(lsms[l].elements.size()); ++i)
-      by_kf[lsms[l].keyframeIndex(lsms[l].elements[i].anchor)].push_back(i);
-    int begin = 0;
-    double dist = 0;
-    for (int k = 1; k <= int(kfs.size()); ++k) {
-      if (k < int(kfs.size()))
-        dist += (kfs[k].T_frame_body.translation() - kfs[k - 1].T_frame_body.translation()).norm();
-      if (k == int(kfs.size()) || dist >= length) {
-        Submap s;
-        s.lsm = l;
-        s.kf_begin = begin;
-        s.kf_end = k;
-        s.anchor = (begin + k - 1) / 2;
-        for (int kk = begin; kk < k; ++kk)
-          s.elements.insert(s.elements.end(), by_kf[kk].begin(), by_kf[kk].end());
-        Cloud cloud = submapCloud(lsms, s);
-        if (cloud.size() >= 10) {
-          cloud.covariances.clear();
-          s.coarse = voxelDownsample(cloud, 1.0);
-          s.lo = s.hi = cloud.points[0].head<2>();
-          for (const auto& p : cloud.points) {
-            s.lo = s.lo.cwiseMin(p.head<2>());
-            s.hi = s.hi.cwiseMax(p.head<2>());
+std::vector<Submap> buildSubmaps(const std::vector<Lsm>& lsms, double length, int threads) {
+  // Per LSM, side by side (independent), then concatenated in LSM order.
+  std::vector<std::vector<Submap>> per_lsm(lsms.size());
+  parallelFor(
+      lsms.size(),
+      [&](std::size_t li) {
+        const int l = int(li);
+        const auto& kfs = lsms[l].keyframes;
+        // Elements by anchor keyframe (stable: file order within a keyframe).
+        std::vector<std::vector<int>> by_kf(kfs.size());
+        for (int i = 0; i < int(lsms[l].elements.size()); ++i)
+          by_kf[lsms[l].keyframeIndex(lsms[l].elements[i].anchor)].push_back(i);
+        int begin = 0;
+        double dist = 0;
+        for (int k = 1; k <= int(kfs.size()); ++k) {
+          if (k < int(kfs.size()))
+            dist +=
+                (kfs[k].T_frame_body.translation() - kfs[k - 1].T_frame_body.translation()).norm();
+          if (k == int(kfs.size()) || dist >= length) {
+            Submap s;
+            s.lsm = l;
+            s.kf_begin = begin;
+            s.kf_end = k;
+            s.anchor = (begin + k - 1) / 2;
+            for (int kk = begin; kk < k; ++kk)
+              s.elements.insert(s.elements.end(), by_kf[kk].begin(), by_kf[kk].end());
+            // Points and labels only (the covariances are built when the submap is registered).
+            const Cloud cloud = cloudOf(lsms[l], s.elements, 0.05, 1, /*points_only=*/true);
+            if (cloud.size() >= 10) {
+              s.coarse = voxelDownsample(cloud, 1.0);
+              s.lo = s.hi = cloud.points[0].head<2>();
+              for (const auto& p : cloud.points) {
+                s.lo = s.lo.cwiseMin(p.head<2>());
+                s.hi = s.hi.cwiseMax(p.head<2>());
+              }
+              per_lsm[li].push_back(std::move(s));
+            }
+            begin = k;
+            dist = 0;
           }
-          out.push_back(std::move(s));
         }
-        begin = k;
-        dist = 0;
-      }
-    }
-  }
+      },
+      threads);
+  std::vector<Submap> out;
+  for (auto& v : per_lsm)
+    for (auto& s : v) out.push_back(std::move(s));
   return out;
 }
 

@@ -1,6 +1,8 @@
 // Levenberg-Marquardt over keyframe poses with PCG steps (pose_problem.hpp).
 #include "pose_problem.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -107,7 +109,7 @@ double PoseProblem<D>::evaluate(const std::vector<PoseVar>& x) const {
 
 template <int D>
 double PoseProblem<D>::linearize(Sys& sys, const std::vector<int>& rel_slot,
-                                 const std::vector<int>& pair_slot) const {
+                                 const std::vector<int>& pair_slot, int threads) const {
   double cost = 0;
   for (const Prior& p : priors_) {
     const PriorTerm t = priorTerm(x_[p.i], p.x0, p.L);
@@ -122,21 +124,53 @@ double PoseProblem<D>::linearize(Sys& sys, const std::vector<int>& rel_slot,
     cost += f.huber > 0 ? huberCost(s, f.huber) : 0.5 * s;
     sys.template addBinary<6>(rel_slot[k], f.i, f.j, cols<6>(t.Ja), cols<6>(t.Jb), t.r, w);
   }
-  for (std::size_t k = 0; k < pairs_.size(); ++k) {
-    const Point& a = points_[pairs_[k].a];
-    const Point& b = points_[pairs_[k].b];
-    const ElementTerm t = elementTerm(x_[a.pose], x_[b.pose], a.body.template cast<double>(),
-                                      b.body.template cast<double>(), b.dir.template cast<double>(),
-                                      b.plane, a.inv_sigma);
-    const double s = t.r.squaredNorm();
-    const double w = huberWeight(s, element_huber_);
-    cost += huberCost(s, element_huber_);
-    if (b.plane) {  // one row
-      const Eigen::Matrix<double, 1, 6> Ja = t.Ja.row(0), Jb = t.Jb.row(0);
-      sys.template addBinary<1>(pair_slot[k], a.pose, b.pose, cols<1>(Ja), cols<1>(Jb),
-                                t.r.head<1>(), w);
-    } else {
-      sys.template addBinary<3>(pair_slot[k], a.pose, b.pose, cols<3>(t.Ja), cols<3>(t.Jb), t.r, w);
+  // Element pairs (most of the work): a chunk's terms on all threads, then each thread adds the
+  // terms into the blocks of its range of poses, the chunk in pair order, and thread 0 sums the
+  // costs in pair order: the serial loop's sums bit for bit, whatever the thread count.
+  struct PairTerm {
+    Eigen::Matrix<double, 3, D> Ja, Jb;
+    Eigen::Vector3d r;
+    double w, cost;
+  };
+  constexpr int kChunk = 32768;  // 7.6 MB of terms (D = 4): few barriers
+  const int n = int(pairs_.size()), poses = int(x_.size());
+  std::vector<PairTerm> terms(std::min(n, kChunk));
+#pragma omp parallel num_threads(std::max(1, threads))
+  {
+    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+    const int p0 = int(int64_t(poses) * t / nt), p1 = int(int64_t(poses) * (t + 1) / nt);
+    const auto mine = [p0, p1](int p) { return p >= p0 && p < p1; };
+    for (int c0 = 0; c0 < n; c0 += kChunk) {
+      const int c1 = std::min(n, c0 + kChunk);
+#pragma omp for schedule(static)
+      for (int k = c0; k < c1; ++k) {
+        const Point& a = points_[pairs_[k].a];
+        const Point& b = points_[pairs_[k].b];
+        const ElementTerm e = elementTerm(x_[a.pose], x_[b.pose], a.body.template cast<double>(),
+                                          b.body.template cast<double>(),
+                                          b.dir.template cast<double>(), b.plane, a.inv_sigma);
+        PairTerm& pt = terms[k - c0];
+        const double s = e.r.squaredNorm();
+        pt.w = huberWeight(s, element_huber_);
+        pt.cost = huberCost(s, element_huber_);
+        pt.Ja = cols<3>(e.Ja);
+        pt.Jb = cols<3>(e.Jb);
+        pt.r = e.r;
+      }  // implied barrier: the chunk's terms are complete
+      for (int k = c0; k < c1; ++k) {
+        const PairTerm& pt = terms[k - c0];
+        const int ia = points_[pairs_[k].a].pose, ib = points_[pairs_[k].b].pose;
+        if (t == 0) cost += pt.cost;
+        if (points_[pairs_[k].b].plane) {  // one row
+          const Eigen::Matrix<double, 1, D> Ja = pt.Ja.template topRows<1>(),
+                                            Jb = pt.Jb.template topRows<1>();
+          sys.template addBinaryOwned<1>(pair_slot[k], ia, ib, Ja, Jb, pt.r.template head<1>(),
+                                         pt.w, mine);
+        } else {
+          sys.template addBinaryOwned<3>(pair_slot[k], ia, ib, pt.Ja, pt.Jb, pt.r, pt.w, mine);
+        }
+      }
+#pragma omp barrier
     }
   }
   return cost;
@@ -169,7 +203,7 @@ PoseProblemResult PoseProblem<D>::solve(const PoseProblemSettings& s) {
   std::vector<typename Sys::Vec> dx;
   for (int it = 0; it < s.max_iterations; ++it) {
     sys.setZero();
-    cost = linearize(sys, rel_slot, pair_slot);
+    cost = linearize(sys, rel_slot, pair_slot, s.pcg.threads);
     bool accepted = false;
     while (!accepted && radius > 1e-32) {
       ++res.iterations;

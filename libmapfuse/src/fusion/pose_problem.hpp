@@ -69,8 +69,8 @@ class PoseProblem {
   template <int R>
   static Eigen::Matrix<double, R, D> cols(const Eigen::Matrix<double, R, 6>& J);
   double evaluate(const std::vector<PoseVar>& x) const;
-  double linearize(Sys& sys, const std::vector<int>& rel_slot,
-                   const std::vector<int>& pair_slot) const;
+  double linearize(Sys& sys, const std::vector<int>& rel_slot, const std::vector<int>& pair_slot,
+                   int threads) const;
 
   std::vector<int> chain_sizes_, begin_;
   std::vector<PoseVar> x_;

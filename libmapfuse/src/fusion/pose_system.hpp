@@ -22,6 +22,7 @@
 /// Both levels act additively (z = M_f^-1 r + P A_c^-1 P^T r), a symmetric positive definite
 /// preconditioner, so the iteration count depends on neither the traversals nor the road.
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -75,11 +76,24 @@ class PoseSystem {
   void addBinary(int slot, int i, int j, const Eigen::Matrix<double, R, D>& Ji,
                  const Eigen::Matrix<double, R, D>& Jj, const Eigen::Matrix<double, R, 1>& r,
                  double w) {
+    addBinaryOwned<R>(slot, i, j, Ji, Jj, r, w, [](int) { return true; });
+  }
+  /// @brief addBinary restricted to the blocks a thread owns: pose p's diagonal block and
+  /// gradient when mine(p), the coupling block when mine(min(i, j)). Threads owning disjoint
+  /// poses that each run one list of terms through it add every block's terms in list order:
+  /// the sums of a serial addBinary loop, bit for bit.
+  template <int R, class Mine>
+  void addBinaryOwned(int slot, int i, int j, const Eigen::Matrix<double, R, D>& Ji,
+                      const Eigen::Matrix<double, R, D>& Jj, const Eigen::Matrix<double, R, 1>& r,
+                      double w, const Mine& mine) {
+    const bool own_i = mine(i), own_j = mine(j), own_off = mine(std::min(i, j));
+    if (!own_i && !own_j && !own_off) return;
     const Eigen::Matrix<double, D, R> wJi = w * Ji.transpose(), wJj = w * Jj.transpose();
-    diag_[i].noalias() += wJi * Ji;
-    diag_[j].noalias() += wJj * Jj;
-    grad_[i].noalias() += wJi * r;
-    grad_[j].noalias() += wJj * r;
+    if (own_i) diag_[i].noalias() += wJi * Ji;
+    if (own_j) diag_[j].noalias() += wJj * Jj;
+    if (own_i) grad_[i].noalias() += wJi * r;
+    if (own_j) grad_[j].noalias() += wJj * r;
+    if (!own_off) return;
     if (i < j)
       off_[slot].noalias() += wJi * Jj;
     else

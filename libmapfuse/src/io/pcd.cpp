@@ -8,6 +8,7 @@
 #include <sstream>
 #include <vector>
 
+#include "cloud_records.hpp"
 #include "mapfuse/core/classes.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
@@ -20,8 +21,6 @@ constexpr int64_t kMaxCount = 1 << 20;
 }  // namespace
 
 void writePcd(const std::filesystem::path& path, const LabeledCloud& cloud) {
-  if (cloud.labels.size() != cloud.size() || cloud.confidence.size() != cloud.size())
-    throw InputError(path.string() + ": points, labels and confidence differ in size");
   std::ostringstream h;
   h << "# .PCD v0.7 - Point Cloud Data file format\n"
     << "# label: mapfuse LiDAR class id 0-7 (docs/formats.md \"LiDAR classes\")\n"
@@ -29,11 +28,7 @@ void writePcd(const std::filesystem::path& path, const LabeledCloud& cloud) {
     << "FIELDS x y z rgb label confidence semantic_kitti\nSIZE 4 4 4 4 4 4 4\n"
     << "TYPE F F F U U F U\nCOUNT 1 1 1 1 1 1 1\nWIDTH " << cloud.size() << "\nHEIGHT 1\n"
     << "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << cloud.size() << "\nDATA binary\n";
-  const std::string header = h.str();
-  constexpr std::size_t kStride = 28;
-  std::string body(cloud.size() * kStride, '\0');
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    char* p = body.data() + i * kStride;
+  writeCloudRecords(path, cloud, h.str(), 28, [&](std::size_t i, char* p) {
     std::memcpy(p, cloud.points[i].data(), 12);
     const auto col = lidarClassColor(static_cast<LidarClass>(cloud.labels[i]));
     const uint32_t rgb = (uint32_t{col[0]} << 16) | (uint32_t{col[1]} << 8) | col[2];
@@ -43,10 +38,6 @@ void writePcd(const std::filesystem::path& path, const LabeledCloud& cloud) {
     std::memcpy(p + 20, &cloud.confidence[i], 4);
     const uint32_t kitti = semanticKittiId(static_cast<LidarClass>(cloud.labels[i]));
     std::memcpy(p + 24, &kitti, 4);
-  }
-  writeFileAtomic(path, [&](std::ostream& out) {
-    out.write(header.data(), static_cast<std::streamsize>(header.size()));
-    out.write(body.data(), static_cast<std::streamsize>(body.size()));
   });
 }
 

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "cloud_records.hpp"
 #include "mapfuse/core/classes.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
@@ -11,11 +12,6 @@
 
 namespace mapfuse::io {
 namespace {
-
-void checkCloud(const LabeledCloud& c, const std::string& what) {
-  if (c.labels.size() != c.size() || c.confidence.size() != c.size())
-    throw InputError(what + ": points, labels and confidence differ in size");
-}
 
 int typeSize(const std::string& t) {
   if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
@@ -48,7 +44,6 @@ double readValue(const char* p, const std::string& t) {
 }  // namespace
 
 void writePly(const std::filesystem::path& path, const LabeledCloud& cloud) {
-  checkCloud(cloud, path.string());
   std::ostringstream h;
   h << "ply\nformat binary_little_endian 1.0\ncomment mapfuse semantic voxel map\n"
     << "comment label: mapfuse LiDAR class id 0-7 (docs/formats.md \"LiDAR classes\")\n"
@@ -58,11 +53,7 @@ void writePly(const std::filesystem::path& path, const LabeledCloud& cloud) {
     << "property uchar red\nproperty uchar green\nproperty uchar blue\n"
     << "property uchar label\nproperty float confidence\nproperty ushort semantic_kitti\n"
     << "end_header\n";
-  const std::string header = h.str();
-  constexpr std::size_t kStride = 12 + 3 + 1 + 4 + 2;
-  std::string body(cloud.size() * kStride, '\0');
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    char* p = body.data() + i * kStride;
+  writeCloudRecords(path, cloud, h.str(), 12 + 3 + 1 + 4 + 2, [&](std::size_t i, char* p) {
     std::memcpy(p, cloud.points[i].data(), 12);
     const auto col = lidarClassColor(static_cast<LidarClass>(cloud.labels[i]));
     p[12] = static_cast<char>(col[0]);
@@ -72,10 +63,6 @@ void writePly(const std::filesystem::path& path, const LabeledCloud& cloud) {
     std::memcpy(p + 16, &cloud.confidence[i], 4);
     const uint16_t kitti = semanticKittiId(static_cast<LidarClass>(cloud.labels[i]));
     std::memcpy(p + 20, &kitti, 2);
-  }
-  writeFileAtomic(path, [&](std::ostream& out) {
-    out.write(header.data(), static_cast<std::streamsize>(header.size()));
-    out.write(body.data(), static_cast<std::streamsize>(body.size()));
   });
 }
 

@@ -1,10 +1,12 @@
 #include "mapfuse/stages/aggregate.hpp"
 
 #include <chrono>
+#include <functional>
 
 #include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
+#include "mapfuse/core/parallel_for.hpp"
 #include "mapfuse/io/geojson.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/map_png.hpp"
@@ -17,33 +19,43 @@ namespace mapfuse::stages {
 namespace {
 
 // The map in every format (each written atomically), map.png over the observations in grey.
-// map.osm's lanelets take their travel direction from the drives' keyframe paths.
+// map.osm's lanelets take their travel direction from the drives' keyframe paths. The files are
+// independent: written side by side (aggregate's serial tail), together with `also` (work that
+// reads the same inputs); errors as a serial loop in this order would report them.
 void writeMap(const std::filesystem::path& out_dir, const VectorMap& map,
               const aggregate::ObservationSet& set, const std::vector<Lsm>& lsms,
-              const AggregateParams& params, io::Lanelet2ExportStats* osm_stats) {
+              const AggregateParams& params, io::Lanelet2ExportStats* osm_stats,
+              const std::function<void()>& also) {
   std::filesystem::create_directories(out_dir);
-  io::VectorMapWriteOptions compact;
-  compact.compact = true;
-  compact.coordinate_quantum = params.coordinate_quantum;
-  io::writeVectorMap(out_dir / "map.cbor", map, compact);
-  io::writeVectorMap(out_dir / "map.json", map);
-  io::writeGeoJson(out_dir / "map.geojson", map);
-  std::vector<io::DrivePath> drives(lsms.size());
-  for (std::size_t d = 0; d < lsms.size(); ++d)
-    for (const auto& k : lsms[d].keyframes) drives[d].push_back(k.T_frame_body.translation());
-  io::writeOsm(out_dir / "map.osm", map, drives, osm_stats);
-  if (params.write_png) {
-    std::vector<std::vector<Eigen::Vector3d>> background;
-    background.reserve(set.items.size());
-    for (const auto& o : set.items) background.push_back(o.points);
-    io::MapPngOptions png;
-    png.resolution = params.png_resolution;
-    io::writeMapPng(out_dir / "map.png", map, background, png);
-  }
+  const std::vector<std::function<void()>> jobs = {
+      [&] {  // the two slowest first
+        std::vector<io::DrivePath> drives(lsms.size());
+        for (std::size_t d = 0; d < lsms.size(); ++d)
+          for (const auto& k : lsms[d].keyframes) drives[d].push_back(k.T_frame_body.translation());
+        io::writeOsm(out_dir / "map.osm", map, drives, osm_stats);
+      },
+      [&] {
+        if (!params.write_png) return;
+        std::vector<std::vector<Eigen::Vector3d>> background;
+        background.reserve(set.items.size());
+        for (const auto& o : set.items) background.push_back(o.points);
+        io::MapPngOptions png;
+        png.resolution = params.png_resolution;
+        io::writeMapPng(out_dir / "map.png", map, background, png);
+      },
+      [&] {
+        io::VectorMapWriteOptions compact;
+        compact.compact = true;
+        compact.coordinate_quantum = params.coordinate_quantum;
+        io::writeVectorMap(out_dir / "map.cbor", map, compact);
+      },
+      [&] { io::writeVectorMap(out_dir / "map.json", map); },
+      [&] { io::writeGeoJson(out_dir / "map.geojson", map); },
+      also};
+  parallelFor(jobs.size(), [&](std::size_t i) { jobs[i](); });
 }
 
 }  // namespace
-
 
 AggregateRun runAggregate(const std::vector<std::string>& inputs,
                           const std::filesystem::path& out_dir, const AggregateParams& params) {
@@ -65,7 +77,8 @@ AggregateRun runAggregate(const std::vector<std::string>& inputs,
   AggregateRun run;
   const VectorMap map = aggregate::aggregateObservations(set, params.aggregator, &run.stats);
   const auto t2 = Clock::now();
-  writeMap(out_dir, map, set, lsms, params, &run.lanelet2);
+  writeMap(out_dir, map, set, lsms, params, &run.lanelet2,
+           [&] { run.road_km = aggregate::coveredRoadKm(lsms, params.road); });
   const auto t3 = Clock::now();
 
   run.method = params.aggregator.method;
@@ -74,7 +87,6 @@ AggregateRun runAggregate(const std::vector<std::string>& inputs,
   run.instances = map.instances.size();
   run.max_deviation_limit = params.aggregator.bezier.max_deviation;
   run.cbor_kb = double(std::filesystem::file_size(io::contentPath(out_dir / "map.cbor"))) / 1024.0;
-  run.road_km = aggregate::coveredRoadKm(lsms, params.road);
   run.lane_line_km = totalLineLength(map, CrowdClass::kLaneLine) / 1000.0;
   run.seconds_read = seconds(t0, t1);
   run.seconds_aggregate = seconds(t1, t2);

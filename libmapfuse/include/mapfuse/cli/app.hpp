@@ -98,13 +98,13 @@ void addParamOptions(CLI::App& app, Params& params, const char* group = "Paramet
 /// it with its exit code instead of the process aborting.
 void deferError(std::exception_ptr error);
 
+/// @brief The file of "--config FILE" / "--config=FILE" in argv, or empty.
+std::string configArgument(int argc, char** argv);
+
 /// @brief Finds "--config FILE" / "--config=FILE" in argv before CLI11 parses, so that the
 /// file's values become the defaults and command-line options override them. A bad file
 /// (unknown key, wrong type, out of range, empty, not JSON: ConfigError; unreadable: IoError)
 /// is reported by run().
-/// @brief The file of "--config FILE" / "--config=FILE" in argv, or empty.
-std::string configArgument(int argc, char** argv);
-
 template <class Params>
 void preloadConfig(int argc, char** argv, Params& params) {
   try {
@@ -134,7 +134,7 @@ std::vector<std::string> expandInputList(const std::vector<std::string>& args);
 /// parameter, parses, validates and calls `body`. A body that returns a string prints it as one
 /// line on stdout (the path or figures a pipeline reads next).
 ///
-///   cli::StageTool<stages::AlignParams> tool("align", kAbout);
+///   cli::StageTool<stages::AlignParams> tool("align", apps::about::kAlign);
 ///   const auto& lsms = tool.inputs("lsms", cli::kLsmListHelp);
 ///   const auto& out = tool.out("Output folder");
 ///   return tool.run(argc, argv, [&](const auto& p) { stages::runAlign(lsms, out, p); return out;
@@ -196,23 +196,34 @@ class StageTool {
   std::deque<std::string> files_;  ///< stable addresses for existingFile()
 };
 
+/// @brief main() of a stage that reads a positional list of LSMs (`inputs_name`, @list.txt or -)
+/// and writes below -o/--out: `body(lsms, out, params)` is the library call; what it returns is
+/// printed as in StageTool::run.
+template <class Params, class Body>
+int lsmListMain(int argc, char** argv, const char* name, const char* about, const char* inputs_name,
+                const char* out_help, Body body) {
+  StageTool<Params> tool(name, about);
+  const auto& lsms = tool.inputs(inputs_name, kLsmListHelp);
+  const auto& out = tool.out(out_help);
+  return tool.run(argc, argv, [&](const Params& params) { return body(lsms, out, params); });
+}
+
 /// @brief main() of a stage that turns LSMs into an output folder of LSMs with the same file
 /// names (georef, align): `stage(lsms, out, params)` is the library call; prints the folder.
 template <class Params, class Stage>
 int lsmFolderMain(int argc, char** argv, const char* name, const char* about, Stage stage) {
-  StageTool<Params> tool(name, about);
-  const auto& lsms = tool.inputs("lsms", kLsmListHelp);
-  const auto& out = tool.out("Output folder (LSMs keep their file names)");
-  return tool.run(argc, argv, [&](const Params& params) {
-    stage(lsms, out, params);
-    return out;
-  });
+  return lsmListMain<Params>(
+      argc, argv, name, about, "lsms", "Output folder (LSMs keep their file names)",
+      [&](const std::vector<std::string>& lsms, const std::string& out, const Params& params) {
+        stage(lsms, out, params);
+        return out;
+      });
 }
 
 /// A tool of subcommands (`evaluate map`, `evaluate voxels`): each subcommand gets --config, -v
 /// and --quiet, then its own options from its setup, which returns what runs when it is chosen.
 ///
-///   cli::CommandTool tool("evaluate", kAbout);
+///   cli::CommandTool tool("evaluate", apps::about::kEvaluate);
 ///   tool.add("map", "vector maps against the truth", setupMap);  // setupMap(sub) -> action
 ///   return tool.run(argc, argv);
 class CommandTool {
