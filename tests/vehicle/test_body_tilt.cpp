@@ -1,6 +1,7 @@
-// vehicle::roadTiltInBody / tiltByBodyRotation on hand-made motions whose answers are known: a
-// body pitching and rolling on its suspension over a level road, a long climb (road grade, not
-// tilt), and bad inputs.
+// vehicle::roadTiltInBody / tiltByBodyRotation / tiltedCameraHeight on hand-made motions whose
+// answers are known: a body pitching and rolling on its suspension over a level road (box and
+// Hann windows), a long climb (road grade, not tilt), the camera height on a pitched body, and
+// bad inputs.
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -15,6 +16,8 @@ constexpr double kRate = 10.0;        // Hz, camera frames
 constexpr double kWindow = 2.0;       // s
 constexpr double kOscillation = 0.7;  // Hz, suspension
 constexpr double kAmplitude = 0.01;   // rad
+constexpr double kHannLeak = 0.03;    // Hann 4 s: fraction of a 0.5-0.7 Hz oscillation left
+constexpr double kHeightTol = 1e-9;   // m, camera height (the model is exact for this pivot)
 
 Pose3 pose(double yaw, double pitch, double roll, const Eigen::Vector3d& t) {
   Pose3 T = Pose3::Identity();
@@ -87,4 +90,55 @@ TEST_CASE("body tilt: a steady climb is road grade, not tilt, windows off, bad i
   CHECK_THROWS_AS(vehicle::roadTiltInBody(poses, stamps, kWindow), InputError);
   stamps.push_back(0.0);  // backwards
   CHECK_THROWS_AS(vehicle::roadTiltInBody(poses, stamps, kWindow), InputError);
+}
+
+TEST_CASE("body tilt: a Hann window leaves a fraction of the box window's oscillation") {
+  // The simulator's suspension: pitch 0.01 rad at 0.7 Hz, roll 0.005 rad at 0.5 Hz, on a level
+  // road in a slow turn. Transfer at f of a window of length W: box sin(pi f W)/(pi f W) (0.22 at
+  // 0.7 Hz, 2 s), Hann sinc(f W)/(1 - (f W)^2) (0.010 at 0.7 Hz, 4 s; 0 at 0.5 Hz).
+  std::vector<Pose3> poses;
+  std::vector<double> stamps;
+  for (int i = 0; i < 300; ++i) {
+    const double t = i / kRate;
+    poses.push_back(pose(0.05 * t, kAmplitude * std::sin(2 * M_PI * kOscillation * t),
+                         0.5 * kAmplitude * std::sin(2 * M_PI * 0.5 * t + 1.0),
+                         Eigen::Vector3d(8.0 * t, 0.0, 0.0)));
+    stamps.push_back(t);
+  }
+  auto worst = [&](double window, vehicle::TiltWeighting w) {
+    const auto tilt = vehicle::roadTiltInBody(poses, stamps, window, w);
+    double e = 0.0;
+    for (std::size_t i = 30; i + 30 < poses.size(); ++i)  // full windows
+      e = std::max(e, normalError(tilt[i], poses[i], Eigen::Vector3d::UnitZ()));
+    return e;
+  };
+  const double box2 = worst(2.0, vehicle::TiltWeighting::kBox);
+  const double hann4 = worst(4.0, vehicle::TiltWeighting::kHann);
+  INFO("worst normal error: box 2 s " << box2 << " rad, Hann 4 s " << hann4 << " rad");
+  CHECK(box2 > 0.15 * kAmplitude);
+  CHECK(hann4 < kHannLeak * kAmplitude);
+}
+
+TEST_CASE("body tilt: the camera height follows a pitch about the body origin") {
+  // The simulator's mount: camera 1.8 m ahead of and 1.4 m above the body origin, which lies on
+  // the road. Pitching the body by p about its origin puts the camera at the height the pose
+  // gives directly (independent reference: z of T_enu_body * t_body_cam).
+  Pose3 T_body_cam = Pose3::Identity();
+  T_body_cam.linear() = (Eigen::Matrix3d() << 0, 0, 1, -1, 0, 0, 0, -1, 0).finished();
+  T_body_cam.translation() = Eigen::Vector3d(1.8, 0.0, 1.4);
+  const Eigen::Vector3d n_cam = T_body_cam.linear().transpose() * Eigen::Vector3d::UnitZ();
+  for (double p : {-0.02, -0.01, 0.005, 0.01, 0.02})
+    for (double r : {-0.01, 0.0, 0.007}) {
+      const Pose3 T_enu_body = pose(0.3, p, r, Eigen::Vector3d(5.0, -2.0, 0.0));
+      const double truth = (T_enu_body * T_body_cam.translation()).z();
+      // The tilt maps the body's up axis to the road normal seen from the body.
+      const Eigen::Vector3d road_body = T_enu_body.linear().transpose() * Eigen::Vector3d::UnitZ();
+      const Eigen::Matrix3d R_tilt =
+          Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), road_body)
+              .toRotationMatrix();
+      const double h = vehicle::tiltedCameraHeight(1.4, n_cam, R_tilt, T_body_cam);
+      INFO("pitch " << p << " roll " << r << ": height " << h << ", truth " << truth);
+      CHECK(std::abs(h - truth) < kHeightTol);
+      if (std::abs(p) >= 0.01) CHECK(std::abs(1.4 - truth) > 0.015);  // it matters: 1.8 m * p
+    }
 }

@@ -64,6 +64,16 @@ TEST_CASE("lsm-build writes an LSM that reads back, validates and keeps the GPS 
   CHECK(lsm.gps.size() == io::readDriveFrames(drive).gps.size());
   CHECK(fs::exists(out / "lsm-build.summary.json"));
   CHECK(fs::exists(out / "lsm-build.config.json"));
+  // The body attitude the planes follow, as the summary reports it: the simulator's pitch
+  // oscillation (0.01 rad amplitude, 0.0071 rad RMS) and the camera height it moves (1.8 m
+  // ahead of the pivot: 0.0127 m RMS).
+  const auto summary = io::readDocument(out / "lsm-build.summary.json");
+  const auto& tilt = summary.at("body_tilt");
+  CHECK(tilt.at("source") == "ego-motion");
+  CHECK(tilt.at("weighting") == "hann");
+  CHECK(tilt.at("frames").get<int>() == int(io::readDriveFrames(drive).frames.size()));
+  CHECK(tilt.at("pitch_rms_rad").get<double>() == Approx(0.0071).epsilon(0.15));
+  CHECK(tilt.at("height_change_rms_m").get<double>() == Approx(0.0127).epsilon(0.15));
   CHECK(fs::exists(out / (drive.filename().string() + ".bev.png")));
   // Determinism: a second run gives the same bytes.
   const fs::path out2 = test::tempDir("lsm_build_ok2") / "out";

@@ -1,8 +1,10 @@
 #include "mapfuse/vehicle/lsm_build.hpp"
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <optional>
 
 #include "aerial_tracks.hpp"
@@ -20,11 +22,35 @@ void calibrateGroundPlanes(const DriveData& d, const LsmBuildSettings& s, LsmBui
   const std::size_t n = d.frames.size();
   // The nominal plane tilted with the body (body_tilt.hpp).
   out.planes.assign(n, d.calib.ground);
+  out.tilt = BodyTiltStats{};
   if (s.tilt_window > 0) {
-    const auto tilt = roadTiltInBody(d.T_odom_body, d.stamps, s.tilt_window);
-    for (std::size_t i = 0; i < n; ++i)
+    const auto tilt =
+        roadTiltInBody(d.T_odom_body, d.stamps, s.tilt_window,
+                       s.tilt_weighting == "hann" ? TiltWeighting::kHann : TiltWeighting::kBox);
+    BodyTiltStats& st = out.tilt;
+    st.source = "ego-motion";
+    st.weighting = s.tilt_weighting;
+    st.window = s.tilt_window;
+    st.moves_height = s.tilt_moves_height;
+    st.frames = int(n);
+    for (std::size_t i = 0; i < n; ++i) {
       out.planes[i].normal_cam =
           tiltByBodyRotation(d.calib.ground.normal_cam, tilt[i], d.calib.T_body_cam.linear());
+      if (s.tilt_moves_height)
+        out.planes[i].height = tiltedCameraHeight(d.calib.ground.height, d.calib.ground.normal_cam,
+                                                  tilt[i], d.calib.T_body_cam);
+      const Eigen::Vector3d w = Eigen::Vector3d::UnitZ().cross(tilt[i].col(2));  // small angles
+      st.roll_rms += w.x() * w.x();
+      st.pitch_rms += w.y() * w.y();
+      st.roll_max = std::max(st.roll_max, std::abs(w.x()));
+      st.pitch_max = std::max(st.pitch_max, std::abs(w.y()));
+      const double dh = out.planes[i].height - d.calib.ground.height;
+      st.height_change_rms += dh * dh;
+    }
+    const double m = double(std::max<std::size_t>(1, n));
+    st.roll_rms = std::sqrt(st.roll_rms / m);
+    st.pitch_rms = std::sqrt(st.pitch_rms / m);
+    st.height_change_rms = std::sqrt(st.height_change_rms / m);
   }
   // Lane vanishing points against that plane (§3.2.1), only where the ego-motion shows a straight
   // road ahead and the VP lies on the motion's direction; pooled, or the static extrinsic kept

@@ -34,7 +34,9 @@ struct DriveData {
 struct LsmBuildSettings {
   KeyframeSettings keyframes;
   RangingSettings ranging;
-  double tilt_window = 2.0;  ///< s, body tilt from the ego-motion (body_tilt.hpp); 0: off
+  double tilt_window = 4.0;  ///< s, body tilt from the ego-motion (body_tilt.hpp); 0: off
+  std::string tilt_weighting = "hann";  ///< "box" | "hann": weights of the frames in the window
+  bool tilt_moves_height = true;        ///< the camera height follows the tilt (lever arm)
   VanishingSettings vanishing;
   TriangulationSettings triangulation;
   AssemblySettings assembly;
@@ -47,12 +49,34 @@ struct LsmBuildSettings {
       "follow the body's pitch and roll from the ego-motion against their mean over this window; "
       "0: off",
       param::in(0, 3600));
+    v("tilt_weighting", tilt_weighting, "",
+      "weights of the frames in tilt_window: hann (cos^2 taper, a suspension oscillation above "
+      "2/tilt_window Hz leaks < 3 %) or box (equal)",
+      param::oneOf({"box", "hann"}));
+    v("tilt_moves_height", tilt_moves_height, "",
+      "move the camera height with the body tilt (the body pivots about its origin, the camera "
+      "sits T_body_cam from it)");
     vanishing.visit(v);
     v.relation("vp_max_range", vanishing.max_range, vanishing.max_range > ranging.min_range,
                "> min_range");
     triangulation.visit(v);
     assembly.visit(v);
   }
+};
+
+/// The body attitude the ground planes follow (lsm-build.summary.json "body_tilt"): the road
+/// normal from the ego-motion over tilt_window, and what it changed per frame.
+struct BodyTiltStats {
+  std::string source = "off";    ///< "ego-motion" or "off" (tilt_window 0)
+  std::string weighting;         ///< "box" | "hann"
+  double window = 0.0;           ///< s
+  bool moves_height = false;     ///< the camera height followed the tilt
+  int frames = 0;                ///< frames tilted
+  double pitch_rms = 0.0;        ///< rad, applied tilt about the body y axis, RMS over frames
+  double roll_rms = 0.0;         ///< rad, about the body x axis
+  double pitch_max = 0.0;        ///< rad, largest |pitch| applied
+  double roll_max = 0.0;         ///< rad, largest |roll| applied
+  double height_change_rms = 0;  ///< m, camera height change, RMS over frames
 };
 
 /// What buildLsm made and counted (lsm-build.summary.json).
@@ -62,6 +86,7 @@ struct LsmBuildResult {
   std::vector<double> pitch_corrections;  ///< rad per frame (0 when calibration is off)
   int vp_frames = 0;                      ///< frames supporting the VP calibration
   VpCalibration vp;                       ///< the VP gate's counts and decision
+  BodyTiltStats tilt;                     ///< the body attitude the planes follow
   double mean_pitch_correction = 0.0;     ///< rad
   int frames = 0, keyframes = 0;
   int ranged_markings = 0;  ///< ground markings ranged in single frames
