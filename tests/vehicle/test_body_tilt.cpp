@@ -29,6 +29,19 @@ Pose3 pose(double yaw, double pitch, double roll, const Eigen::Vector3d& t) {
   return T;
 }
 
+/// A slow turn over a level road at 8 m/s, `n` frames: the body pitches kAmplitude at
+/// kOscillation and rolls half that at `roll_hz` (the suspension).
+void suspensionDrive(int n, double roll_hz, std::vector<Pose3>& poses,
+                     std::vector<double>& stamps) {
+  for (int i = 0; i < n; ++i) {
+    const double t = i / kRate;
+    poses.push_back(pose(0.05 * t, kAmplitude * std::sin(2 * M_PI * kOscillation * t),
+                         0.5 * kAmplitude * std::sin(2 * M_PI * roll_hz * t + 1.0),
+                         Eigen::Vector3d(8.0 * t, 0.0, 0.0)));
+    stamps.push_back(t);
+  }
+}
+
 /// Angle between the tilt's image of e_z and the true road normal in the body frame.
 double normalError(const Eigen::Matrix3d& tilt, const Pose3& T_odom_body,
                    const Eigen::Vector3d& road_odom) {
@@ -42,13 +55,7 @@ TEST_CASE("body tilt: suspension pitch and roll over a level road are followed")
   // 20 s of driving in a slow turn; pitch and roll oscillate at 0.7 and 0.45 Hz.
   std::vector<Pose3> poses;
   std::vector<double> stamps;
-  for (int i = 0; i < 200; ++i) {
-    const double t = i / kRate;
-    poses.push_back(pose(0.05 * t, kAmplitude * std::sin(2 * M_PI * kOscillation * t),
-                         0.5 * kAmplitude * std::sin(2 * M_PI * 0.45 * t + 1.0),
-                         Eigen::Vector3d(8.0 * t, 0.0, 0.0)));
-    stamps.push_back(t);
-  }
+  suspensionDrive(200, 0.45, poses, stamps);
   const auto tilt = vehicle::roadTiltInBody(poses, stamps, kWindow);
   REQUIRE(tilt.size() == poses.size());
   double worst = 0.0, worst_fixed = 0.0;
@@ -98,13 +105,7 @@ TEST_CASE("body tilt: a Hann window leaves a fraction of the box window's oscill
   // 0.7 Hz, 2 s), Hann sinc(f W)/(1 - (f W)^2) (0.010 at 0.7 Hz, 4 s; 0 at 0.5 Hz).
   std::vector<Pose3> poses;
   std::vector<double> stamps;
-  for (int i = 0; i < 300; ++i) {
-    const double t = i / kRate;
-    poses.push_back(pose(0.05 * t, kAmplitude * std::sin(2 * M_PI * kOscillation * t),
-                         0.5 * kAmplitude * std::sin(2 * M_PI * 0.5 * t + 1.0),
-                         Eigen::Vector3d(8.0 * t, 0.0, 0.0)));
-    stamps.push_back(t);
-  }
+  suspensionDrive(300, 0.5, poses, stamps);
   auto worst = [&](double window, vehicle::TiltWeighting w) {
     const auto tilt = vehicle::roadTiltInBody(poses, stamps, window, w);
     double e = 0.0;
