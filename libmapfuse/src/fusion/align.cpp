@@ -43,22 +43,14 @@ AlignResult alignLsms(std::vector<Lsm>& lsms, const AlignSettings& s) {
   r.constraints_pcm_kept = pcmSelect(lsms, r.constraints, s);
   r.seconds_pcm = since(t);
   t = Clock::now();
-  const GraphSolve pg = solveMultiPoseGraph(lsms, priors, r.constraints, s);  // eq. (8)-(11)
-  r.cost_pose_graph = pg.cost;
-  r.converged = r.converged_pose_graph = pg.converged;
-  r.pose_graph_solves = pg.rounds;
-  r.pose_graph_iterations = pg.iterations;
-  r.pose_graph_pcg_iterations = pg.pcg_iterations;
+  r.pose_graph = solveMultiPoseGraph(lsms, priors, r.constraints, s);  // eq. (8)-(11)
+  r.converged = r.pose_graph.converged;
   r.seconds_pose_graph = since(t);
   if (s.method == AlignMethod::kGbaSgicp) {
     t = Clock::now();
-    r.ran_gba = true;  // eq. (12)-(14)
-    const GraphSolve g = solveGba(lsms, priors, s);
-    r.cost_gba = g.cost;
-    r.gba_residuals = g.residuals;
-    r.converged = r.converged_gba = g.converged;
-    r.gba_iterations = g.iterations;
-    r.gba_pcg_iterations = g.pcg_iterations;
+    r.ran_gba = true;
+    r.gba = solveGba(lsms, priors, s);  // eq. (12)-(14)
+    r.converged = r.gba.converged;
     r.seconds_gba = since(t);
   }
   for (const auto& c : r.constraints) {

@@ -10,24 +10,30 @@
 #include "mapfuse/io/stage_report.hpp"
 
 namespace mapfuse::stages {
+namespace {
+
+/// One solve's figures under the summary's keys: cost_<name>, converged_<name>,
+/// <name>_iterations, <name>_pcg_iterations, seconds_<name>.
+void writeSolve(nlohmann::json& sum, const std::string& name, const fusion::GraphSolve& g,
+                double seconds) {
+  sum["cost_" + name] = g.cost;
+  sum["converged_" + name] = g.converged;
+  sum[name + "_iterations"] = g.iterations;
+  sum[name + "_pcg_iterations"] = g.pcg_iterations;
+  sum["seconds_" + name] = seconds;
+}
+
+}  // namespace
 
 nlohmann::json toJson(const fusion::AlignResult& r) {
   nlohmann::json sum;
   sum["seconds_registration"] = r.seconds_registration;
   sum["seconds_pcm"] = r.seconds_pcm;
-  sum["cost_pose_graph"] = r.cost_pose_graph;
-  sum["converged_pose_graph"] = r.converged_pose_graph;
-  sum["pose_graph_solves"] = r.pose_graph_solves;
-  sum["pose_graph_iterations"] = r.pose_graph_iterations;
-  sum["pose_graph_pcg_iterations"] = r.pose_graph_pcg_iterations;
-  sum["seconds_pose_graph"] = r.seconds_pose_graph;
+  writeSolve(sum, "pose_graph", r.pose_graph, r.seconds_pose_graph);
+  sum["pose_graph_solves"] = r.pose_graph.rounds;
   if (r.ran_gba) {
-    sum["cost_gba"] = r.cost_gba;
-    sum["gba_residuals"] = r.gba_residuals;
-    sum["converged_gba"] = r.converged_gba;
-    sum["gba_iterations"] = r.gba_iterations;
-    sum["gba_pcg_iterations"] = r.gba_pcg_iterations;
-    sum["seconds_gba"] = r.seconds_gba;
+    writeSolve(sum, "gba", r.gba, r.seconds_gba);
+    sum["gba_residuals"] = r.gba.residuals;
   }
   sum["constraints_graph_outliers"] = r.constraints_graph_outliers;
   nlohmann::json pairs = nlohmann::json::array();

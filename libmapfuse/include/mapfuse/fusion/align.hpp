@@ -212,18 +212,10 @@ struct AlignResult {
   int constraints_accepted = 0;              ///< passed the registration checks
   int constraints_pcm_kept = 0;              ///< kept by PCM
   int constraints_graph_outliers = 0;        ///< dropped by the pose graph
-  double cost_pose_graph = 0;
-  bool converged_pose_graph = false;
-  bool ran_gba = false;  ///< method gba_sgicp
-  double cost_gba = 0;
-  int gba_residuals = 0;
-  bool converged_gba = false;
-  int pose_graph_solves = 0;          ///< pose-graph solve / reject rounds
-  int pose_graph_iterations = 0;      ///< Levenberg-Marquardt iterations of the pose graph
-  int pose_graph_pcg_iterations = 0;  ///< and their conjugate-gradient iterations
-  int gba_iterations = 0;             ///< Levenberg-Marquardt iterations of GBA
-  int gba_pcg_iterations = 0;         ///< and their conjugate-gradient iterations
-  bool converged = false;             ///< the last solve converged
+  GraphSolve pose_graph;                     ///< eq. (8)-(11); rounds = solve / reject rounds
+  bool ran_gba = false;                      ///< method gba_sgicp
+  GraphSolve gba;                            ///< eq. (12)-(14), when ran_gba
+  bool converged = false;                    ///< the last solve converged
   double seconds_registration = 0, seconds_pcm = 0, seconds_pose_graph = 0, seconds_gba = 0;
 };
 
