@@ -37,8 +37,8 @@ AlignResult alignLsms(std::vector<Lsm>& lsms, const AlignSettings& s) {
   auto t = Clock::now();
   r.constraints = registerSubmaps(lsms, s);  // eq. (7)
   r.seconds_registration = since(t);
-  releaseFreeHeap();  // the submaps, built on all threads, are gone: 20 km x 50 peak 1033 -> 997
-                      // MiB
+  // The submaps, built on all threads, are gone: their memory back (20 km x 50: 1033 -> 997 MiB).
+  releaseFreeHeap();
   t = Clock::now();
   r.constraints_pcm_kept = pcmSelect(lsms, r.constraints, s);
   r.seconds_pcm = since(t);

@@ -18,41 +18,40 @@
 namespace mapfuse::stages {
 namespace {
 
-// The map in every format (each written atomically), map.png over the observations in grey.
-// map.osm's lanelets take their travel direction from the drives' keyframe paths. The files are
-// independent: written side by side (aggregate's serial tail), together with `also` (work that
-// reads the same inputs); errors as a serial loop in this order would report them.
-void writeMap(const std::filesystem::path& out_dir, const VectorMap& map,
-              const aggregate::ObservationSet& set, const std::vector<Lsm>& lsms,
-              const AggregateParams& params, io::Lanelet2ExportStats* osm_stats,
-              const std::function<void()>& also) {
-  std::filesystem::create_directories(out_dir);
-  const std::vector<std::function<void()>> jobs = {
-      [&] {  // the two slowest first
-        std::vector<io::DrivePath> drives(lsms.size());
-        for (std::size_t d = 0; d < lsms.size(); ++d)
-          for (const auto& k : lsms[d].keyframes) drives[d].push_back(k.T_frame_body.translation());
-        io::writeOsm(out_dir / "map.osm", map, drives, osm_stats);
-      },
-      [&] {
-        if (!params.write_png) return;
-        std::vector<std::vector<Eigen::Vector3d>> background;
-        background.reserve(set.items.size());
-        for (const auto& o : set.items) background.push_back(o.points);
-        io::MapPngOptions png;
-        png.resolution = params.png_resolution;
-        io::writeMapPng(out_dir / "map.png", map, background, png);
-      },
-      [&] {
-        io::VectorMapWriteOptions compact;
-        compact.compact = true;
-        compact.coordinate_quantum = params.coordinate_quantum;
-        io::writeVectorMap(out_dir / "map.cbor", map, compact);
-      },
-      [&] { io::writeVectorMap(out_dir / "map.json", map); },
-      [&] { io::writeGeoJson(out_dir / "map.geojson", map); },
-      also};
-  parallelFor(jobs.size(), [&](std::size_t i) { jobs[i](); });
+// The writers of the map in every format (each file written atomically), map.png over the
+// observations in grey; map.osm's lanelets take their travel direction from the drives' keyframe
+// paths. The files are independent, so the caller runs the writers side by side. The writers
+// refer to the arguments (all references, `osm_stats` copied), which must outlive them.
+std::vector<std::function<void()>> mapWriters(const std::filesystem::path& out_dir,
+                                              const VectorMap& map,
+                                              const aggregate::ObservationSet& set,
+                                              const std::vector<Lsm>& lsms,
+                                              const AggregateParams& params,
+                                              io::Lanelet2ExportStats* osm_stats) {
+  return {[&, osm_stats] {  // the two slowest first
+            std::vector<io::DrivePath> drives(lsms.size());
+            for (std::size_t d = 0; d < lsms.size(); ++d)
+              for (const auto& k : lsms[d].keyframes)
+                drives[d].push_back(k.T_frame_body.translation());
+            io::writeOsm(out_dir / "map.osm", map, drives, osm_stats);
+          },
+          [&] {
+            if (!params.write_png) return;
+            std::vector<std::vector<Eigen::Vector3d>> background;
+            background.reserve(set.items.size());
+            for (const auto& o : set.items) background.push_back(o.points);
+            io::MapPngOptions png;
+            png.resolution = params.png_resolution;
+            io::writeMapPng(out_dir / "map.png", map, background, png);
+          },
+          [&] {
+            io::VectorMapWriteOptions compact;
+            compact.compact = true;
+            compact.coordinate_quantum = params.coordinate_quantum;
+            io::writeVectorMap(out_dir / "map.cbor", map, compact);
+          },
+          [&] { io::writeVectorMap(out_dir / "map.json", map); },
+          [&] { io::writeGeoJson(out_dir / "map.geojson", map); }};
 }
 
 }  // namespace
@@ -77,8 +76,12 @@ AggregateRun runAggregate(const std::vector<std::string>& inputs,
   AggregateRun run;
   const VectorMap map = aggregate::aggregateObservations(set, params.aggregator, &run.stats);
   const auto t2 = Clock::now();
-  writeMap(out_dir, map, set, lsms, params, &run.lanelet2,
-           [&] { run.road_km = aggregate::coveredRoadKm(lsms, params.road); });
+  // aggregate's serial tail side by side: the map files and the covered road length (which reads
+  // the same trajectories); errors as a serial loop in this order would report them.
+  std::filesystem::create_directories(out_dir);
+  auto tail = mapWriters(out_dir, map, set, lsms, params, &run.lanelet2);
+  tail.emplace_back([&] { run.road_km = aggregate::coveredRoadKm(lsms, params.road); });
+  parallelFor(tail.size(), [&](std::size_t i) { tail[i](); });
   const auto t3 = Clock::now();
 
   run.method = params.aggregator.method;

@@ -26,9 +26,10 @@ std::vector<Eigen::Matrix3d> roadTiltInBody(const std::vector<Pose3>& T_odom_bod
   for (std::size_t i = 0; i < n; ++i) {
     while (stamps[lo] < stamps[i] - 0.5 * window) ++lo;
     while (hi < n && stamps[hi] <= stamps[i] + 0.5 * window) ++hi;
-    Eigen::Vector3d road_odom = prefix[hi] - prefix[lo];
-    if (weighting == TiltWeighting::kHann) {
-      road_odom.setZero();
+    Eigen::Vector3d road_odom = Eigen::Vector3d::Zero();
+    if (weighting == TiltWeighting::kBox) {
+      road_odom = prefix[hi] - prefix[lo];
+    } else {
       for (std::size_t j = lo; j < hi; ++j) {
         const double c = std::cos(M_PI * (stamps[j] - stamps[i]) / window);
         road_odom += c * c * T_odom_body[j].linear().col(2);
