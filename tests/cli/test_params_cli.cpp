@@ -112,3 +112,60 @@ TEST_CASE("input lists come from arguments, list files and stdin", "[core][cli]"
   CHECK(files == std::vector<std::string>{"x.cbor", "a.cbor", "b.cbor", "c.cbor"});
   CHECK_THROWS_AS(cli::expandInputList({"@" + (dir / "nope.txt").string()}), IoError);
 }
+
+namespace {
+struct ListParams {
+  static constexpr const char* kName = "ListParams";
+  std::vector<double> distances = {1.5, 0.75};  ///< m
+
+  template <class V>
+  void visit(V& v) {
+    v("distances", distances, "m", "per level", param::listOf(1, 3, param::gt(0) & param::le(10)));
+  }
+};
+
+int runList(std::vector<std::string> args, ListParams& params) {
+  CLI::App app("demo", "demo");
+  cli::addParamOptions(app, params);
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  return cli::run(app, int(argv.size()), argv.data(), [&] { validateParams(params); });
+}
+}  // namespace
+
+TEST_CASE("list parameters: flag, config array, resolved config and rules", "[core][params]") {
+  SECTION("the command line replaces the default list, comma-separated") {
+    ListParams p;
+    CHECK(runList({"demo", "--distances", "2,1,0.5"}, p) == 0);
+    CHECK(p.distances == std::vector<double>{2, 1, 0.5});
+    ListParams q;
+    CHECK(runList({"demo", "--distances", "3"}, q) == 0);
+    CHECK(q.distances == std::vector<double>{3});
+  }
+  SECTION("a value out of range or too many values is a usage error (exit 2)") {
+    ListParams p;
+    CHECK(runList({"demo", "--distances", "2,-1"}, p) == 2);
+    ListParams q;
+    CHECK(runList({"demo", "--distances", "4,3,2,1"}, q) == 2);
+  }
+  SECTION("config files hold arrays; wrong shapes name the file and key") {
+    ListParams p;
+    const auto j = paramsToJson(p);
+    CHECK(j["distances"] == io::Json::array({1.5, 0.75}));
+    paramsFromJson(p, io::Json{{"distances", {4.0}}}, "c.json");
+    CHECK(p.distances == std::vector<double>{4.0});
+    for (const io::Json& bad : {io::Json(2.0), io::Json::array(), io::Json::array({1, 2, 3, 4}),
+                                io::Json::array({1, 0}), io::Json::array({1, "x"})}) {
+      INFO(bad.dump());
+      CHECK_THROWS_WITH(paramsFromJson(p, io::Json{{"distances", bad}}, "c.json"),
+                        Catch::Contains("c.json") && Catch::Contains("distances"));
+    }
+    CHECK(p.distances == std::vector<double>{4.0});  // a refused file changes nothing
+  }
+  SECTION("validation names the list and the rule") {
+    ListParams p;
+    p.distances = {};
+    CHECK_THROWS_WITH(validateParams(p), Catch::Contains("ListParams::distances = []") &&
+                                             Catch::Contains("1 to 3 values, each in (0, 10]"));
+  }
+}

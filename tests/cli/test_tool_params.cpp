@@ -106,6 +106,26 @@ void checkTool(const std::string& tool) {
         }
       }
     }
+    if (d.kind == "list") {
+      // a list has a size rule and a range for each value: an empty list, and the default list
+      // with its first value just outside either end, are refused naming file and key
+      CHECK_FALSE(d.rule.empty());
+      CHECK((std::isfinite(d.range.lo) || std::isfinite(d.range.hi)));
+      std::vector<nlohmann::json> bad_lists = {nlohmann::json::array()};
+      for (const auto& bad : {outside(d.range.lo, d.range.lo_open, true, false),
+                              outside(d.range.hi, d.range.hi_open, false, false)}) {
+        if (!bad) continue;
+        nlohmann::json list = paramsToJson(Params{})[d.key];
+        list[0] = *bad;
+        bad_lists.push_back(list);
+      }
+      for (const auto& list : bad_lists) {
+        Params p;
+        INFO("value " << list.dump());
+        CHECK_THROWS_WITH(paramsFromJson(p, {{d.key, list}}, tool + ".json"),
+                          Catch::Contains(tool + ".json") && Catch::Contains(d.key));
+      }
+    }
     Params p;  // null is not a value
     CHECK_THROWS_AS(paramsFromJson(p, {{d.key, nullptr}}, "c.json"), ConfigError);
   }

@@ -31,6 +31,15 @@ std::string optionHelp(const char* help, const char* unit, const std::string& ru
   return text;
 }
 
+namespace detail {
+std::string CliVisitor::listDefault(const std::vector<double>& values) {
+  std::string text;
+  for (std::size_t i = 0; i < values.size(); ++i)
+    text += (i ? "," : "") + param::showNumber(values[i]);
+  return text;
+}
+}  // namespace detail
+
 std::string optionName(const char* key) {
   std::string name = std::string("--") + key;
   for (char& c : name)

@@ -34,6 +34,21 @@ std::string Range::describe(const std::string& key) const {
   return key + " finite";
 }
 
+bool ListRule::contains(const std::vector<double>& values) const {
+  if (values.size() < min_size || values.size() > max_size) return false;
+  for (const double v : values)
+    if (!each.contains(v)) return false;
+  return true;
+}
+
+std::string ListRule::describe(const std::string& key) const {
+  const std::string count = min_size == max_size
+                                ? std::to_string(min_size)
+                                : std::to_string(min_size) + " to " + std::to_string(max_size);
+  return (key.empty() ? "" : key + ": ") + count + (max_size == 1 ? " value" : " values") +
+         ", each " + each.describe("");
+}
+
 bool OneOf::contains(const std::string& s) const {
   for (const auto& n : names)
     if (n == s) return true;
@@ -60,6 +75,11 @@ std::string showNumber(uint64_t value) {
 }
 std::string showText(const std::string& value) {
   return nlohmann::json(value).dump();
+}
+std::string showList(const std::vector<double>& values) {
+  std::string text = "[";
+  for (std::size_t i = 0; i < values.size(); ++i) text += (i ? ", " : "") + showNumber(values[i]);
+  return text + "]";
 }
 
 }  // namespace mapfuse::param

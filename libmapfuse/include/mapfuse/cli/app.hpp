@@ -67,6 +67,16 @@ struct CliVisitor {
         ->capture_default_str()
         ->group(group);
   }
+  /// A list of numbers: `--key 1.5,0.75` (or `--key 1.5 0.75`); the values replace the default.
+  void operator()(const char* key, std::vector<double>& values, const char* unit, const char* help,
+                  const param::ListRule& rule) {
+    app.add_option(optionName(key), values, optionHelp(help, unit, rule.describe("")))
+        ->delimiter(',')
+        ->expected(1, static_cast<int>(rule.max_size))
+        ->default_str(listDefault(values))
+        ->group(group);
+  }
+  static std::string listDefault(const std::vector<double>& values);
   template <class E>
   void operator()(const char* key, E& value, const char* unit, const char* help,
                   const param::Names<E>& names) {

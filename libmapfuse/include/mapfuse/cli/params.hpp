@@ -106,6 +106,19 @@ struct FromJsonVisitor {
     value = field->string();
     if (!rule.ok(value)) field->fail(showValue(value) + " is not " + rule.text);
   }
+  /// A list of numbers: a JSON array, each value finite, size and range per the rule.
+  void operator()(const char* key, std::vector<double>& values, const char*, const char*,
+                  const param::ListRule& rule) {
+    const auto field = member(key);
+    if (!field) return;
+    if (!field->raw().is_array()) field->fail("must be an array of numbers");
+    std::vector<double> read_values;
+    for (std::size_t i = 0; i < field->raw().size(); ++i)
+      read_values.push_back(field->at(i).number());
+    if (!rule.contains(read_values))
+      field->fail(param::showList(read_values) + " violates " + rule.describe(key));
+    values = std::move(read_values);
+  }
   template <class E>
   void operator()(const char* key, E& value, const char*, const char*,
                   const param::Names<E>& names) {
@@ -123,9 +136,9 @@ struct FromJsonVisitor {
 /// Where and how a parameter is declared (for the "declared once" test and the docs).
 struct ParamDeclaration {
   std::string key, unit, help;
-  std::string kind;    ///< "integer", "number", "bool", "text" or "choice"
+  std::string kind;    ///< "integer", "number", "bool", "text", "choice" or "list"
   std::string rule;    ///< "" for bool and free text
-  param::Range range;  ///< numbers: the declared range
+  param::Range range;  ///< numbers: the declared range; lists: the range of each value
   std::string file;    ///< source file of the `v(...)` line
   int line = 0;
 };
@@ -160,6 +173,11 @@ struct DeclarationVisitor {
                   const param::TextRule& rule, const char* file = __builtin_FILE(),
                   int line = __builtin_LINE()) {
     out.push_back({key, unit, help, "text", rule.text, {}, file, line});
+  }
+  void operator()(const char* key, std::vector<double>&, const char* unit, const char* help,
+                  const param::ListRule& rule, const char* file = __builtin_FILE(),
+                  int line = __builtin_LINE()) {
+    out.push_back({key, unit, help, "list", rule.describe(key), rule.each, file, line});
   }
   template <class E>
   void operator()(const char* key, E&, const char* unit, const char* help,

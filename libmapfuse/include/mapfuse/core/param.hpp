@@ -8,6 +8,7 @@
 ///     v("method", method, "", "icp | sgicp", kMethodNames);        // enum: param::Names
 ///     v("partner_choice", choice, "", "overlap | spread", param::oneOf({"overlap", "spread"}));
 ///     v("use_labels", use_labels, "", "match within a class only");  // bool or free text
+///     v("pyramid", pyramid, "m", "per level", param::listOf(1, 5, param::gt(0)));  // numbers
 ///     v.relation("coarse_bin", coarse_bin, coarse_bin < coarse_radius, "< coarse_radius");
 ///   }
 ///
@@ -17,6 +18,7 @@
 /// command-line options, the config-file reader, validation and the resolved config, so
 /// a parameter's name, default and rule cannot drift apart. Ceres names its rules the same way
 /// (`OPTION_GE(max_num_iterations, 0)`).
+#include <cstddef>
 #include <initializer_list>
 #include <limits>
 #include <string>
@@ -71,6 +73,24 @@ constexpr Range operator&(const Range& a, const Range& b) {
     r.hi_open = b.hi_open;
   }
   return r;
+}
+
+/// A list of numbers (std::vector<double>): how many values, and the range of each. The command
+/// line takes them comma-separated (`--pyramid-distances 1.5,0.75`), a config file as an array.
+struct ListRule {
+  std::size_t min_size = 1;
+  std::size_t max_size = 1;
+  Range each;
+
+  /// @brief True when the size is allowed and every value lies in `each`.
+  bool contains(const std::vector<double>& values) const;
+  /// @brief "class_weights: 7 values, each in [0, 1000]"; "pyramid_distances: 1 to 5 values, each
+  /// in (0, 100]"; without a key the same text without "key: ".
+  std::string describe(const std::string& key) const;
+};
+/// @brief min_size..max_size values, each inside `each`.
+constexpr ListRule listOf(std::size_t min_size, std::size_t max_size, const Range& each) {
+  return {min_size, max_size, each};
 }
 
 /// A text parameter that takes one of a few names.

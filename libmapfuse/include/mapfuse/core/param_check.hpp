@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/param.hpp"
@@ -23,6 +24,7 @@ std::string showNumber(double value);
 std::string showNumber(int64_t value);
 std::string showNumber(uint64_t value);
 std::string showText(const std::string& value);
+std::string showList(const std::vector<double>& values);  ///< "[1.5, 0.75]"
 
 /// @brief Any declared value as it reads in a config file (see showNumber).
 template <class T>
@@ -35,6 +37,8 @@ std::string showValue(const T& value) {
     return showNumber(static_cast<int64_t>(value));
   } else if constexpr (std::is_integral_v<T>) {
     return showNumber(static_cast<uint64_t>(value));
+  } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+    return showList(value);
   } else {
     return showText(value);
   }
@@ -68,6 +72,10 @@ struct ValidateVisitor {
   void operator()(const char* key, std::string& value, const char*, const char*,
                   const TextRule& rule) {
     if (!rule.ok(value)) fail(key, showValue(value), rule.text);
+  }
+  void operator()(const char* key, std::vector<double>& values, const char*, const char*,
+                  const ListRule& rule) {
+    if (!rule.contains(values)) fail(key, showList(values), rule.describe(key));
   }
   template <class E>
   void operator()(const char*, E&, const char*, const char*, const Names<E>&) {}
