@@ -81,13 +81,13 @@ std::vector<InterConstraint> registerSubmaps(const std::vector<Lsm>& lsms, const
       GicpSettings g;
       g.max_correspondence_distance = dist;
       g.max_iterations = s.max_iterations;
-      // Converged at 1 mm / 1 mrad steps: registrations feed a pose graph and GBA, and 0.1 mm
-      // (the GICP default) cost a third more iterations for the same maps.
-      g.translation_eps = g.rotation_eps = 1e-3;
+      // Converged at 1 mm / 1 mrad steps by default: registrations feed a pose graph and GBA,
+      // and 0.1 mm (the GICP default) cost a third more iterations for the same maps.
+      g.translation_eps = g.rotation_eps = s.gicp_step_eps;
       g.same_label_only = semantic;
       g.point_to_point = !gicp;
-      g.lambda = 1e-3;
-      g.huber_delta = gicp ? 3.0 : 0.0;
+      g.lambda = s.gicp_lambda;
+      g.huber_delta = gicp ? s.gicp_huber : 0.0;
       if (gicp) {
         g.label_weights = weights;
         g.min_information = s.min_information;

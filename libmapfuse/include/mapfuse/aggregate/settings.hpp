@@ -45,6 +45,8 @@ struct LaneInstantiationParams {
     // pieces of observations number (observed length / tile_size)
     v("tile_size", tile_size, "m", "stage 1: observations are cut at a square tiling of this size",
       in(2, 1000));
+    v("resample_step", resample_step, "m",
+      "spacing of the fragment points averaged into centrelines", in(0.01, 10));
     // an arc link is bridged by points every station_step
     v("station_step", station_step, "m", "bin length of fragment centrelines", in(0.01, 100));
     v.relation("tile_size", tile_size, tile_size >= 2 * station_step, ">= 2 * station_step");
@@ -74,8 +76,12 @@ struct BezierFitParams {
 
   template <class V>
   void visit(V& v) {
-    v("max_deviation", max_deviation, "m", "largest Bezier deviation from the centreline",
-      param::gt(0));
+    using namespace param;
+    v("max_deviation", max_deviation, "m", "largest Bezier deviation from the centreline", gt(0));
+    v("bezier_reparam_iterations", reparam_iterations, "",
+      "Newton re-parametrisation rounds per Bezier fit", in(0, 100));
+    v("bezier_tangent_window", tangent_window, "m",
+      "arc length used to estimate a Bezier chain's end tangents", gt(0) & le(100));
   }
 };
 
@@ -98,6 +104,8 @@ struct DiscreteMergeParams {
     v("point_radius", point_radius, "m", "poles/lights: DBSCAN eps on 3D distance", gt(0) & le(20));
     v("stop_line_radius", stop_line_radius, "m",
       "stop lines: DBSCAN eps on the distance of a midpoint to the other line", gt(0) & le(20));
+    v("stop_line_angle_deg", stop_line_angle_deg, "deg",
+      "stop lines: largest direction difference within one cluster", gt(0) & le(90));
     v("discrete_min_pts", min_pts, "", "discrete MinPts (capped by the number of drives)",
       in(1, 1000000));
   }

@@ -40,6 +40,9 @@ struct AlignSettings {
   /// vote weight per coarse (1 m) point by CrowdClass: landmarks count like metres of line
   std::vector<double> coarse_class_weights = {1.0, 3.0, 3.0, 1.0, 10.0, 10.0, 10.0};
   std::vector<double> pyramid_distances = {1.5, 0.75};  ///< m, max correspondence per GICP level
+  double gicp_step_eps = 1e-3;  ///< m / rad: a GICP level has converged at steps below this
+  double gicp_lambda = 1e-3;    ///< Levenberg damping of the GICP normal equations
+  double gicp_huber = 3.0;      ///< sigma, Huber delta on whitened GICP residuals (SGICP, GICP)
   double constraint_min_sigma = 0.05;  ///< m, floor of an InterRPC translation sigma
   double constraint_cov_scale = 10.0;  ///< inflation of H^-1 (correlated element noise)
   std::vector<double> class_weights = {1.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0};  ///< w_l by CrowdClass
@@ -95,6 +98,21 @@ struct AlignSettings {
       gt(0) & le(10000));
     v("coarse_neighbors", coarse_neighbors, "", "add votes of pairs of submaps this near",
       in(0, 100));
+    v("coarse_class_weights", coarse_class_weights, "",
+      "coarse vote weight per class (lane_line, stop_line, ground_arrow, crosswalk, "
+      "traffic_sign, traffic_light, pole)",
+      listOf(kNumCrowdClasses, kNumCrowdClasses, in(0, 1e6)));
+    v("pyramid_distances", pyramid_distances, "m",
+      "GICP max correspondence distance per pyramid level, coarse to fine",
+      listOf(1, 8, gt(0) & le(100)));
+    v("class_weights", class_weights, "",
+      "GICP residual weight w_l per class (eq. 7; order as coarse_class_weights)",
+      listOf(kNumCrowdClasses, kNumCrowdClasses, in(0, 1e6)));
+    v("gicp_step_eps", gicp_step_eps, "m|rad", "a GICP level has converged at steps below this",
+      gt(0) & le(1));
+    v("gicp_lambda", gicp_lambda, "", "Levenberg damping of the GICP normal equations", in(0, 1e6));
+    v("gicp_huber", gicp_huber, "sigma",
+      "Huber delta on whitened GICP residuals (sicp / sgicp; 0: plain least squares)", in(0, 1e6));
     v("min_fitness", min_fitness, "", "accept registrations with inlier fraction above", in(0, 1));
     v("max_rmse", max_rmse, "m", "accept registrations with RMS residual below", gt(0) & le(100));
     v("min_information", min_information, "",

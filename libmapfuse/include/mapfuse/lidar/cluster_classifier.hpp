@@ -27,12 +27,14 @@ struct RTreesSettings {
   double min_validation_gain = 0.001;  ///< worst-drive validation IoU gain (0-1) to use a forest
   double gain_tolerance = 0.005;  ///< lowest threshold within this of the best worst gain (0-1)
 
-  /// The training parameters of lidar-semantic-map (min_sample_count keeps its value).
+  /// The training parameters of lidar-semantic-map.
   template <class V>
   void visit(V& v) {
     using namespace param;
     v("rtrees_max_depth", max_depth, "", "train: tree depth", in(1, 64));
     v("rtrees_trees", num_trees, "", "train: trees per forest", in(1, 10000));
+    v("rtrees_min_sample_count", min_sample_count, "", "train: samples a tree node needs to split",
+      in(1, 1e9));
     v("rtrees_min_samples", min_samples_per_class, "",
       "train: correct and wrong clusters a label needs", in(1, 1e9));
     v("seed", seed, "", "train: random seed", in(0, 4294967295.0));

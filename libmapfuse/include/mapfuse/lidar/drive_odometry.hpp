@@ -27,6 +27,9 @@ struct DriveOdometrySettings {
     v("odom_exclude_road_users", odometry.exclude_road_users, "",
       "leave low objects (road users) out of the odometry (geometric rule, docs/lidar.md; off: "
       "measured no better, and it drops nearby walls)");
+    v("frame_period", frame_period, "s",
+      "time between consecutive frame numbers of a drive without timestamps (KITTI: 0.1)",
+      gt(0) & le(3600));
     v("odom_max_untrusted", max_untrusted, "",
       "untrusted odometry steps tolerated (listed in the summary); one more stops the run, exit 3",
       in(0, 1e9));

@@ -30,13 +30,23 @@ struct LidarSensorParams {
   void visit(V& v) {
     using namespace param;
     // a scan holds up to beams * azimuth_steps points
-    v("azimuth_steps", azimuth_steps, "", "LiDAR rays per laser per turn (64 lasers)",
-      in(8, 36000));
+    v("lidar_beams", beams, "",
+      "lasers: half in the upper block, the rest in the lower (HDL-64E: 64)", in(2, 1024));
+    v("azimuth_steps", azimuth_steps, "", "LiDAR rays per laser per turn", in(8, 36000));
+    v("lidar_upper_top", upper_top, "deg", "elevation of the highest laser", in(-90, 90));
+    v("lidar_upper_bottom", upper_bottom, "deg", "lowest laser of the upper block", in(-90, 90));
+    v("lidar_lower_top", lower_top, "deg", "highest laser of the lower block", in(-90, 90));
+    v("lidar_lower_bottom", lower_bottom, "deg", "lowest laser", in(-90, 90));
+    v.relation("lidar_upper_bottom", upper_bottom, upper_bottom < upper_top, "< lidar_upper_top");
+    v.relation("lidar_lower_top", lower_top, lower_top <= upper_bottom, "<= lidar_upper_bottom");
+    v.relation("lidar_lower_bottom", lower_bottom, lower_bottom < lower_top, "< lidar_lower_top");
     v("lidar_min_range", min_range, "m", "closer returns are dropped", in(0, 10000));
     v("lidar_max_range", max_range, "m", "farthest return", gt(0) & le(10000));
     v.relation("lidar_min_range", min_range, min_range < max_range, "< lidar_max_range");
     v("range_noise", range_noise, "m", "standard deviation of the range", in(0, 100));
     v("dropout", dropout, "", "probability that a return is lost", in(0, 1) & lt(1));
+    v("reflectance_noise", reflectance_noise, "", "standard deviation of the remission (0-1)",
+      in(0, 1));
   }
 };
 

@@ -53,6 +53,8 @@ struct AssemblySettings {
     v("max_element_length", max_element_length, "m", "longer lines are split", gt(0) & le(10000));
     v.relation("max_element_length", max_element_length, max_element_length > point_spacing,
                "> point_spacing");
+    v("line_gap_split", gap_split, "m", "a gap this long along a merged line starts a new piece",
+      gt(0) & le(1000));
     v("min_observations", min_observations, "", "frames needed to keep a ground instance",
       in(1, 100000));
     v("keyframe_sigma_translation", keyframe_sigma_translation, "m", "keyframe pose sigma",

@@ -45,6 +45,8 @@ struct TriangulationSettings {
       gt(0) & le(1e6));
     v("max_track_range", max_range, "m", "aerial tracks never seen closer are rejected",
       gt(0) & le(100000));
+    v("triangulation_iterations", max_iterations, "",
+      "Levenberg-Marquardt iterations of one track's triangulation (eq. 3)", in(1, 10000));
     v("duplicate_radius", duplicate_radius, "m",
       "triangulated aerial elements of one class closer than this are one (the element seen in "
       "more frames is kept); 0 = off",

@@ -40,6 +40,10 @@ struct VanishingSettings {
       gt(0) & le(1000));
     v("max_pitch_correction", max_pitch_correction, "rad", "larger corrections are outliers",
       gt(0) & le(1));
+    v("vp_min_points_per_line", min_points_per_line, "px",
+      "lane pixels needed to fit one line of the vanishing point", in(2, 100000));
+    v("vp_min_line_angle", min_line_angle, "rad",
+      "the fitted lines must differ this much in image direction", gt(0) & le(1.6));
     v("vp_max_heading_change", max_heading_change, "rad",
       "frames whose ego heading turns more than this over the next vp_max_range metres (a curve) "
       "are not used",
