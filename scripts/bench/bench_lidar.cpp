@@ -156,9 +156,8 @@ int main(int argc, char** argv) {
         (peak_built - peak0) / n <= 64 ? "yes" : "**no**");
     t = Clock::now();
     lidar::KnnFilterSettings ks = p.refinement.knn;
-    ks.num_threads = 1;
     const std::size_t before = map.size();
-    map.filter(lidar::knnMeanDistanceFilter(map, ks));
+    map.filter(lidar::knnMeanDistanceFilter(map, ks, 1));
     const double t_knn = since(t);
     const std::size_t knn_removed = before - map.size();
     t = Clock::now();

@@ -7,7 +7,7 @@
 
 #include "mapfuse/core/error.hpp"
 
-#include "mapfuse/lidar/forest_source.hpp"
+#include "lidar/forest_source.hpp"
 #include "mapfuse/lidar/forest_thresholds.hpp"
 #include "support/test_support.hpp"
 

@@ -107,11 +107,10 @@ SemanticVoxelMap mapOf(const std::vector<VoxelCoord>& coords, double voxel_size)
   return map;
 }
 
-KnnFilterSettings settings(int k, double delta, int threads = 1) {
+KnnFilterSettings settings(int k, double delta) {
   KnnFilterSettings s;
   s.k = k;
   s.max_mean_distance = delta;
-  s.num_threads = threads;
   return s;
 }
 
@@ -137,7 +136,7 @@ TEST_CASE("KNN filter matches brute force and the previous shell search on rando
       CHECK(kept < static_cast<long>(keep.size()));
       CHECK(keep == bruteForce(map, s));
       CHECK(keep == previousShellSearch(map, s));
-      CHECK(keep == lidar::knnMeanDistanceFilter(map, settings(c.k, c.delta, 3)));
+      CHECK(keep == lidar::knnMeanDistanceFilter(map, settings(c.k, c.delta), 3));
     }
 }
 

@@ -171,8 +171,7 @@ TEST_CASE("seen-through: settings are validated", "[lidar][refinement]") {
   s.window = -1;
   CHECK_THROWS_AS(SeenThroughFilter(map, s), InputError);
   s = SeenThroughSettings{};
-  s.max_range = s.min_range;
-  CHECK_THROWS_AS(SeenThroughFilter(map, s), InputError);
+  CHECK_THROWS_AS(SeenThroughFilter(map, s, lidar::SensorReach{20.0, 20.0}), InputError);
   s = SeenThroughSettings{};
   s.vehicle_vote_radius = -0.1;
   CHECK_THROWS_AS(SeenThroughFilter(map, s), InputError);

@@ -30,9 +30,8 @@ Setup makeSetup(uint64_t seed, double s) {
   io::writeKittiCalibration(dir);
   io::KittiCalibration calib = io::readKittiCalibration(dir);
   StreetParams sp;
-  sp.seed = seed;
   sp.ego_start = s;  // moving cars are placed relative to the ego
-  LidarScene scene = generateStreet(sp);
+  LidarScene scene = generateStreet(sp, seed);
   EgoDrive ego;
   ego.start = s;
   const Pose3 T_imu_velo = calib.T_velo_imu.inverse();

@@ -5,11 +5,11 @@
 #include <cstring>
 #include <fstream>
 
-#include "mapfuse/io/oxts_line.hpp"
 #include "mapfuse/cli/params.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/kitti_raw.hpp"
 #include "mapfuse/io/kitti_raw_writer.hpp"
+#include "mapfuse/io/oxts_line.hpp"
 #include "mapfuse/io/semantic_image.hpp"
 #include "mapfuse/io/semantic_kitti.hpp"
 #include "mapfuse/io/velodyne.hpp"
@@ -52,9 +52,8 @@ TEST_CASE("lidar drive io: write -> KITTI reader round trip is bit-exact") {
   REQUIRE(drive.calib.has_imu);
 
   // Rebuild the truth in memory exactly as the stage does.
-  sim::StreetParams street = P.lidar.street;
-  street.seed = P.seed;
-  const sim::LidarScene scene = sim::generateStreet(street);
+  const sim::StreetParams& street = P.lidar.street;
+  const sim::LidarScene scene = sim::generateStreet(street, static_cast<uint64_t>(P.seed));
   const Pose3 T_imu_velo = drive.calib.T_velo_imu.inverse();
   const sim::EgoDrive ego{street.ego_start, street.ego_speed, -0.5 * street.profile.lane_width,
                           P.lidar.velo_height};

@@ -122,8 +122,7 @@ TEST_CASE("lidar sensor: HDL-64E beam layout") {
 
 TEST_CASE("lidar sensor: a default street scan has ~120k labelled points and is reproducible") {
   StreetParams sp;
-  sp.seed = 7;
-  const LidarScene scene = generateStreet(sp);
+  const LidarScene scene = generateStreet(sp, 7);
   const Eigen::Vector2d xy = scene.road().pointAt(40.0, -1.75);
   const Pose3 T = poseFromXyzRpy(xy.x(), xy.y(), 1.73, 0, 0, scene.road().headingAt(40.0));
   const LidarSensorParams p;
@@ -147,8 +146,7 @@ TEST_CASE("lidar sensor: a default street scan has ~120k labelled points and is 
 
 TEST_CASE("lidar scene: moving cars advance along the road and are labelled 252 with instances") {
   StreetParams sp;
-  sp.seed = 3;
-  const LidarScene scene = generateStreet(sp);
+  const LidarScene scene = generateStreet(sp, 3);
   REQUIRE(scene.movers().size() == 6);
   const auto p0 = scene.dynamicAt(0.0), p1 = scene.dynamicAt(1.0);
   REQUIRE(!p0.empty());

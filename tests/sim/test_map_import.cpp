@@ -7,8 +7,8 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/lanelet2_osm.hpp"
 #include "mapfuse/sim/lanelet2_world.hpp"
-#include "mapfuse/sim/line_chains.hpp"
 #include "mapfuse/sim/map_world.hpp"
+#include "sim/line_chains.hpp"
 #include "support/test_support.hpp"
 
 using namespace mapfuse;

@@ -9,9 +9,9 @@
 #include "mapfuse/vehicle/aerial_detection.hpp"
 #include "mapfuse/vehicle/fallback_perception.hpp"
 #include "mapfuse/vehicle/flow_association.hpp"
-#include "mapfuse/vehicle/segmentation_cache.hpp"
 #include "support/test_support.hpp"
 #include "vehicle/aerial_tracks.hpp"
+#include "vehicle/segmentation_cache.hpp"
 
 using namespace mapfuse;
 using namespace mapfuse::vehicle;

@@ -20,8 +20,8 @@
 #include "mapfuse/stages/lsm_build.hpp"
 #include "mapfuse/vehicle/aerial_detection.hpp"
 #include "mapfuse/vehicle/camera.hpp"
-#include "mapfuse/vehicle/segmentation_cache.hpp"
 #include "support/test_support.hpp"
+#include "vehicle/segmentation_cache.hpp"
 
 using namespace mapfuse;
 namespace fs = std::filesystem;

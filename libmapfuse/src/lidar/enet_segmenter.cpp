@@ -14,12 +14,17 @@ struct EnetSegmenter::Impl {
   cv::dnn::Net net;
 };
 
+/// The image is reflect-padded to a multiple of this (px): ENet halves it three times on the way
+/// down and its decoder unpools to the encoder's sizes, which must therefore halve exactly; 16 is
+/// what the e-lab release was run with (../shared/data README: native scale, reflect padding to a
+/// multiple of 16). A property of the network, not a tunable.
+constexpr int kPadMultiple = 16;
+
 EnetSegmenter::EnetSegmenter(const std::filesystem::path& model, const EnetSettings& settings)
     : impl_(std::make_unique<Impl>()), settings_(settings) {
   if (!std::filesystem::is_regular_file(model)) throw IoError(model.string(), "model not found");
   if (!(settings.scale > 0.1 && settings.scale <= 4.0))
     throw ConfigError("ENet scale must be in (0.1, 4]");
-  if (settings.pad_multiple < 1) throw ConfigError("ENet pad multiple must be >= 1");
   try {
     impl_->net = cv::dnn::readNetFromTorch(model.string());
   } catch (const cv::Exception& e) {
@@ -39,7 +44,7 @@ io::SemanticImage EnetSegmenter::segment(const cv::Mat& bgr) {
   cv::Mat scaled = bgr;
   if (settings_.scale != 1.0)
     cv::resize(bgr, scaled, cv::Size(), settings_.scale, settings_.scale, cv::INTER_LINEAR);
-  const int m = settings_.pad_multiple;
+  const int m = kPadMultiple;
   const int pw = (scaled.cols + m - 1) / m * m, ph = (scaled.rows + m - 1) / m * m;
   cv::Mat padded;
   cv::copyMakeBorder(scaled, padded, 0, ph - scaled.rows, 0, pw - scaled.cols,

@@ -1,4 +1,4 @@
-#include "mapfuse/lidar/forest_source.hpp"
+#include "forest_source.hpp"
 
 #include <unistd.h>
 

@@ -132,8 +132,8 @@ class KnnSearch {
 
 }  // namespace
 
-std::vector<uint8_t> knnMeanDistanceFilter(const SemanticVoxelMap& map,
-                                           const KnnFilterSettings& s) {
+std::vector<uint8_t> knnMeanDistanceFilter(const SemanticVoxelMap& map, const KnnFilterSettings& s,
+                                           int num_threads) {
   if (s.k < 1 || s.k > 32)
     throw InputError("KnnFilterSettings::k = " + std::to_string(s.k) + ": must be in 1..32");
   if (!(s.max_mean_distance > 0))
@@ -146,7 +146,7 @@ std::vector<uint8_t> knnMeanDistanceFilter(const SemanticVoxelMap& map,
   constexpr std::size_t kChunk = std::size_t{1} << 14;
   const std::size_t n = sorted.size();
   const long long chunks = static_cast<long long>((n + kChunk - 1) / kChunk);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(std::max(1, s.num_threads))
+#pragma omp parallel for schedule(dynamic, 1) num_threads(std::max(1, num_threads))
   for (long long c = 0; c < chunks; ++c) {
     const std::size_t begin = static_cast<std::size_t>(c) * kChunk;
     const std::size_t end = std::min(n, begin + kChunk);

@@ -5,7 +5,8 @@
 namespace mapfuse::lidar {
 
 MapRefinementResult refineMap(SemanticVoxelMap& map, const std::vector<Pose3>& T_map_velo,
-                              const ScanSource& scans, const MapRefinementSettings& s) {
+                              const ScanSource& scans, const MapRefinementSettings& s,
+                              const SensorReach& reach, int num_threads) {
   MapRefinementResult r;
   if (!s.enabled) return r;
   r.ran = true;
@@ -16,12 +17,12 @@ MapRefinementResult refineMap(SemanticVoxelMap& map, const std::vector<Pose3>& T
   };
   Stopwatch t;
   const std::size_t before = map.size();
-  removeVoxels(knnMeanDistanceFilter(map, s.knn), false);  // §2.2, isolated voxels
+  removeVoxels(knnMeanDistanceFilter(map, s.knn, num_threads), false);  // §2.2, isolated voxels
   r.knn_removed_voxels = before - map.size();
   r.seconds_knn = t.seconds();
   if (s.remove_traces && s.seen_through) {
     t.restart();
-    SeenThroughFilter seen(map, s.through);
+    SeenThroughFilter seen(map, s.through, reach, num_threads);
     for (std::size_t i = 0; i < T_map_velo.size(); ++i) seen.addScan(scans(i), T_map_velo[i]);
     removeVoxels(seen.keepMask(&r.seen_through), true);
     r.ran_seen_through = true;

@@ -1,4 +1,4 @@
-#include "mapfuse/lidar/scan_normals.hpp"
+#include "scan_normals.hpp"
 
 #include <Eigen/Eigenvalues>
 

@@ -5,7 +5,7 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/param_check.hpp"
 #include "mapfuse/core/voxel_grid.hpp"
-#include "mapfuse/lidar/scan_normals.hpp"
+#include "scan_normals.hpp"
 
 namespace mapfuse::lidar {
 namespace {

@@ -23,13 +23,14 @@ bool isThinOrGround(LidarClass c) {
 }
 }  // namespace
 
-SeenThroughFilter::SeenThroughFilter(const SemanticVoxelMap& map, const SeenThroughSettings& s)
-    : s_(s), map_(&map) {
+SeenThroughFilter::SeenThroughFilter(const SemanticVoxelMap& map, const SeenThroughSettings& s,
+                                     const SensorReach& reach, int num_threads)
+    : s_(s), reach_(reach), num_threads_(std::max(1, num_threads)), map_(&map) {
   if (!(s.azimuth_resolution_deg > 0) || !(s.elevation_resolution_deg > 0))
     throw InputError("seen-through filter: range-image resolutions must be > 0");
   if (!(s.elevation_max_deg > s.elevation_min_deg))
     throw InputError("seen-through filter: elevation_max_deg must exceed elevation_min_deg");
-  if (!(s.margin > 0) || s.window < 0 || s.window_thin < 0 || !(s.max_range > s.min_range))
+  if (!(s.margin > 0) || s.window < 0 || s.window_thin < 0 || !(reach.max_range > reach.min_range))
     throw InputError("seen-through filter: margin > 0, windows >= 0, max_range > min_range");
   if (!(s.vehicle_vote_radius >= 0) || !(s.vehicle_vote_share > 0 && s.vehicle_vote_share <= 1))
     throw InputError("seen-through filter: vehicle_vote_radius >= 0, vehicle_vote_share in (0, 1]");
@@ -87,7 +88,7 @@ void SeenThroughFilter::addScan(const std::vector<Eigen::Vector3f>& scan_velo,
   // Columns within max_range of the sensor (in x and y).
   std::vector<const Column*> near;
   const Eigen::Vector3d c = T_map_velo.translation();
-  const int reach = static_cast<int>(std::ceil(s_.max_range / kColumnSize));
+  const int reach = static_cast<int>(std::ceil(reach_.max_range / kColumnSize));
   for (int dx = -reach; dx <= reach; ++dx)
     for (int dy = -reach; dy <= reach; ++dy) {
       const uint64_t key = columnKey(c + Eigen::Vector3d(dx * kColumnSize, dy * kColumnSize, 0.0));
@@ -97,7 +98,7 @@ void SeenThroughFilter::addScan(const std::vector<Eigen::Vector3f>& scan_velo,
     }
   const auto& voxels = map_->voxels();
 
-#pragma omp parallel for schedule(dynamic, 4) num_threads(std::max(1, s_.num_threads))
+#pragma omp parallel for schedule(dynamic, 4) num_threads(num_threads_)
   for (std::size_t n = 0; n < near.size(); ++n)
     for (uint32_t o = near[n]->begin; o < near[n]->end; ++o) {
       const std::size_t k = order_[o];
@@ -105,7 +106,7 @@ void SeenThroughFilter::addScan(const std::vector<Eigen::Vector3f>& scan_velo,
       const Eigen::Vector3d q = T_velo_map * map_->center(v.key);
       const double r = q.norm();
       int row, col;
-      if (r < s_.min_range || r > s_.max_range || !pixel(q, r, &row, &col)) continue;
+      if (r < reach_.min_range || r > reach_.max_range || !pixel(q, r, &row, &col)) continue;
       float nearest = kNoReturn;
       const int w = isThinOrGround(static_cast<LidarClass>(v.label)) ? s_.window_thin : s_.window;
       for (int dr = -w; dr <= w; ++dr) {

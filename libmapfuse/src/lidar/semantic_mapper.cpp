@@ -2,11 +2,11 @@
 
 #include <future>
 
+#include "forest_source.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/core/progress.hpp"
 #include "mapfuse/core/stopwatch.hpp"
 #include "mapfuse/io/velodyne.hpp"
-#include "mapfuse/lidar/forest_source.hpp"
 
 namespace mapfuse::lidar {
 namespace {
@@ -105,14 +105,12 @@ SemanticMapResult buildSemanticMap(const io::KittiRawDrive& drive, const Semanti
   if (!r.error_min_skipped.empty())
     MAPFUSE_INFO("lidar-semantic-map: error minimisation skipped (" << r.error_min_skipped << ")");
 
-  MapRefinementSettings refinement = s.refinement;  // one range and thread count for the run
-  refinement.knn.num_threads = refinement.through.num_threads = s.num_threads;
-  refinement.through.min_range = s.fusion.projection.min_range;
-  refinement.through.max_range = s.fusion.projection.max_range;
+  // one range and thread count for the run: the projection's
+  const SensorReach reach{s.fusion.projection.min_range, s.fusion.projection.max_range};
   r.refinement = refineMap(
       r.map, r.poses.T_map_velo,
       [&](std::size_t i) { return io::readVelodyneBin(drive.frames[i].velodyne).points; },
-      refinement);
+      s.refinement, reach, s.num_threads);
   return r;
 }
 

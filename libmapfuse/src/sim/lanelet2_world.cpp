@@ -6,10 +6,10 @@
 #include <optional>
 #include <set>
 
+#include "line_chains.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/io/bounds.hpp"
-#include "mapfuse/sim/line_chains.hpp"
 #include "truth_counts.hpp"
 
 namespace mapfuse::sim {

@@ -8,11 +8,6 @@ namespace {
 double since(std::chrono::steady_clock::time_point a) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
 }
-
-StreetParams seeded(StreetParams street, uint64_t seed) {
-  street.seed = seed;
-  return street;
-}
 }  // namespace
 
 Pose3 egoImuPose(const Road& road, const EgoDrive& drive, const Pose3& T_imu_velo, double t) {
@@ -30,7 +25,7 @@ LidarDrive::LidarDrive(const LidarDriveSettings& s, const io::KittiCalibration& 
     : settings_(s),
       calib_(calib),
       seed_(seed),
-      scene_(generateStreet(seeded(s.street, seed))),
+      scene_(generateStreet(s.street, seed)),
       ego_{s.street.ego_start, s.street.ego_speed, -0.5 * s.street.profile.lane_width,
            s.velo_height},
       T_imu_velo_(calib.T_velo_imu.inverse()) {}

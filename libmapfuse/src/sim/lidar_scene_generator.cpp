@@ -141,8 +141,8 @@ void addFrontage(Builder& b, Rng& rng, const StreetParams& P, double side) {
 
 }  // namespace
 
-LidarScene generateStreet(const StreetParams& P) {
-  Rng rng(P.seed);
+LidarScene generateStreet(const StreetParams& P, uint64_t seed) {
+  Rng rng(seed);
   const std::vector<double> straights{uniform(rng, P.straight_min, P.straight_max),
                                       uniform(rng, P.straight_min, P.straight_max),
                                       uniform(rng, P.straight_min, P.straight_max)};

@@ -1,4 +1,4 @@
-#include "mapfuse/sim/line_chains.hpp"
+#include "line_chains.hpp"
 
 #include <algorithm>
 #include <cmath>

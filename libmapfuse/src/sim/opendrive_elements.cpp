@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-#include "mapfuse/sim/line_chains.hpp"
+#include "line_chains.hpp"
 #include "opendrive_internal.hpp"
 #include "truth_counts.hpp"
 

@@ -12,7 +12,7 @@
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/png_decode.hpp"
 #include "mapfuse/vehicle/centerline.hpp"
-#include "mapfuse/vehicle/segmentation_cache.hpp"
+#include "segmentation_cache.hpp"
 
 namespace mapfuse::vehicle {
 

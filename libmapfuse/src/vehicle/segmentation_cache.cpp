@@ -1,4 +1,4 @@
-#include "mapfuse/vehicle/segmentation_cache.hpp"
+#include "segmentation_cache.hpp"
 
 #include <opencv2/imgcodecs.hpp>
 

@@ -14,9 +14,8 @@
 namespace mapfuse::lidar {
 
 struct EnetSettings {
-  double scale = 1.0;     ///< input scale (1.0 native; 1.5 also works; never stretch the aspect)
-  int pad_multiple = 16;  ///< reflect padding to a multiple of this (px)
-  int threads = 0;        ///< cv::setNumThreads for the network; 0 = OpenCV's default (cores)
+  double scale = 1.0;  ///< input scale (1.0 native; 1.5 also works; never stretch the aspect)
+  int threads = 0;     ///< cv::setNumThreads for the network; 0 = OpenCV's default (cores)
 
   template <class V>
   void visit(V& v) {

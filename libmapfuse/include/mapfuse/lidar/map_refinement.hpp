@@ -52,7 +52,10 @@ using ScanSource = std::function<std::vector<Eigen::Vector3f>(std::size_t i)>;
 
 /// @brief Refines `map` in place.
 /// @param T_map_velo pose of every scan, indexed like `scans`
+/// @param reach the range over which scans see through voxels (the run's projection range)
+/// @param num_threads OpenMP threads (results do not depend on it)
 MapRefinementResult refineMap(SemanticVoxelMap& map, const std::vector<Pose3>& T_map_velo,
-                              const ScanSource& scans, const MapRefinementSettings& settings);
+                              const ScanSource& scans, const MapRefinementSettings& settings,
+                              const SensorReach& reach, int num_threads);
 
 }  // namespace mapfuse::lidar

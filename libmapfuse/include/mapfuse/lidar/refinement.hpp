@@ -14,8 +14,7 @@ namespace mapfuse::lidar {
 struct KnnFilterSettings {
   int k = 6;  ///< neighbours K
   double max_mean_distance =
-      0.20;             ///< delta_d, m: voxels whose K nearest are farther on average go
-  int num_threads = 1;  ///< OpenMP threads (results do not depend on it)
+      0.20;  ///< delta_d, m: voxels whose K nearest are farther on average go
 
   template <class V>
   void visit(V& v) {
@@ -32,7 +31,9 @@ struct KnnFilterSettings {
 /// decided (all unvisited voxels are farther than the shell); voxels still open at the last shell
 /// are dropped. Runs over the keys sorted in (x, y, z) order (12-24 bytes per voxel while it
 /// runs). @throws InputError when k is outside 1..32 or max_mean_distance <= 0.
-std::vector<uint8_t> knnMeanDistanceFilter(const SemanticVoxelMap& map, const KnnFilterSettings& s);
+/// @param num_threads OpenMP threads (results do not depend on it)
+std::vector<uint8_t> knnMeanDistanceFilter(const SemanticVoxelMap& map, const KnnFilterSettings& s,
+                                           int num_threads = 1);
 
 struct VehicleTraceSettings {
   double eps = 0.25;   ///< DBSCAN radius on the (x, y) plane, m

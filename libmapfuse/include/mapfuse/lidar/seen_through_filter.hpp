@@ -34,19 +34,26 @@ struct SeenThroughSettings {
   int window = 0;            ///< half size of the pixel window whose nearest return must lie beyond
   int window_thin = 1;       ///< the same for road, sidewalk, fence, pole and vegetation voxels
   double margin = 0.5;       ///< m, a return this far beyond the voxel means the ray passed it
-  double min_range = 2.0;    ///< m, voxels nearer to the sensor are not tested
-  double max_range = 50.0;   ///< m, nor farther ones (sparse returns)
   int min_seen_through = 1;  ///< scans that must see through a voxel before it goes
   double min_free_ratio = 0.5;       ///< and their share among the scans that saw it at all
   double vehicle_vote_radius = 0.5;  ///< m, (x, y) neighbourhood of the vehicle vote; 0: per voxel
   double vehicle_vote_share = 0.6;   ///< share of seen-through vehicle voxels that removes them all
-  int num_threads = 1;               ///< OpenMP threads (results do not depend on it)
 
-  /// The parameters of lidar-semantic-map (min_range, max_range and num_threads are passed on
-  /// from the projection and the run; the range-image geometry keeps its values).
+  /// The parameters of lidar-semantic-map (the ranges and the thread count are the run's:
+  /// SeenThroughFilter's arguments).
   template <class V>
   void visit(V& v) {
     using namespace param;
+    v("seen_through_azimuth_resolution", azimuth_resolution_deg, "deg",
+      "range-image column width of the free-space test (HDL-64E: ~0.17)", gt(0.01) & le(10));
+    v("seen_through_elevation_resolution", elevation_resolution_deg, "deg",
+      "range-image row height of the free-space test (HDL-64E: ~0.4)", gt(0.01) & le(10));
+    v("seen_through_elevation_min", elevation_min_deg, "deg",
+      "lowest beam elevation the range image covers", in(-90, 90));
+    v("seen_through_elevation_max", elevation_max_deg, "deg",
+      "highest beam elevation the range image covers", in(-90, 90));
+    v.relation("seen_through_elevation_max", elevation_max_deg,
+               elevation_max_deg > elevation_min_deg, "> seen_through_elevation_min");
     v("seen_through_margin", margin, "m",
       "a return this far beyond a voxel means the ray passed it", gt(0) & le(100));
     v("seen_through_window", window, "px",
@@ -67,6 +74,13 @@ struct SeenThroughSettings {
   }
 };
 
+/// The sensor's reach over which voxels are tested: voxels nearer than min_range or farther than
+/// max_range from the sensor are not (lidar-semantic-map passes its projection's ranges).
+struct SensorReach {
+  double min_range = 2.0;   ///< m
+  double max_range = 50.0;  ///< m (sparse returns beyond)
+};
+
 struct SeenThroughStats {
   std::size_t tested_voxels = 0;   ///< voxels of the map
   std::size_t scans = 0;           ///< scans added
@@ -79,7 +93,9 @@ class SeenThroughFilter {
  public:
   /// @param map the map to test; it must outlive the filter and stay unchanged while in use
   /// @throws InputError on a non-positive resolution, margin, range or window < 0.
-  SeenThroughFilter(const SemanticVoxelMap& map, const SeenThroughSettings& s);
+  /// @param num_threads OpenMP threads of addScan (results do not depend on it)
+  SeenThroughFilter(const SemanticVoxelMap& map, const SeenThroughSettings& s,
+                    const SensorReach& reach = {}, int num_threads = 1);
 
   /// @brief Tests every voxel against one scan.
   /// @param scan_velo the scan's points in the sensor frame
@@ -93,6 +109,8 @@ class SeenThroughFilter {
 
  private:
   SeenThroughSettings s_;
+  SensorReach reach_;
+  int num_threads_ = 1;
   const SemanticVoxelMap* map_;          ///< tested map (must outlive the filter)
   std::vector<uint16_t> through_, hit_;  ///< per voxel: scans that saw through / stopped at it
   struct Column {

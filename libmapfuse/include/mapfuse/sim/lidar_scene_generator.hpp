@@ -9,10 +9,9 @@
 
 namespace mapfuse::sim {
 
-/// Everything the street generator uses; the parameters declared once, in visit() (the seed
-/// is the drive's, set by the caller).
+/// Everything the street generator uses but its seed (the drive's, generateStreet's argument);
+/// the parameters declared once, in visit().
 struct StreetParams {
-  uint64_t seed = 1;
   RoadProfile profile;
   double straight_min = 60.0;         ///< m
   double straight_max = 110.0;        ///< m
@@ -70,7 +69,7 @@ struct StreetParams {
   }
 };
 
-/// @brief Generates the street. Same params => same scene.
-LidarScene generateStreet(const StreetParams& params);
+/// @brief Generates the street. Same params and seed => same scene.
+LidarScene generateStreet(const StreetParams& params, uint64_t seed);
 
 }  // namespace mapfuse::sim
