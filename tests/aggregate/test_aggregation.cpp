@@ -7,6 +7,7 @@
 #include "mapfuse/aggregate/aggregator.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
 #include "mapfuse/core/error.hpp"
+#include "support/test_support.hpp"
 #include "synthetic_world.hpp"
 
 using namespace mapfuse;
@@ -298,8 +299,9 @@ TEST_CASE("a stop line seen whole by some drives and in part by others is one st
     o.cls = CrowdClass::kStopLine;
     o.confidence = 0.8;
     const double end = d < 12 ? 7.0 : 1.5;
-    o.points = {Vec3(50 + noise(rng), 0 + noise(rng), 0),
-                Vec3(50 + noise(rng), end + noise(rng), 0)};
+    const Eigen::Vector2d n0 = mapfuse::test::drawVector<Eigen::Vector2d>(noise, rng);
+    const Eigen::Vector2d n1 = mapfuse::test::drawVector<Eigen::Vector2d>(noise, rng);
+    o.points = {Vec3(50 + n0.x(), 0 + n0.y(), 0), Vec3(50 + n1.x(), end + n1.y(), 0)};
     items.push_back(o);
   }
   std::vector<std::size_t> idx(items.size());

@@ -6,6 +6,7 @@
 #include "aggregate/lane_instantiation.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
 #include "mapfuse/core/vector_map.hpp"
+#include "support/test_support.hpp"
 
 using namespace mapfuse;
 using namespace mapfuse::aggregate;
@@ -37,7 +38,8 @@ TEST_CASE("fitCircle2d recovers a ring from noisy points and refuses a line", "[
   std::mt19937 rng(5);
   std::normal_distribution<double> noise(0.0, 0.02);
   std::vector<Eigen::Vector2d> pts;
-  for (const auto& p : ringPiece(0, 12)) pts.emplace_back(p.x() + noise(rng), p.y() + noise(rng));
+  for (const auto& p : ringPiece(0, 12))
+    pts.push_back(p.head<2>() + mapfuse::test::drawVector<Eigen::Vector2d>(noise, rng));
   Eigen::Vector2d c;
   double r = 0;
   REQUIRE(fitCircle2d(pts, &c, &r));
@@ -79,7 +81,8 @@ TEST_CASE("a roundabout ring observed dash by dash becomes one instance on the r
   std::vector<Observation> items;
   const double quarter = M_PI / 2 * kRing;
   for (int d = 0; d < 10; ++d) {
-    const Vec3 shift(offset(rng), offset(rng), 0);
+    const Eigen::Vector2d xy = mapfuse::test::drawVector<Eigen::Vector2d>(offset, rng);
+    const Vec3 shift(xy.x(), xy.y(), 0);
     for (double s = 0; s + 3 <= 3 * quarter; s += 9) {
       Observation o;
       o.drive = d;

@@ -7,6 +7,7 @@
 #include "aggregate/discrete_merge.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
+#include "support/test_support.hpp"
 
 using namespace mapfuse;
 using namespace mapfuse::aggregate;
@@ -83,8 +84,10 @@ TEST_CASE("Bezier handles stay bounded when the end tangents disagree with the d
     std::vector<Vec3> p = {
         {0, 0, 0}, {0.8 + 0.5 * uni(rng), 0.6 * uni(rng), 0}, {1.5, 0.3 * uni(rng), 0}};
     const double chord = (p.back() - p.front()).norm();
-    const Vec3 t0 = Vec3(uni(rng), uni(rng), 0).normalized();
-    const Vec3 t1 = Vec3(uni(rng), uni(rng), 0).normalized();
+    const Eigen::Vector2d d0 = mapfuse::test::drawVector<Eigen::Vector2d>(uni, rng);
+    const Vec3 t0 = Vec3(d0.x(), d0.y(), 0).normalized();
+    const Eigen::Vector2d d1 = mapfuse::test::drawVector<Eigen::Vector2d>(uni, rng);
+    const Vec3 t1 = Vec3(d1.x(), d1.y(), 0).normalized();
     std::vector<double> u = {
         0.0, (p[1] - p[0]).norm() / ((p[1] - p[0]).norm() + (p[2] - p[1]).norm()), 1.0};
     const BezierSegment seg = fitCubicBezier(p, u, t0, t1, params.reparam_iterations);

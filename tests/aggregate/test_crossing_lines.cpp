@@ -4,6 +4,7 @@
 #include <random>
 
 #include "aggregate/crossing_lines.hpp"
+#include "support/test_support.hpp"
 
 using namespace mapfuse::aggregate;
 using V2 = Eigen::Vector2d;
@@ -49,7 +50,8 @@ std::vector<V2> piece(std::mt19937_64& rng, V2 start, double heading, double tur
   std::vector<V2> out{start};
   for (int i = 1; i < n; ++i) {
     heading += turn;
-    out.push_back(out.back() + seg * V2(std::cos(heading), std::sin(heading)) + V2(g(rng), g(rng)));
+    out.push_back(out.back() + seg * V2(std::cos(heading), std::sin(heading)) +
+                  mapfuse::test::drawVector<V2>(g, rng));
   }
   return out;
 }
@@ -71,13 +73,15 @@ TEST_CASE("piecesCross answers as its definition on parallel, curved and crossin
     const double turn_a = (u(rng) - 0.5) * 20 * kDeg, turn_b = (u(rng) - 0.5) * 20 * kDeg;
     // every third pair far from the origin (a city's map coordinates: rounded samples)
     const V2 at = trial % 3 == 0 ? V2(2.5e5, -1.5e5) : V2(0, 0);
-    const std::vector<V2> a = piece(rng, at + V2(u(rng), u(rng)) * 2.0, heading, turn_a,
-                                    0.3 + 3 * u(rng), na, 0.01 * u(rng));
+    // draws named in a fixed order (the last argument's first, as gcc evaluated the calls)
+    const double wiggle_a = 0.01 * u(rng), step_a = 0.3 + 3 * u(rng);
+    const V2 shift_a = mapfuse::test::drawVector<V2>(u, rng) * 2.0;
+    const std::vector<V2> a = piece(rng, at + shift_a, heading, turn_a, step_a, na, wiggle_a);
+    const double wiggle_b = 0.01 * u(rng), step_b = 0.3 + 3 * u(rng);
+    const V2 shift_b = mapfuse::test::drawVector<V2>(u, rng) * 2.0;
     const std::vector<V2> b =
-        piece(rng,
-              at + V2(u(rng), u(rng)) * 2.0 -
-                  4.0 * V2(std::cos(heading + cross), std::sin(heading + cross)),
-              heading + cross, turn_b, 0.3 + 3 * u(rng), nb, 0.01 * u(rng));
+        piece(rng, at + shift_b - 4.0 * V2(std::cos(heading + cross), std::sin(heading + cross)),
+              heading + cross, turn_b, step_b, nb, wiggle_b);
     const double max_angle = (10 + 50 * u(rng)) * kDeg;
     const bool expected = crossByDefinition(a, b, 0.4, max_angle);
     INFO("trial " << trial);

@@ -6,6 +6,7 @@
 
 #include "fusion/element_factor.hpp"
 #include "fusion/factors.hpp"
+#include "support/test_support.hpp"
 
 using namespace mapfuse::fusion::detail;
 
@@ -23,14 +24,14 @@ Setup randomSetup(std::mt19937& rng, bool plane) {
   Setup s{};
   auto quat = [&](double* q) {
     Eigen::Map<Eigen::Quaterniond> m(q);
-    m = Eigen::Quaterniond(Eigen::Vector4d(n(rng), n(rng), n(rng), n(rng)).normalized());
+    m = Eigen::Quaterniond(mapfuse::test::drawVector<Eigen::Vector4d>(n, rng).normalized());
   };
   for (int i = 0; i < 3; ++i) s.ta[i] = 5 * n(rng), s.tb[i] = 5 * n(rng);
   quat(s.qa);
   quat(s.qb);
-  const Eigen::Vector3d dir = Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
-  s.r = ElementResidual{Eigen::Vector3d(n(rng), n(rng), n(rng)) * 3,
-                        Eigen::Vector3d(n(rng), n(rng), n(rng)) * 3, dir, plane, 20.0};
+  const Eigen::Vector3d dir = mapfuse::test::drawVector<Eigen::Vector3d>(n, rng).normalized();
+  s.r = ElementResidual{mapfuse::test::drawVector<Eigen::Vector3d>(n, rng) * 3,
+                        mapfuse::test::drawVector<Eigen::Vector3d>(n, rng) * 3, dir, plane, 20.0};
   return s;
 }
 

@@ -38,7 +38,7 @@ Cloud structuredScene(uint64_t seed) {
   std::normal_distribution<double> noise(0.0, 0.01);
   Cloud c;
   auto add = [&](const Eigen::Vector3d& p, uint8_t label) {
-    c.points.push_back(p + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
+    c.points.push_back(p + mapfuse::test::drawVector<Eigen::Vector3d>(noise, rng));
     c.labels.push_back(label);
   };
   for (int i = 0; i < 20000; ++i) add({-30 + 60 * u(rng), -10 + 20 * u(rng), 0.0}, 1);

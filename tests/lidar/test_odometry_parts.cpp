@@ -5,12 +5,13 @@
 #include <cmath>
 #include <random>
 
+#include "lidar/scan_normals.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/lidar/local_voxel_map.hpp"
 #include "mapfuse/lidar/odometry_trust.hpp"
 #include "mapfuse/lidar/scan_geometry.hpp"
-#include "mapfuse/lidar/scan_normals.hpp"
 #include "mapfuse/lidar/scan_odometry.hpp"
+#include "support/test_support.hpp"
 
 using namespace mapfuse;
 
@@ -22,7 +23,7 @@ std::vector<Eigen::Vector3d> randomPoints(std::size_t n, double extent, uint32_t
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-extent, extent);
   std::vector<Eigen::Vector3d> pts(n);
-  for (auto& p : pts) p = Eigen::Vector3d(u(rng), u(rng), u(rng));
+  for (auto& p : pts) p = mapfuse::test::drawVector<Eigen::Vector3d>(u, rng);
   return pts;
 }
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "mapfuse/io/geojson.hpp"
 #include "mapfuse/sim/procedural_world.hpp"
+#include "support/test_support.hpp"
 
 using namespace mapfuse;
 
@@ -96,7 +97,7 @@ TEST_CASE("GeoJSON of the procedural world: every polygon simple, closed, counte
   for (int draw = 0; draw < 20; ++draw) {
     VectorMap noisy = world.truth;
     for (auto& m : noisy.instances)
-      for (auto& p : m.points) p += Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+      for (auto& p : m.points) p += mapfuse::test::drawVector<Eigen::Vector3d>(noise, rng);
     CHECK(checkFeatures(io::vectorMapToGeoJson(noisy)) == polygons);
   }
 }

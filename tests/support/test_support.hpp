@@ -6,6 +6,17 @@
 
 namespace mapfuse::test {
 
+/// @brief A vector of random draws of `dist` in a fixed order, whatever the compiler: the last
+/// component first (what gcc gave `Vector3d(d(rng), d(rng), d(rng))`, whose unsequenced arguments
+/// clang evaluates the other way), so that a fixture is the same world under gcc and clang and
+/// keeps the values the tests were written with.
+template <class Vec, class Dist, class Rng>
+Vec drawVector(Dist& dist, Rng& rng) {
+  Vec v;
+  for (int i = int(v.size()) - 1; i >= 0; --i) v[i] = dist(rng);
+  return v;
+}
+
 /// Exit code ctest maps to "skipped" (SKIP_RETURN_CODE in tests/CMakeLists.txt).
 constexpr int kSkipExitCode = 77;
 

@@ -7,6 +7,7 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/tiling/piece_links.hpp"
 #include "mapfuse/tiling/placement.hpp"
+#include "support/test_support.hpp"
 
 using namespace mapfuse;
 using namespace mapfuse::tiling;
@@ -48,7 +49,8 @@ RowWorld rowWorld(
     const int n = (b - a + 1) * kPieceKeyframes;
     std::vector<Eigen::Vector3d> drive_e;
     for (int k = 0; k < n; ++k) {
-      if (k > 0) e.head<2>() += walk * Eigen::Vector2d(N01(rng), N01(rng));  // 1 s steps
+      if (k > 0)
+        e.head<2>() += walk * mapfuse::test::drawVector<Eigen::Vector2d>(N01, rng);  // 1 s steps
       drive_e.push_back(e);
       w.batch_mean += e;
       ++distinct;
@@ -78,8 +80,9 @@ RowWorld rowWorld(
   for (auto& [key, sum] : w.o) sum /= count[key];
   for (std::size_t i = 0; i < w.pieces.size(); ++i)
     for (std::size_t k = 0; k < w.errors[i].size(); ++k)
-      w.pieces[i].keyframes[k].shift = w.o[w.pieces[i].group] - w.errors[i][k] +
-                                       kAlignNoise * Eigen::Vector3d(N01(rng), N01(rng), N01(rng));
+      w.pieces[i].keyframes[k].shift =
+          w.o[w.pieces[i].group] - w.errors[i][k] +
+          kAlignNoise * mapfuse::test::drawVector<Eigen::Vector3d>(N01, rng);
   return w;
 }
 

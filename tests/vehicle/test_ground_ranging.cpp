@@ -4,6 +4,7 @@
 
 #include "mapfuse/vehicle/ground_ranging.hpp"
 #include "mapfuse/vehicle/vanishing_point.hpp"
+#include "support/test_support.hpp"
 #include "synthetic_camera.hpp"
 
 using namespace mapfuse;
@@ -66,7 +67,7 @@ TEST_CASE("ranging error stays within 2 % of range with 1 px noise and the true 
   for (double fwd = 5.0; fwd <= 30.0; fwd += 1.0) {
     const Eigen::Vector3d X = test::groundPointCam(fwd, 1.75, kHeight, 1.0 * kDeg, 0.0);
     Eigen::Vector2d px = *projectPoint(K, X);
-    px += Eigen::Vector2d(noise(rng), noise(rng));
+    px += mapfuse::test::drawVector<Eigen::Vector2d>(noise, rng);
     const auto Y = backProjectToGround(px, K.inverse(), plane);
     REQUIRE(Y);
     worst = std::max(worst, (*Y - X).norm() / X.norm());

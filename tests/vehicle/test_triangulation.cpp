@@ -4,6 +4,7 @@
 
 #include "mapfuse/vehicle/camera.hpp"
 #include "mapfuse/vehicle/triangulation.hpp"
+#include "support/test_support.hpp"
 #include "synthetic_camera.hpp"
 
 using namespace mapfuse;
@@ -24,7 +25,7 @@ std::vector<TrackObservation> observe(const Eigen::Vector3d& P, int frames, doub
     T_world_cam.translation() = Eigen::Vector3d(start + i * step, 0.0, 1.5);
     const auto px = projectPoint(test::syntheticK(), T_world_cam.inverse() * P);
     if (!px) continue;
-    out.push_back({T_world_cam, *px + Eigen::Vector2d(n(rng), n(rng))});
+    out.push_back({T_world_cam, *px + mapfuse::test::drawVector<Eigen::Vector2d>(n, rng)});
   }
   return out;
 }

@@ -9,6 +9,7 @@
 #include "mapfuse/vehicle/camera.hpp"
 #include "mapfuse/vehicle/lsm_build.hpp"
 #include "mapfuse/vehicle/vp_gate.hpp"
+#include "support/test_support.hpp"
 #include "synthetic_camera.hpp"
 
 using namespace mapfuse;
@@ -87,7 +88,7 @@ DriveData makeDrive(const Road& road, int frames, double mount_pitch,
         const Eigen::Vector3d X = R_true * (T_cam_odom * Eigen::Vector3d(q.x(), q.y(), 0.0));
         const auto px = projectPoint(d.calib.K, X, 0.5);
         if (!px || px->x() < 0 || px->x() >= 1280 || px->y() < 0 || px->y() >= 720) continue;
-        g.pixels.push_back(*px + Eigen::Vector2d(noise(rng), noise(rng)));
+        g.pixels.push_back(*px + mapfuse::test::drawVector<Eigen::Vector2d>(noise, rng));
       }
       if (!g.pixels.empty()) f.ground.push_back(std::move(g));
     }
