@@ -104,27 +104,45 @@ double polygonIou2d(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   return u > 0 ? i / u : 0.0;
 }
 
-std::vector<MapInstance> mergeDiscrete(const std::vector<Observation>& items,
-                                       const std::vector<std::size_t>& indices, CrowdClass cls,
-                                       const DiscreteMergeParams& p, int num_drives,
-                                       int partner_drives, std::size_t* noise) {
+namespace {
+/// One observation's geometry as the clustering compares it: a planar element's polygon, a stop
+/// line's end points, a point element's base; and its centre.
+struct DiscreteGeometry {
+  std::vector<std::vector<Vec3>> geom;
+  std::vector<Vec3> centre;
+};
+
+DiscreteGeometry representativeGeometry(const std::vector<Observation>& items,
+                                        const std::vector<std::size_t>& indices, CrowdClass cls) {
   const std::size_t n = indices.size();
   const GeometryKind kind = geometryKind(cls);
-  const bool by_iou = cls == CrowdClass::kGroundArrow || cls == CrowdClass::kCrosswalk;
-  const bool stop_line = cls == CrowdClass::kStopLine;
-  // representative geometry per observation
-  std::vector<std::vector<Vec3>> geom(n);
-  std::vector<Vec3> centre(n);
+  DiscreteGeometry g{std::vector<std::vector<Vec3>>(n), std::vector<Vec3>(n)};
   for (std::size_t i = 0; i < n; ++i) {
     const auto& pts = items[indices[i]].points;
     if (kind == GeometryKind::kPlanar)  // polygons keep their own vertices (arrows are not boxes)
-      geom[i] = pts.size() >= 3 ? pts : toRectangle(pts);
-    else if (stop_line)
-      geom[i] = {pts.front(), pts.back()};
+      g.geom[i] = pts.size() >= 3 ? pts : toRectangle(pts);
+    else if (cls == CrowdClass::kStopLine)
+      g.geom[i] = {pts.front(), pts.back()};
     else
-      geom[i] = {pts.front()};
-    centre[i] = mean(geom[i]);
+      g.geom[i] = {pts.front()};
+    g.centre[i] = mean(g.geom[i]);
   }
+  return g;
+}
+
+/// DBSCAN's eps-neighbourhoods (symmetric, sorted): arrows and crosswalks by IoU, stop lines by
+/// midpoint distance and direction, signs, poles and lights by 3D distance; each observation is
+/// compared with the candidates of at most `partner_drives` other drives (partner_drives.hpp).
+std::vector<std::vector<std::size_t>> discreteNeighbours(const std::vector<Observation>& items,
+                                                         const std::vector<std::size_t>& indices,
+                                                         CrowdClass cls, const DiscreteGeometry& g,
+                                                         const DiscreteMergeParams& p,
+                                                         int partner_drives) {
+  const std::size_t n = indices.size();
+  const auto& geom = g.geom;
+  const auto& centre = g.centre;
+  const bool by_iou = cls == CrowdClass::kGroundArrow || cls == CrowdClass::kCrosswalk;
+  const bool stop_line = cls == CrowdClass::kStopLine;
   const double radius = stop_line                         ? p.stop_line_radius
                         : cls == CrowdClass::kTrafficSign ? p.sign_radius
                                                           : p.point_radius;
@@ -136,8 +154,6 @@ std::vector<MapInstance> mergeDiscrete(const std::vector<Observation>& items,
                 i};
   const bgi::rtree<BoxValue, bgi::rstar<16>> tree(boxes.begin(), boxes.end());
   const double cos_max = std::cos(p.stop_line_angle_deg * M_PI / 180.0);
-  // Neighbours among the candidates of at most `partner_drives` other drives
-  // (partner_drives.hpp), made symmetric for DBSCAN.
   auto driveOf = [&](std::size_t i) { return items[indices[i]].drive; };
   std::vector<std::vector<std::size_t>> tested(n);
 #pragma omp parallel
@@ -185,60 +201,78 @@ std::vector<MapInstance> mergeDiscrete(const std::vector<Observation>& items,
     std::sort(l.begin(), l.end());
     l.erase(std::unique(l.begin(), l.end()), l.end());
   }
+  return neighbours;
+}
+
+/// One cluster's instance: confidence-weighted mean of the members' geometry (vertices aligned
+/// to the most confident member), stop lines merged from whole and partial pieces, the majority
+/// style and colour, the support.
+MapInstance mergeCluster(const std::vector<Observation>& items,
+                         const std::vector<std::size_t>& indices, CrowdClass cls,
+                         const DiscreteGeometry& g, const std::vector<std::size_t>& mem) {
+  const auto& geom = g.geom;
+  // reference member: highest confidence (lowest index on ties)
+  std::size_t ref = mem.front();
+  for (std::size_t i : mem)
+    if (items[indices[i]].confidence > items[indices[ref]].confidence) ref = i;
+  std::vector<Vec3> acc(geom[ref].size(), Vec3::Zero());
+  double wsum = 0, height = 0;
+  std::set<int> drives;
+  std::map<LineStyle, double> styles;
+  std::map<LineColor, double> colors;
+  MapInstance inst;
+  inst.cls = cls;
+  for (std::size_t i : mem) {
+    const Observation& o = items[indices[i]];
+    const double w = std::max(o.confidence, 1e-3);  // confidence-weighted averaging
+    drives.insert(o.drive);
+    inst.support.observations += o.observations;
+    styles[o.attributes.style] += w;
+    colors[o.attributes.color] += w;
+    // geometry: members with the reference's vertex count, vertices aligned then averaged
+    if (geom[i].size() != acc.size()) continue;
+    const std::vector<Vec3> gi = acc.size() > 1 ? alignCorners(geom[ref], geom[i]) : geom[i];
+    for (std::size_t k = 0; k < acc.size(); ++k) acc[k] += w * gi[k];
+    height += w * o.height;
+    wsum += w;
+  }
+  for (auto& c : acc) c /= wsum;
+  inst.points = acc;
+  if (cls == CrowdClass::kStopLine) {  // whole and partial observations (stop_line_merge.hpp)
+    std::vector<detail::Segment> segs;
+    std::vector<double> ws;
+    std::size_t r = 0;
+    for (std::size_t i : mem) {
+      if (i == ref) r = segs.size();
+      segs.push_back({geom[i][0], geom[i][1]});
+      ws.push_back(std::max(items[indices[i]].confidence, 1e-3));
+    }
+    const detail::Segment m = detail::mergeStopLines(segs, ws, r);
+    inst.points = {m[0], m[1]};
+  }
+  if (geometryKind(cls) == GeometryKind::kPoint) inst.height = height / wsum;
+  inst.support.drives = int(drives.size());
+  inst.attributes.style = majority(styles, LineStyle::kNone);
+  inst.attributes.color = majority(colors, LineColor::kNone);
+  return inst;
+}
+}  // namespace
+
+std::vector<MapInstance> mergeDiscrete(const std::vector<Observation>& items,
+                                       const std::vector<std::size_t>& indices, CrowdClass cls,
+                                       const DiscreteMergeParams& p, int num_drives,
+                                       int partner_drives, std::size_t* noise) {
+  const DiscreteGeometry g = representativeGeometry(items, indices, cls);
+  const auto neighbours = discreteNeighbours(items, indices, cls, g, p, partner_drives);
   const int min_pts = std::max(1, std::min(p.min_pts, num_drives));
   const DbscanResult clusters = dbscan(neighbours, min_pts);
   if (noise) *noise = std::size_t(clusters.num_noise);
-
   std::vector<std::vector<std::size_t>> members(std::size_t(clusters.num_clusters));
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < indices.size(); ++i)
     if (clusters.labels[i] >= 0) members[std::size_t(clusters.labels[i])].push_back(i);
   std::vector<MapInstance> out;
-  for (const auto& mem : members) {
-    // reference member: highest confidence (lowest index on ties)
-    std::size_t ref = mem.front();
-    for (std::size_t i : mem)
-      if (items[indices[i]].confidence > items[indices[ref]].confidence) ref = i;
-    std::vector<Vec3> acc(geom[ref].size(), Vec3::Zero());
-    double wsum = 0, height = 0;
-    std::set<int> drives;
-    std::map<LineStyle, double> styles;
-    std::map<LineColor, double> colors;
-    MapInstance inst;
-    inst.cls = cls;
-    for (std::size_t i : mem) {
-      const Observation& o = items[indices[i]];
-      const double w = std::max(o.confidence, 1e-3);  // confidence-weighted averaging
-      drives.insert(o.drive);
-      inst.support.observations += o.observations;
-      styles[o.attributes.style] += w;
-      colors[o.attributes.color] += w;
-      // geometry: members with the reference's vertex count, vertices aligned then averaged
-      if (geom[i].size() != acc.size()) continue;
-      const std::vector<Vec3> g = acc.size() > 1 ? alignCorners(geom[ref], geom[i]) : geom[i];
-      for (std::size_t k = 0; k < acc.size(); ++k) acc[k] += w * g[k];
-      height += w * o.height;
-      wsum += w;
-    }
-    for (auto& c : acc) c /= wsum;
-    inst.points = acc;
-    if (stop_line) {  // whole and partial observations (stop_line_merge.hpp)
-      std::vector<detail::Segment> segs;
-      std::vector<double> ws;
-      std::size_t r = 0;
-      for (std::size_t i : mem) {
-        if (i == ref) r = segs.size();
-        segs.push_back({geom[i][0], geom[i][1]});
-        ws.push_back(std::max(items[indices[i]].confidence, 1e-3));
-      }
-      const detail::Segment m = detail::mergeStopLines(segs, ws, r);
-      inst.points = {m[0], m[1]};
-    }
-    if (kind == GeometryKind::kPoint) inst.height = height / wsum;
-    inst.support.drives = int(drives.size());
-    inst.attributes.style = majority(styles, LineStyle::kNone);
-    inst.attributes.color = majority(colors, LineColor::kNone);
-    out.push_back(std::move(inst));
-  }
+  out.reserve(members.size());
+  for (const auto& mem : members) out.push_back(mergeCluster(items, indices, cls, g, mem));
   return out;
 }
 

@@ -176,6 +176,95 @@ std::vector<Piece> cutObservations(const std::vector<Observation>& items,
   return pieces;
 }
 
+// Pieces ordered by tile, then by drive, and each tile's [begin, end) in that order.
+struct TileOrder {
+  std::vector<std::size_t> by_tile;
+  std::vector<std::pair<std::size_t, std::size_t>> tiles;
+};
+
+TileOrder orderByTile(const std::vector<Observation>& items, const std::vector<Piece>& pieces) {
+  const std::size_t n = pieces.size();
+  TileOrder o;
+  o.by_tile.resize(n);
+  std::iota(o.by_tile.begin(), o.by_tile.end(), std::size_t(0));
+  auto driveOf = [&](std::size_t i) { return items[pieces[i].obs].drive; };
+  std::stable_sort(o.by_tile.begin(), o.by_tile.end(), [&](std::size_t a, std::size_t b) {
+    return pieces[a].tile != pieces[b].tile ? pieces[a].tile < pieces[b].tile
+                                            : driveOf(a) < driveOf(b);
+  });
+  for (std::size_t k = 0; k < n;) {
+    std::size_t e = k;
+    while (e < n && pieces[o.by_tile[e]].tile == pieces[o.by_tile[k]].tile) ++e;
+    o.tiles.emplace_back(k, e);
+    k = e;
+  }
+  return o;
+}
+
+// One tile's buffered pieces in tile-local coordinates, prepared for the exact overlap area (a
+// thread's scratch, reused tile after tile); indexed by position in by_tile minus the tile's
+// begin.
+struct TilePolygons {
+  std::vector<OverlapPolygon> polys;
+  std::vector<double> areas;
+  std::vector<Box2> boxes;
+  std::vector<std::vector<Eigen::Vector2d>> lines;  // simplified pieces, for the angle test
+  std::size_t b = 0;
+
+  void prepare(const std::vector<Piece>& pieces, const std::vector<std::size_t>& by_tile,
+               std::size_t begin, std::size_t end, double buffer_width) {
+    b = begin;
+    polys.assign(end - b, OverlapPolygon());
+    areas.assign(end - b, 0.0);
+    boxes.assign(end - b, Box2());
+    lines.assign(end - b, {});
+    for (std::size_t r = b; r < end; ++r) {
+      const Piece& piece = pieces[by_tile[r]];
+      // The buffer ring built directly (line_buffer.hpp); Boost's where that may differ.
+      Line2 simple;
+      bg::simplify(toLine(piece.points), simple, kSimplifyTolerance);
+      std::vector<Eigen::Vector2d> line;
+      for (const auto& q : simple) line.emplace_back(bg::get<0>(q), bg::get<1>(q));
+      lines[r - b] = line;
+      if (const auto ring = mitreBuffer(line, buffer_width)) {
+        areas[r - b] = ringArea(*ring);
+        polys[r - b] = OverlapPolygon({*ring}, piece.corner);
+      } else {
+        const MPoly2 buffered = bufferPiece(piece, buffer_width);
+        areas[r - b] = bg::area(buffered);
+        polys[r - b] = toOverlapPolygon(buffered, piece.corner);
+      }
+      boxes[r - b] = boxOf(piece.points, buffer_width);
+    }
+  }
+
+  // Stage-1 eps test of the pieces at positions r and q: buffers overlapping by at least
+  // min_overlap_ratio of the smaller, and not crossing lines. `count` counts the overlap tests.
+  bool similar(const std::vector<Piece>& pieces, const std::vector<std::size_t>& by_tile,
+               std::size_t r, std::size_t q, const LaneInstantiationParams& p,
+               std::size_t& count) const {
+    const std::size_t ri = r - b, qi = q - b;
+    if (!bg::intersects(boxes[ri], boxes[qi])) return false;
+    ++count;
+    const double smaller = std::min(areas[ri], areas[qi]);
+    if (smaller <= 0) return false;
+    std::optional<double> inter = intersectionArea(polys[ri], polys[qi]);
+    if (!inter) {  // degenerate (touching vertices, shared edges): Boost's robust overlay
+      MPoly2 both;
+      bg::intersection(bufferPiece(pieces[by_tile[r]], p.buffer_width),
+                       bufferPiece(pieces[by_tile[q]], p.buffer_width), both);
+      inter = bg::area(both);
+    }
+    if (*inter < p.min_overlap_ratio * smaller) return false;
+    // Crossing lines overlap where they cross: not neighbours (crossing_lines.hpp).
+    // the shorter piece's points against the longer piece
+    const double max_angle = p.piece_angle_deg * M_PI / 180.0;
+    const bool r_shorter = areas[ri] <= areas[qi];
+    return !piecesCross(r_shorter ? lines[ri] : lines[qi], r_shorter ? lines[qi] : lines[ri],
+                        2 * p.buffer_width, max_angle);
+  }
+};
+
 // Stage-1 neighbours of every piece (sorted): the pieces of the same tile whose buffered
 // polygons overlap by at least min_overlap_ratio of the smaller one. `comparisons_made`
 // receives the number of overlap tests.
@@ -189,80 +278,20 @@ std::vector<std::vector<std::size_t>> overlapNeighbours(const std::vector<Observ
   // neighbours all lie in its own tile, so tiles run in parallel without sharing lists, and a
   // tile's polygons live only while it is compared (all tiles' at once were a third of
   // aggregate's peak memory).
-  std::vector<std::size_t> by_tile(n);
-  std::iota(by_tile.begin(), by_tile.end(), std::size_t(0));
+  const TileOrder order = orderByTile(items, pieces);
+  const auto& by_tile = order.by_tile;
   auto driveOf = [&](std::size_t i) { return items[pieces[i].obs].drive; };
-  std::stable_sort(by_tile.begin(), by_tile.end(), [&](std::size_t a, std::size_t b) {
-    return pieces[a].tile != pieces[b].tile ? pieces[a].tile < pieces[b].tile
-                                            : driveOf(a) < driveOf(b);
-  });
-  std::vector<std::pair<std::size_t, std::size_t>> tiles;  // [begin, end) in by_tile
-  for (std::size_t k = 0; k < n;) {
-    std::size_t e = k;
-    while (e < n && pieces[by_tile[e]].tile == pieces[by_tile[k]].tile) ++e;
-    tiles.emplace_back(k, e);
-    k = e;
-  }
   std::vector<std::vector<std::size_t>> neighbours(n);
   std::size_t comparisons = 0;
 #pragma omp parallel reduction(+ : comparisons)
   {
     std::vector<int> present, partners;
     std::vector<std::pair<std::size_t, std::size_t>> edges;
-    // the tile's polygons in tile-local coordinates, prepared for the exact overlap area; by
-    // position in by_tile minus the tile's begin
-    std::vector<OverlapPolygon> polys;
-    std::vector<double> areas;
-    std::vector<Box2> boxes;
-    std::vector<std::vector<Eigen::Vector2d>> lines;  // simplified pieces, for the angle test
-    std::size_t b = 0;
-    const double max_angle = p.piece_angle_deg * M_PI / 180.0;
-    auto similar = [&](std::size_t r, std::size_t q, std::size_t& count) {
-      const std::size_t ri = r - b, qi = q - b;
-      if (!bg::intersects(boxes[ri], boxes[qi])) return false;
-      ++count;
-      const double smaller = std::min(areas[ri], areas[qi]);
-      if (smaller <= 0) return false;
-      std::optional<double> inter = intersectionArea(polys[ri], polys[qi]);
-      if (!inter) {  // degenerate (touching vertices, shared edges): Boost's robust overlay
-        MPoly2 both;
-        bg::intersection(bufferPiece(pieces[by_tile[r]], p.buffer_width),
-                         bufferPiece(pieces[by_tile[q]], p.buffer_width), both);
-        inter = bg::area(both);
-      }
-      if (*inter < p.min_overlap_ratio * smaller) return false;
-      // Crossing lines overlap where they cross: not neighbours (crossing_lines.hpp).
-      // the shorter piece's points against the longer piece
-      const bool r_shorter = areas[ri] <= areas[qi];
-      return !piecesCross(r_shorter ? lines[ri] : lines[qi], r_shorter ? lines[qi] : lines[ri],
-                          2 * p.buffer_width, max_angle);
-    };
+    TilePolygons tile;
 #pragma omp for schedule(dynamic, 16)
-    for (std::ptrdiff_t t = 0; t < std::ptrdiff_t(tiles.size()); ++t) {
-      std::size_t e = 0;
-      std::tie(b, e) = tiles[std::size_t(t)];
-      polys.assign(e - b, OverlapPolygon());
-      areas.assign(e - b, 0.0);
-      boxes.assign(e - b, Box2());
-      lines.assign(e - b, {});
-      for (std::size_t r = b; r < e; ++r) {
-        const Piece& piece = pieces[by_tile[r]];
-        // The buffer ring built directly (line_buffer.hpp); Boost's where that may differ.
-        Line2 simple;
-        bg::simplify(toLine(piece.points), simple, kSimplifyTolerance);
-        std::vector<Eigen::Vector2d> line;
-        for (const auto& q : simple) line.emplace_back(bg::get<0>(q), bg::get<1>(q));
-        lines[r - b] = line;
-        if (const auto ring = mitreBuffer(line, p.buffer_width)) {
-          areas[r - b] = ringArea(*ring);
-          polys[r - b] = OverlapPolygon({*ring}, piece.corner);
-        } else {
-          const MPoly2 buffered = bufferPiece(piece, p.buffer_width);
-          areas[r - b] = bg::area(buffered);
-          polys[r - b] = toOverlapPolygon(buffered, piece.corner);
-        }
-        boxes[r - b] = boxOf(piece.points, p.buffer_width);
-      }
+    for (std::ptrdiff_t t = 0; t < std::ptrdiff_t(order.tiles.size()); ++t) {
+      const auto [b, e] = order.tiles[std::size_t(t)];
+      tile.prepare(pieces, by_tile, b, e, p.buffer_width);
       // the tile's drives and the range of each (by_tile is sorted by drive within a tile)
       present.clear();
       std::vector<std::pair<std::size_t, std::size_t>> range;
@@ -279,7 +308,8 @@ std::vector<std::vector<std::size_t>> overlapNeighbours(const std::vector<Observ
         const std::size_t i = by_tile[r];
         if (all) {  // every pair once
           for (std::size_t q = r + 1; q < e; ++q)
-            if (similar(r, q, comparisons)) edges.emplace_back(i, by_tile[q]);
+            if (tile.similar(pieces, by_tile, r, q, p, comparisons))
+              edges.emplace_back(i, by_tile[q]);
           continue;
         }
         const uint64_t offset = uint64_t(driveOf(i)) + uint64_t(pieces[i].tile) * 40503ull;
@@ -289,7 +319,7 @@ std::vector<std::vector<std::size_t>> overlapNeighbours(const std::vector<Observ
           const auto [qb, qe] = range[std::size_t(it - present.begin())];
           for (std::size_t q = qb; q < qe; ++q) {
             const std::size_t j = by_tile[q];
-            if (j != i && similar(r, q, comparisons))
+            if (j != i && tile.similar(pieces, by_tile, r, q, p, comparisons))
               edges.emplace_back(std::min(i, j), std::max(i, j));
           }
         }

@@ -95,6 +95,46 @@ double PoseSystem<D>::modelChange(const std::vector<Vec>& dx) const {
   return m;
 }
 
+namespace {
+/// The coarse level of the preconditioner: A_c = P^T A P, where P maps one D-dof shift per place
+/// cell onto every pose of the cell (poses outside every cell, cell -1, are left out).
+template <int D>
+Eigen::SparseMatrix<double> coarseSystem(const std::vector<Eigen::Matrix<double, D, D>>& A,
+                                         const std::vector<Eigen::Matrix<double, D, D>>& off,
+                                         const std::vector<std::pair<int, int>>& pairs,
+                                         const std::vector<int>& cell, int cells) {
+  using Block = Eigen::Matrix<double, D, D>;
+  std::map<std::pair<int, int>, Block> acc;  // (ci <= cj)
+  auto add = [&](int ci, int cj, const Block& B) {
+    if (ci < 0 || cj < 0) return;
+    if (ci <= cj)
+      acc.try_emplace({ci, cj}, Block::Zero()).first->second += B;
+    else
+      acc.try_emplace({cj, ci}, Block::Zero()).first->second += B.transpose();
+  };
+  for (std::size_t i = 0; i < A.size(); ++i) add(cell[i], cell[i], A[i]);
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const int ci = cell[pairs[p].first], cj = cell[pairs[p].second];
+    if (ci == cj)
+      add(ci, ci, off[p] + off[p].transpose());  // H_ij and H_ji both in the cell's block
+    else
+      add(ci, cj, off[p]);
+  }
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(acc.size() * D * D * 2);
+  for (const auto& [key, B] : acc)
+    for (int a = 0; a < D; ++a)
+      for (int b = 0; b < D; ++b) {
+        const double v = key.first == key.second ? 0.5 * (B(a, b) + B(b, a)) : B(a, b);
+        t.emplace_back(key.first * D + a, key.second * D + b, v);
+        if (key.first != key.second) t.emplace_back(key.second * D + b, key.first * D + a, v);
+      }
+  Eigen::SparseMatrix<double> Ac(cells * D, cells * D);
+  Ac.setFromTriplets(t.begin(), t.end());
+  return Ac;
+}
+}  // namespace
+
 template <int D>
 PcgStats PoseSystem<D>::solve(double mu, const std::vector<int>& cell, const PcgSettings& s,
                               std::vector<Vec>& dx) const {
@@ -136,36 +176,7 @@ PcgStats PoseSystem<D>::solve(double mu, const std::vector<int>& cell, const Pcg
   // Coarse level: one D-dof shift per cell, A_c = P^T A P.
   const int cells = cell.empty() ? 0 : *std::max_element(cell.begin(), cell.end()) + 1;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> coarse;
-  if (cells > 0) {
-    std::map<std::pair<int, int>, Block> acc;  // (ci <= cj)
-    auto add = [&](int ci, int cj, const Block& B) {
-      if (ci < 0 || cj < 0) return;
-      if (ci <= cj)
-        acc.try_emplace({ci, cj}, Block::Zero()).first->second += B;
-      else
-        acc.try_emplace({cj, ci}, Block::Zero()).first->second += B.transpose();
-    };
-    for (int i = 0; i < n; ++i) add(cell[i], cell[i], A[i]);
-    for (int p = 0; p < int(pair_.size()); ++p) {
-      const int ci = cell[pair_[p].first], cj = cell[pair_[p].second];
-      if (ci == cj)
-        add(ci, ci, off_[p] + off_[p].transpose());  // H_ij and H_ji both in the cell's block
-      else
-        add(ci, cj, off_[p]);
-    }
-    std::vector<Eigen::Triplet<double>> t;
-    t.reserve(acc.size() * D * D * 2);
-    for (const auto& [key, B] : acc)
-      for (int a = 0; a < D; ++a)
-        for (int b = 0; b < D; ++b) {
-          const double v = key.first == key.second ? 0.5 * (B(a, b) + B(b, a)) : B(a, b);
-          t.emplace_back(key.first * D + a, key.second * D + b, v);
-          if (key.first != key.second) t.emplace_back(key.second * D + b, key.first * D + a, v);
-        }
-    Eigen::SparseMatrix<double> Ac(cells * D, cells * D);
-    Ac.setFromTriplets(t.begin(), t.end());
-    coarse.compute(Ac);
-  }
+  if (cells > 0) coarse.compute(coarseSystem<D>(A, off_, pair_, cell, cells));
   const bool use_coarse = cells > 0 && coarse.info() == Eigen::Success;
   auto precondition = [&](const std::vector<Vec>& r, std::vector<Vec>& z) {
     chainSolve(r, z);
