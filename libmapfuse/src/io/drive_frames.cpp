@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
+#include "csv_table.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/bounds.hpp"
@@ -19,98 +20,10 @@
 namespace mapfuse::io {
 namespace fs = std::filesystem;
 namespace {
-
-/// A CSV with one header line; rows of numbers (or text in `text_columns`).
-struct Csv {
-  std::string file;
-  std::vector<std::string> header;
-  std::vector<std::vector<std::string>> rows;
-  std::vector<int> line_numbers;
-
-  double number(std::size_t row, std::size_t col) const {
-    const std::string& s = rows[row][col];
-    const std::string field = "line " + std::to_string(line_numbers[row]) + " " + header[col];
-    try {
-      std::size_t used = 0;
-      const double v = std::stod(s, &used);
-      if (used != s.size() || !std::isfinite(v)) throw std::invalid_argument("bad");
-      return v;
-    } catch (const std::exception&) {
-      throw ParseError(file, field, "'" + s + "' is not a finite number");
-    }
-  }
-
-  /// A number within [lo, hi] (docs/formats.md "Value bounds").
-  double number(std::size_t row, std::size_t col, double lo, double hi) const {
-    const double v = number(row, col);
-    if (!bounds::within(v, lo, hi))
-      throw ParseError(file, "line " + std::to_string(line_numbers[row]) + " " + header[col],
-                       "'" + rows[row][col] + "' is outside " + bounds::rangeText(lo, hi));
-    return v;
-  }
-  double stamp(std::size_t row, std::size_t col) const {
-    return number(row, col, -bounds::kMaxStamp, bounds::kMaxStamp);
-  }
-};
-
-std::vector<std::string> splitCsv(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  std::string cell;
-  while (std::getline(ss, cell, ',')) {
-    while (!cell.empty() && (cell.back() == '\r' || cell.back() == ' ')) cell.pop_back();
-    while (!cell.empty() && cell.front() == ' ') cell.erase(cell.begin());
-    out.push_back(cell);
-  }
-  std::string trimmed = line;
-  while (!trimmed.empty() && (trimmed.back() == '\r' || trimmed.back() == ' ')) trimmed.pop_back();
-  if (!trimmed.empty() && trimmed.back() == ',') out.emplace_back();  // empty last cell
-  return out;
-}
-
-/// Calls fn(line, line_number) for every non-empty line of the file (numbers from 1).
-template <typename Fn>
-void forEachLine(const fs::path& path, Fn fn) {
-  std::stringstream ss(readBytes(path));
-  std::string line;
-  int n = 0;
-  while (std::getline(ss, line)) {
-    ++n;
-    if (!line.empty() && line != "\r") fn(line, n);
-  }
-}
-
-Csv readCsv(const fs::path& path, const std::vector<std::string>& expected_header) {
-  Csv csv;
-  csv.file = path.string();
-  forEachLine(path, [&](const std::string& line, int n) {
-    auto cells = splitCsv(line);
-    if (csv.header.empty()) {
-      if (cells != expected_header) {
-        std::string want;
-        for (const auto& h : expected_header) want += (want.empty() ? "" : ",") + h;
-        throw ParseError(csv.file, "header", "expected '" + want + "'");
-      }
-      csv.header = cells;
-      return;
-    }
-    if (cells.size() != csv.header.size())
-      throw ParseError(csv.file, "line " + std::to_string(n),
-                       "has " + std::to_string(cells.size()) + " columns, expected " +
-                           std::to_string(csv.header.size()));
-    csv.rows.push_back(std::move(cells));
-    csv.line_numbers.push_back(n);
-  });
-  if (csv.header.empty()) throw ParseError(csv.file, "header", "file is empty");
-  return csv;
-}
-
-void requireSorted(const Csv& csv, const std::vector<double>& stamps) {
-  for (std::size_t i = 1; i < stamps.size(); ++i)
-    if (stamps[i] < stamps[i - 1])
-      throw ParseError(csv.file, "line " + std::to_string(csv.line_numbers[i]) + " stamp",
-                       "stamps go backwards");
-}
+using detail::Csv;
+using detail::forEachLine;
+using detail::readCsv;
+using detail::requireSorted;
 
 std::vector<Eigen::Vector2d> readPixels(const JsonView& v) {
   std::vector<Eigen::Vector2d> out;
