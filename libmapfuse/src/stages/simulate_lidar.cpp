@@ -1,7 +1,6 @@
 #include "mapfuse/stages/simulate_lidar.hpp"
 
 #include <chrono>
-#include <cstdio>
 
 #include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
@@ -10,10 +9,8 @@
 #include "mapfuse/io/kitti_calib.hpp"
 #include "mapfuse/io/kitti_raw_writer.hpp"
 #include "mapfuse/io/output_transaction.hpp"
-#include "mapfuse/io/semantic_image.hpp"
-#include "mapfuse/io/semantic_kitti.hpp"
 #include "mapfuse/io/stage_report.hpp"
-#include "mapfuse/io/velodyne.hpp"
+#include "mapfuse/sim/lidar_drive_writer.hpp"
 
 namespace mapfuse::stages {
 namespace {
@@ -22,40 +19,6 @@ constexpr const char* kStage = "simulate-lidar";
 
 double seconds(std::chrono::steady_clock::time_point a) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
-}
-
-std::string poseLine(const Pose3& T) {
-  std::string line;
-  char buf[32];
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 4; ++c) {
-      std::snprintf(buf, sizeof(buf), "%.17g", T.matrix()(r, c));
-      line += (line.empty() ? "" : " ") + std::string(buf);
-    }
-  return line;
-}
-
-/// The files of one frame: scan, labels, image, probabilities, true labels, OXTS.
-void writeFrame(const fs::path& drive_dir, int k, const sim::LidarFrame& f, double dt,
-                const io::MercatorAnchor& anchor) {
-  const std::string name = io::kittiFrameName(k);
-  io::VelodyneScan vs;
-  vs.points.reserve(f.scan.points.size());
-  vs.reflectance.reserve(f.scan.points.size());
-  for (const auto& p : f.scan.points) {
-    vs.points.emplace_back(p.head<3>());
-    vs.reflectance.push_back(p.w());
-  }
-  const sim::CameraFrame& cam = f.camera;
-  io::writeVelodyneBin(drive_dir / "velodyne_points" / "data" / (name + ".bin"), vs);
-  io::writeSemanticKittiLabels(drive_dir / "labels" / (name + ".label"), f.scan.labels);
-  io::writePngBgr(drive_dir / "image_02" / "data" / (name + ".png"), cam.width, cam.height,
-                  sim::shadeLabels(cam));
-  io::writeSemanticImage(io::semanticsDir(drive_dir) / (name + ".prob"), f.probabilities);
-  io::writeSemanticImage(drive_dir / "ground_truth" / "label_02" / (name + ".png"),
-                         io::SemanticImage::fromLabels(cam.width, cam.height, cam.labels));
-  const geo::OxtsRecord rec = sim::oxtsRecord(f.T_world_imu, f.T_world_imu_next, dt, anchor);
-  io::writeLines(drive_dir / "oxts" / "data" / (name + ".txt"), {io::formatOxtsLine(rec)});
 }
 
 }  // namespace
@@ -111,38 +74,25 @@ SimulateLidarRun runSimulateLidar(const fs::path& out, const SimulateLidarParams
                                        << " primitives, " << run.moving_vehicles
                                        << " moving cars -> " << run.drive_dir.string());
 
-  io::MercatorAnchor anchor{P.lat0, P.lon0, P.alt0, drive.imuPose(0.0).translation()};
-  const double dt = 1.0 / P.lidar.frame_rate;
-  std::vector<std::string> ts, ts_start, ts_end, poses;
+  const io::MercatorAnchor anchor{P.lat0, P.lon0, P.alt0, drive.imuPose(0.0).translation()};
+  sim::LidarDriveWriter writer(run.drive_dir, P.date, P.start_time, 1.0 / P.lidar.frame_rate,
+                               anchor);
   Progress progress("frames", static_cast<std::size_t>(P.lidar.frames));
   for (int k = 0; k < P.lidar.frames; ++k) {
     const sim::LidarFrame f = drive.frame(k);
     run.seconds_lidar += f.seconds_lidar;
     run.seconds_camera += f.seconds_camera;
     const auto t0 = std::chrono::steady_clock::now();
-    writeFrame(run.drive_dir, k, f, dt, anchor);
+    writer.add(k, f);
     run.seconds_write += seconds(t0);
-    const double abs_t = P.start_time + f.time;
-    ts.push_back(io::formatKittiTimestamp(P.date, abs_t));
-    ts_start.push_back(io::formatKittiTimestamp(P.date, abs_t - 0.5 * dt));
-    ts_end.push_back(io::formatKittiTimestamp(P.date, abs_t + 0.5 * dt));
-    poses.push_back(poseLine(f.T_world_velo));
     run.points.add(f.scan);
     progress.advance();
   }
   progress.finish();
-
-  const fs::path& dir = run.drive_dir;
-  io::writeLines(dir / "image_02" / "timestamps.txt", ts);
-  io::writeLines(dir / "velodyne_points" / "timestamps.txt", ts);
-  io::writeLines(dir / "velodyne_points" / "timestamps_start.txt", ts_start);
-  io::writeLines(dir / "velodyne_points" / "timestamps_end.txt", ts_end);
-  io::writeLines(dir / "oxts" / "timestamps.txt", ts);
-  io::writeOxtsDataformat(dir / "oxts" / "dataformat.txt");
-  io::writeLines(dir / "ground_truth" / "poses_world_velo.txt", poses);
+  writer.finish();
   run.seconds_total = seconds(t_start);
-  io::writeResolvedConfig(dir, kStage, paramsToJson(P));
-  io::writeSummary(dir, kStage, toJson(run));
+  io::writeResolvedConfig(run.drive_dir, kStage, paramsToJson(P));
+  io::writeSummary(run.drive_dir, kStage, toJson(run));
   outputs.commit();
   return run;
 }
