@@ -3,6 +3,7 @@
 #include <functional>
 #include <map>
 
+#include "graph_covariances.hpp"
 #include "mapfuse/fusion/align.hpp"
 
 namespace mapfuse::fusion {
@@ -56,11 +57,9 @@ int pcmSelect(const std::vector<Lsm>& lsms, std::vector<InterConstraint>& cs,
     cs[i].consistent = false;
     if (cs[i].accepted) groups[{cs[i].lsm_a, cs[i].lsm_b}].push_back(i);
   }
-  auto odomCov = [&](const Pose3& T) {
-    const double d = T.translation().norm();
-    return diagonalCovariance(std::max(s.odom_min_sigma, s.odom_sigma_per_m * d),
-                              std::max(s.odom_min_sigma, 0.1 * s.odom_sigma_per_m * d));
-  };
+  // The odometry legs of a cycle have the covariance the pose graph gives the same odometry
+  // (eq. 10, graph_covariances.hpp): one noise model for the consistency test and the solve.
+  auto odomCov = [&](const Pose3& T) { return detail::odometryCovariance(T, s); };
   int kept = 0;
   for (const auto& [key, idx] : groups) {
     const int n = int(idx.size());
