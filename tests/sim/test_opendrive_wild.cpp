@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <string>
 
 #include "mapfuse/core/error.hpp"
@@ -300,4 +301,32 @@ TEST_CASE("simulate --map: no georeference is a local frame; /dev/zero is refuse
                        (dir / "zero").string() + " > /dev/null 2> " + (dir / "zero.err").string());
   CHECK(rc == 4);
   CHECK_THAT(test::readText(dir / "zero.err"), Contains("/dev/zero: is not a regular file"));
+}
+
+TEST_CASE("OpenDRIVE wild: every esmini map loads or is refused for its documented reason",
+          "[sim][opendrive][wild][shared]") {
+  const fs::path corpus = test::requireShared("data/maps/opendrive-esmini");
+  // docs/performance-opendrive.md: the one map refused, and why (every road mark `none`).
+  const std::map<std::string, std::string> refused = {
+      {"xodr__slope_up_leaning_right.xodr", "no true markings"}};
+  int maps = 0, loaded = 0;
+  for (const auto& entry : fs::directory_iterator(corpus)) {
+    if (entry.path().extension() != ".xodr") continue;
+    ++maps;
+    const std::string name = entry.path().filename().string();
+    INFO(name);
+    geo::GeoOrigin origin{49.0, 8.4, 0.0};
+    try {
+      const sim::World w = sim::loadMapWorld(entry.path().string(), true, {}, &origin);
+      CHECK(refused.count(name) == 0);
+      CHECK(w.stats.at("true_markings") > 0);
+      CHECK_FALSE(w.lanes.empty());
+      ++loaded;
+    } catch (const Error& e) {
+      REQUIRE(refused.count(name) == 1);
+      CHECK_THAT(e.what(), Contains(name) && Contains(refused.at(name)));
+    }
+  }
+  CHECK(maps == 80);
+  CHECK(loaded == maps - static_cast<int>(refused.size()));
 }
