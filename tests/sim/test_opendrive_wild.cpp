@@ -284,7 +284,7 @@ TEST_CASE("OpenDRIVE wild: a road of 2,000 records is looked up by binary search
   }
 }
 
-TEST_CASE("simulate --map: no georeference is a local frame; /dev/zero is refused",
+TEST_CASE("simulate --map: no georeference is a local frame, /dev/zero is refused",
           "[sim][opendrive][wild][app]") {
   const fs::path dir = test::tempDir("opendrive_wild_app");
   test::writeText(dir / "local.xodr", roadMap());
