@@ -98,6 +98,21 @@ seed fuzz_kitti_poses voxels.txt < "$work/voxels/poses.txt"
 shrink ply "$work/voxels/map.ply" 40 | seed fuzz_ply map.ply
 shrink pcd "$work/voxels/map.pcd" 40 | seed fuzz_pcd map.pcd
 
+# ---- OpenDRIVE survey-style quirks (docs/formats.md "Map content checks"): a spherical
+# georeference, negative road-mark sOffsets, road-mark objects, a plan-view gap, a dangling link
+seed fuzz_opendrive survey-quirks.xodr <<'XODR'
+<?xml version="1.0"?><OpenDRIVE><header><geoReference><![CDATA[+proj=tmerc +a=6378137 +b=6378137 +lon_0=11.5 +x_0=-0 +y_0=-5453802.49 +k=1.0 +units=m +nadgrids=@null +wktext +no_defs]]></geoReference></header>
+<road id="1" length="120" junction="-1"><link><successor elementType="road" elementId="9" contactPoint="start"/></link>
+<planView><geometry s="0" x="0" y="0" hdg="0" length="60"><line/></geometry>
+<geometry s="60" x="60.5" y="0" hdg="0" length="60"><paramPoly3 aU="0" bU="60" cU="0" dU="0" aV="0" bV="0" cV="2" dV="-1" pRange="normalized"/></geometry></planView>
+<lanes><laneSection s="0"><left><lane id="1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/><roadMark sOffset="-4.575" type="solid"/></lane></left>
+<center><lane id="0" type="none"><roadMark sOffset="-4.575" type="broken" color="white"/></lane></center>
+<right><lane id="-1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/><roadMark sOffset="0" type="solid"/></lane></right></laneSection></lanes>
+<objects><object id="7" type="roadMark" subtype="arrowLeft" name="arrow" s="40" t="-1.75" hdg="0" length="5" width="1.2"/>
+<object id="8" type="roadMark" name="text" s="20" t="1.75"><outline><cornerLocal u="0" v="0" z="0"/><cornerLocal u="2" v="0" z="0"/><cornerLocal u="2" v="1" z="0"/></outline></object></objects>
+</road></OpenDRIVE>
+XODR
+
 # ---- real data, when ../shared is there
 if [ -d "$shared" ]; then
   kitti=$shared/kitti_raw/2011_09_26
@@ -120,6 +135,11 @@ if [ -d "$shared" ]; then
     for j in 0 1 2 3; do shrink xodr "$xodr" $j 8 | seed fuzz_opendrive "monaeast-junction$j.xodr"; done
     shrink xodr "$xodr" -1 3 | seed fuzz_opendrive monaeast-roads.xodr
   fi
+  # OpenDRIVE as it exists: the esmini corpus (80 maps, local frames, direct junctions, LHT, ...)
+  for x in "$shared"/maps/opendrive-esmini/*.xodr; do
+    [ -f "$x" ] && [ "$(stat -c %s "$x")" -le 262144 ] &&
+      seed fuzz_opendrive "esmini-$(basename "$x")" < "$x"
+  done
 fi
 
 echo "fuzz: seeds for $(ls "$seeds" | wc -l) targets, $(find "$seeds" -type f | wc -l) files," \

@@ -22,6 +22,10 @@ sim = json.load(open(f"{tmp}/sim/simulate.summary.json"))
 agg = json.load(open(f"{tmp}/work/aggregate/aggregate.summary.json"))
 ev = open(f"{tmp}/work/evaluate/evaluate.md").read().split("\n", 1)[1].strip()
 ws = sim["world_stats"]
+# The corpus and long-road section (scripts/bench/bench_opendrive_corpus.sh) is kept.
+import os
+old = open(out).read() if os.path.exists(out) else ""
+kept = old[old.find("<!-- corpus:begin -->"):] if "<!-- corpus:begin -->" in old else ""
 with open(out, "w") as f:
     f.write(f"""# OpenDRIVE: the crowd chain on MONAEast.xodr
 
@@ -47,5 +51,6 @@ Chain (georef, align, aggregate, evaluate): {float(seconds):.1f} s.
 
 {ev}
 """)
+    if kept: f.write("\n" + kept)
 PY
 echo "bench_opendrive: docs/performance-opendrive.md written" >&2

@@ -147,3 +147,44 @@ TEST_CASE("Line chains: pieces meeting end to end with equal attributes join", "
   CHECK(loop.points.size() == 26);
   CHECK((loop.points.front() - loop.points.back()).norm() < 1e-12);
 }
+
+TEST_CASE("Map import: Lanelet2 content checks (same bounds, far nodes, /dev/zero)",
+          "[sim][import][bad]") {
+  const fs::path dir = test::tempDir("map_import_content");
+  auto load = [&](const std::string& name, const std::string& xml) {
+    test::writeText(dir / name, xml);
+    geo::GeoOrigin origin{0, 0, 0};
+    return sim::loadMapWorld((dir / name).string(), true, {}, &origin);
+  };
+  // A lanelet whose left bound is its right bound: dropped with one warning.
+  std::string same = commonRoadMap(true);
+  same.replace(same.find("<member type='way' ref='-12' role='right'/>"), 43,
+               "<member type='way' ref='-11' role='right'/>");
+  const sim::World w = load("same.osm", same);
+  const auto& e = w.warnings.entries().at("lanelet whose left bound is its right bound (dropped)");
+  CHECK(e.count == 1);
+  CHECK_THAT(e.first, Catch::Contains("same.osm: lanelet -21"));
+  CHECK(w.stats.at("drivable_lanelets") == 1);
+  // A stop line with a node 2,000 km away: no stop line (dropped with a warning), not a truth
+  // of 2,000 km.
+  std::string far = commonRoadMap(true);
+  far.replace(far.find("</osm>"), 6, R"(<node id='-7' lat='49.0' lon='8.40'/>
+  <node id='-8' lat='31.0' lon='8.40'/>
+  <way id='-13'><nd ref='-7'/><nd ref='-8'/><tag k='type' v='stop_line'/></way></osm>)");
+  const sim::World f = load("far.osm", far);
+  CHECK(f.stats.at("stop_lines") == 0);
+  CHECK_THAT(f.warnings.entries().begin()->second.first, Catch::Contains("way -13 (stop_line"));
+  // On the other side of the Earth: beyond the coordinate bound every reader holds, refused.
+  std::string antipode = far;
+  antipode.replace(antipode.find("lat='31.0' lon='8.40'"), 21, "lat='-49.0' lon='-171.6'");
+  try {
+    load("antipode.osm", antipode);
+    FAIL("accepted");
+  } catch (const InputError& err) {
+    CHECK_THAT(err.what(), Catch::Contains("antipode.osm: way -13 has a node at ENU") &&
+                               Catch::Contains("beyond 10000000 m"));
+  }
+  // Not a regular file: exit 4 (IoError), before reading.
+  geo::GeoOrigin origin{0, 0, 0};
+  CHECK_THROWS_AS(sim::loadMapWorld("/dev/zero", true, {}, &origin), IoError);
+}

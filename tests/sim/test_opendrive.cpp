@@ -254,7 +254,7 @@ TEST_CASE("OpenDRIVE: the georeference maps to WGS84 as GeographicLib's exact pr
 TEST_CASE("OpenDRIVE: lanes, junction routing, markings, signals and objects", "[sim][opendrive]") {
   const io::OdrMap map = io::parseOpenDrive(kJunctionMap, "junction.xodr");
   REQUIRE(map.roads.size() == 3);
-  const geo::GeoOrigin origin = sim::openDriveOrigin(map, 500.0);
+  const geo::GeoOrigin origin = sim::openDriveOrigin(map, geo::GeoOrigin{0.0, 0.0, 500.0});
   CHECK(origin.lat == Approx(48.0).margin(1e-12));
   CHECK(origin.lon == Approx(11.0).margin(1e-12));
   const sim::World world = sim::worldFromOpenDrive(map, origin);
@@ -374,7 +374,7 @@ std::string edited(const std::string& from, const std::string& to) {
 std::string parseMessage(const std::string& xml) {
   try {
     const io::OdrMap map = io::parseOpenDrive(xml, "bad.xodr");
-    sim::worldFromOpenDrive(map, sim::openDriveOrigin(map, 0.0));
+    sim::worldFromOpenDrive(map, sim::openDriveOrigin(map, geo::GeoOrigin{}));
   } catch (const ParseError& e) {
     return std::string("ParseError: ") + e.what();
   } catch (const InputError& e) {
@@ -422,10 +422,15 @@ TEST_CASE("OpenDRIVE: malformed maps name the file, the element and the field",
              Contains("road A signal s1 signal@height") && Contains("outside [0, 1000]"));
   CHECK_THAT(parseMessage(edited(R"(type="pole" s="30" t="-6")", R"(type="pole" s="30" t="nan")")),
              Contains("road A object o2 object@t") && Contains("not a number"));
-  // A width polynomial can still throw a border far away: the evaluated point is checked.
+  // A width polynomial beyond any road is refused (docs/formats.md "Map content checks")...
   CHECK_THAT(parseMessage(
                  edited(R"(<lane id="1" type="driving"><width sOffset="0" a="3.5" b="0" c="0")",
                         R"(<lane id="1" type="driving"><width sOffset="0" a="3.5" b="0" c="1e9")")),
+             Contains("ParseError: bad.xodr: field 'road A laneSection s=0 lane 1 width") &&
+                 Contains("beyond 50 m"));
+  // ... and an elevation polynomial can still throw a point far away: the point is checked.
+  CHECK_THAT(parseMessage(edited(R"(<elevation s="0" a="1.0" b="0.01" c="0" d="0"/>)",
+                                 R"(<elevation s="0" a="1.0" b="0.01" c="1e9" d="0"/>)")),
              Contains("InputError: bad.xodr: a lane border, signal or object lies at map") &&
                  Contains("beyond 10000000 m"));
   // The intact map passes.

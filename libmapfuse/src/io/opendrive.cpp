@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <pugixml.hpp>
+#include <set>
 #include <tuple>
 
 #include "mapfuse/core/error.hpp"
@@ -23,7 +24,8 @@ constexpr double kMaxOffset = 1e3;
 /// Reads the attributes of one element; errors name the file and the element's path.
 class Reader {
  public:
-  Reader(const std::string& file, std::string where) : file_(file), where_(std::move(where)) {}
+  Reader(const std::string& file, std::string where, InputWarnings* warnings)
+      : file_(file), where_(std::move(where)), warnings_(warnings) {}
 
   double number(const pugi::xml_node& n, const char* attr) const {
     const pugi::xml_attribute a = n.attribute(attr);
@@ -52,17 +54,30 @@ class Reader {
   static std::string text(const pugi::xml_node& n, const char* attr) {
     return n.attribute(attr).value();
   }
+  /// A position along a road (`s`, `sOffset`; `fallback` when optional, NaN when required):
+  /// at most kMaxOdrRoadLength; a negative one (survey maps write road marks from sOffset -4.6)
+  /// is clamped to 0 with a warning (docs/formats.md "Map content checks").
+  double along(const pugi::xml_node& n, const char* attr, double fallback = NAN) const {
+    const double v = std::isnan(fallback) ? number(n, attr) : number(n, attr, fallback);
+    if (v < 0.0 && v >= -bounds::kMaxOdrRoadLength) {
+      warnings_->add(std::string(n.name()) + "@" + attr + " negative (clamped to 0)",
+                     file_ + ": " + where_ + " " + n.name() + "@" + attr + "=" + text(n, attr));
+      return 0.0;
+    }
+    return check(n, attr, v, 0.0, bounds::kMaxOdrRoadLength);
+  }
   /// A cubic record: its start within a road, coefficients finite (the evaluated points are
   /// checked against the coordinate bound by sim/opendrive_world.cpp).
   OdrPoly3 poly(const pugi::xml_node& n, const char* s_attr) const {
-    return {bounded(n, s_attr, 0.0, bounds::kMaxOdrRoadLength), number(n, "a"), number(n, "b"),
-            number(n, "c"), number(n, "d")};
+    return {along(n, s_attr), number(n, "a"), number(n, "b"), number(n, "c"), number(n, "d")};
   }
+  InputWarnings* warnings() const { return warnings_; }
+  const std::string& file() const { return file_; }
   /// Where a signal or object stands on its road: s, t, zOffset and the heading attribute
   /// `heading` (a signal's hOffset, an object's hdg), read in that order.
   std::tuple<double, double, double, double> placement(const pugi::xml_node& n,
                                                        const char* heading) const {
-    const double s = bounded(n, "s", 0.0, bounds::kMaxOdrRoadLength);
+    const double s = along(n, "s");
     const double t = bounded(n, "t", -kMaxOffset, kMaxOffset);
     const double z = bounded(n, "zOffset", 0.0, -kMaxOffset, kMaxOffset);
     return {s, t, z, bounded(n, heading, 0.0, -bounds::kMaxAngle, bounds::kMaxAngle)};
@@ -88,6 +103,7 @@ class Reader {
   }
   const std::string& file_;
   std::string where_;
+  InputWarnings* warnings_;
 };
 
 std::optional<OdrLink> readLink(const pugi::xml_node& n) {
@@ -99,7 +115,7 @@ std::optional<OdrLink> readLink(const pugi::xml_node& n) {
 OdrGeometry readGeometry(const pugi::xml_node& g, const Reader& R) {
   OdrGeometry geo;
   using bounds::kMaxCoordinate, bounds::kMaxOdrRoadLength, bounds::kMaxCurvature;
-  geo.s = R.bounded(g, "s", 0.0, kMaxOdrRoadLength);
+  geo.s = R.along(g, "s");
   geo.x = R.bounded(g, "x", -kMaxCoordinate, kMaxCoordinate);
   geo.y = R.bounded(g, "y", -kMaxCoordinate, kMaxCoordinate);
   geo.hdg = R.bounded(g, "hdg", -bounds::kMaxAngle, bounds::kMaxAngle);
@@ -141,17 +157,17 @@ OdrGeometry readGeometry(const pugi::xml_node& g, const Reader& R) {
   return geo;
 }
 
-OdrLane readLane(const pugi::xml_node& l, const Reader& road_reader, const std::string& where,
-                 const std::string& file) {
+OdrLane readLane(const pugi::xml_node& l, const Reader& road_reader, const std::string& where) {
   OdrLane lane;
   lane.id = road_reader.integer(l, "id");
-  const Reader R(file, where + " lane " + std::to_string(lane.id));
+  const Reader R(road_reader.file(), where + " lane " + std::to_string(lane.id),
+                 road_reader.warnings());
   lane.type = l.attribute("type").value();
   if (l.child("border")) R.fail("border", "lane borders are not supported (give lane widths)");
   for (const pugi::xml_node w : l.children("width")) lane.widths.push_back(R.poly(w, "sOffset"));
   for (const pugi::xml_node m : l.children("roadMark")) {
     OdrRoadMark mark;
-    mark.s_offset = R.bounded(m, "sOffset", 0.0, bounds::kMaxOdrRoadLength);
+    mark.s_offset = R.along(m, "sOffset");
     mark.type = m.attribute("type").value();
     mark.color = m.attribute("color").value();
     mark.width = R.bounded(m, "width", 0.12, 0.0, 1e3);
@@ -169,12 +185,73 @@ OdrLane readLane(const pugi::xml_node& l, const Reader& road_reader, const std::
   return lane;
 }
 
-OdrRoad readRoad(const pugi::xml_node& r, const std::string& file) {
-  using bounds::kMaxOdrRoadLength;
+OdrLaneSection readLaneSection(const pugi::xml_node& sec, const Reader& R,
+                               const std::string& where) {
+  OdrLaneSection section;
+  section.s = R.along(sec, "s");
+  const std::string sw = where + " laneSection s=" + Reader::text(sec, "s");
+  const Reader RS(R.file(), sw, R.warnings());
+  for (const char* side : {"left", "center", "right"})
+    for (const pugi::xml_node l : sec.child(side).children("lane")) {
+      section.lanes.push_back(readLane(l, RS, sw));
+      if (section.lanes.size() > static_cast<std::size_t>(2 * bounds::kMaxOdrLanesPerSection + 1))
+        RS.fail("lane",
+                "more than " + std::to_string(2 * bounds::kMaxOdrLanesPerSection + 1) + " lanes");
+      for (std::size_t k = 0; k + 1 < section.lanes.size(); ++k)
+        if (section.lanes[k].id == section.lanes.back().id)
+          RS.fail("lane@id", "lane id " + std::to_string(section.lanes.back().id) +
+                                 " appears twice in the section");
+    }
+  return section;
+}
+
+OdrSignal readSignal(const pugi::xml_node& s, const Reader& R, const std::string& where) {
+  OdrSignal sig;
+  sig.id = s.attribute("id").value();
+  sig.name = s.attribute("name").value();
+  const Reader RS(R.file(), where + " signal " + sig.id, R.warnings());
+  std::tie(sig.s, sig.t, sig.z_offset, sig.h_offset) = RS.placement(s, "hOffset");
+  sig.height = RS.bounded(s, "height", 0.0, 0.0, bounds::kMaxElementHeight);
+  sig.width = RS.bounded(s, "width", 0.0, 0.0, kMaxOffset);
+  sig.type = s.attribute("type").value();
+  sig.subtype = s.attribute("subtype").value();
+  sig.country = s.attribute("country").value();
+  sig.orientation = s.attribute("orientation").value();
+  sig.dynamic = std::string(s.attribute("dynamic").value()) == "yes";
+  return sig;
+}
+
+OdrObject readObject(const pugi::xml_node& o, const Reader& R, const std::string& where) {
+  OdrObject obj;
+  obj.id = o.attribute("id").value();
+  obj.name = o.attribute("name").value();
+  obj.type = o.attribute("type").value();
+  const Reader RO(R.file(), where + " object " + obj.id, R.warnings());
+  std::tie(obj.s, obj.t, obj.z_offset, obj.hdg) = RO.placement(o, "hdg");
+  obj.length = RO.bounded(o, "length", 0.0, 0.0, kMaxOffset);
+  obj.width = RO.bounded(o, "width", 0.0, 0.0, kMaxOffset);
+  obj.height = RO.bounded(o, "height", 0.0, 0.0, bounds::kMaxElementHeight);
+  obj.radius = RO.bounded(o, "radius", 0.0, 0.0, kMaxOffset);
+  pugi::xml_node outline = o.child("outline");
+  if (!outline) outline = o.child("outlines").child("outline");
+  for (const pugi::xml_node c : outline.children()) {
+    const std::string kind = c.name();
+    if (kind == "cornerLocal")
+      obj.outline.push_back({RO.bounded(c, "u", -kMaxOffset, kMaxOffset),
+                             RO.bounded(c, "v", -kMaxOffset, kMaxOffset),
+                             RO.bounded(c, "z", 0.0, -kMaxOffset, kMaxOffset), false});
+    else if (kind == "cornerRoad")
+      obj.outline.push_back({RO.along(c, "s", 0.0), RO.bounded(c, "t", -kMaxOffset, kMaxOffset),
+                             RO.bounded(c, "dz", 0.0, -kMaxOffset, kMaxOffset), true});
+  }
+  return obj;
+}
+
+OdrRoad readRoad(const pugi::xml_node& r, const std::string& file, InputWarnings* warnings) {
   OdrRoad road;
   road.id = r.attribute("id").value();
   const std::string where = "road " + road.id;
-  const Reader R(file, where);
+  const Reader R(file, where, warnings);
   if (road.id.empty()) R.fail("road@id", "missing");
   road.name = r.attribute("name").value();
   road.junction = r.attribute("junction").as_string("-1");
@@ -194,60 +271,13 @@ OdrRoad readRoad(const pugi::xml_node& r, const std::string& file) {
   const pugi::xml_node lanes = r.child("lanes");
   for (const pugi::xml_node o : lanes.children("laneOffset"))
     road.lane_offset.push_back(R.poly(o, "s"));
-  for (const pugi::xml_node sec : lanes.children("laneSection")) {
-    OdrLaneSection section;
-    section.s = R.bounded(sec, "s", 0.0, bounds::kMaxOdrRoadLength);
-    const std::string sw = where + " laneSection s=" + Reader::text(sec, "s");
-    for (const char* side : {"left", "center", "right"})
-      for (const pugi::xml_node l : sec.child(side).children("lane"))
-        section.lanes.push_back(readLane(l, R, sw, file));
-    if (section.lanes.size() > static_cast<std::size_t>(2 * bounds::kMaxOdrLanesPerSection + 1))
-      Reader(file, sw).fail("lane", std::to_string(section.lanes.size()) + " lanes, more than " +
-                                        std::to_string(2 * bounds::kMaxOdrLanesPerSection + 1));
-    road.sections.push_back(std::move(section));
-  }
+  for (const pugi::xml_node sec : lanes.children("laneSection"))
+    road.sections.push_back(readLaneSection(sec, R, where));
   if (road.sections.empty()) R.fail("lanes", "no laneSection");
-  for (const pugi::xml_node s : r.child("signals").children("signal")) {
-    OdrSignal sig;
-    sig.id = s.attribute("id").value();
-    sig.name = s.attribute("name").value();
-    const Reader RS(file, where + " signal " + sig.id);
-    std::tie(sig.s, sig.t, sig.z_offset, sig.h_offset) = RS.placement(s, "hOffset");
-    sig.height = RS.bounded(s, "height", 0.0, 0.0, bounds::kMaxElementHeight);
-    sig.width = RS.bounded(s, "width", 0.0, 0.0, kMaxOffset);
-    sig.type = s.attribute("type").value();
-    sig.subtype = s.attribute("subtype").value();
-    sig.country = s.attribute("country").value();
-    sig.orientation = s.attribute("orientation").value();
-    sig.dynamic = std::string(s.attribute("dynamic").value()) == "yes";
-    road.signals.push_back(sig);
-  }
-  for (const pugi::xml_node o : r.child("objects").children("object")) {
-    OdrObject obj;
-    obj.id = o.attribute("id").value();
-    obj.name = o.attribute("name").value();
-    obj.type = o.attribute("type").value();
-    const Reader RO(file, where + " object " + obj.id);
-    std::tie(obj.s, obj.t, obj.z_offset, obj.hdg) = RO.placement(o, "hdg");
-    obj.length = RO.bounded(o, "length", 0.0, 0.0, kMaxOffset);
-    obj.width = RO.bounded(o, "width", 0.0, 0.0, kMaxOffset);
-    obj.height = RO.bounded(o, "height", 0.0, 0.0, bounds::kMaxElementHeight);
-    obj.radius = RO.bounded(o, "radius", 0.0, 0.0, kMaxOffset);
-    pugi::xml_node outline = o.child("outline");
-    if (!outline) outline = o.child("outlines").child("outline");
-    for (const pugi::xml_node c : outline.children()) {
-      const std::string kind = c.name();
-      if (kind == "cornerLocal")
-        obj.outline.push_back({RO.bounded(c, "u", -kMaxOffset, kMaxOffset),
-                               RO.bounded(c, "v", -kMaxOffset, kMaxOffset),
-                               RO.bounded(c, "z", 0.0, -kMaxOffset, kMaxOffset), false});
-      else if (kind == "cornerRoad")
-        obj.outline.push_back({RO.bounded(c, "s", 0.0, kMaxOdrRoadLength),
-                               RO.bounded(c, "t", -kMaxOffset, kMaxOffset),
-                               RO.bounded(c, "dz", 0.0, -kMaxOffset, kMaxOffset), true});
-    }
-    road.objects.push_back(obj);
-  }
+  for (const pugi::xml_node s : r.child("signals").children("signal"))
+    road.signals.push_back(readSignal(s, R, where));
+  for (const pugi::xml_node o : r.child("objects").children("object"))
+    road.objects.push_back(readObject(o, R, where));
   auto byS = [](const auto& x, const auto& y) { return x.s < y.s; };
   std::stable_sort(road.plan_view.begin(), road.plan_view.end(), byS);
   std::stable_sort(road.elevation.begin(), road.elevation.end(), byS);
@@ -277,27 +307,35 @@ const OdrJunction* OdrMap::junction(const std::string& id) const {
   return nullptr;
 }
 
-OdrMap parseOpenDrive(const std::string& xml, const std::string& file) {
-  pugi::xml_document doc;
-  const pugi::xml_node root = detail::xmlRoot(doc, xml, file, "OpenDRIVE");
-  OdrMap map;
-  map.file = file;
-  const pugi::xml_node header = root.child("header");
-  map.geo_reference = header.child("geoReference").text().get();
+namespace {
+
+void readHeader(const pugi::xml_node& header, OdrMap& map) {
+  // The PROJ string, without the blanks around it (esmini writes `<geoReference> </...>`).
+  const std::string geo = header.child("geoReference").text().get();
+  const auto first = geo.find_first_not_of(" \t\r\n");
+  if (first != std::string::npos)
+    map.geo_reference = geo.substr(first, geo.find_last_not_of(" \t\r\n") - first + 1);
   if (const pugi::xml_node off = header.child("offset")) {
-    const Reader R(file, "header");
+    const Reader R(map.file, "header", &map.warnings);
     using bounds::kMaxCoordinate;
     map.offset_x = R.bounded(off, "x", 0.0, -kMaxCoordinate, kMaxCoordinate);
     map.offset_y = R.bounded(off, "y", 0.0, -kMaxCoordinate, kMaxCoordinate);
     map.offset_z = R.bounded(off, "z", 0.0, -kMaxCoordinate, kMaxCoordinate);
     map.offset_hdg = R.bounded(off, "hdg", 0.0, -bounds::kMaxAngle, bounds::kMaxAngle);
   }
-  // The work of converting a map grows with its length: reference lines (plan-view records
-  // included) and lanes are sampled every 0.5 m.
+}
+
+/// Every road, with unique ids; the work of converting a map grows with its length (reference
+/// lines, plan-view records included, and lanes are sampled every 0.5 m), so it is bounded.
+void readRoads(const pugi::xml_node& root, OdrMap& map) {
+  const std::string& file = map.file;
   double road_m = 0.0, geometry_m = 0.0, lane_m = 0.0;
+  std::set<std::string> ids;
   for (const pugi::xml_node r : root.children("road")) {
-    map.roads.push_back(readRoad(r, file));
+    map.roads.push_back(readRoad(r, file, &map.warnings));
     const OdrRoad& road = map.roads.back();
+    if (!ids.insert(road.id).second)
+      throw ParseError(file, "road " + road.id, "road id '" + road.id + "' appears twice");
     road_m += road.length;
     for (const auto& g : road.plan_view) geometry_m += g.length;
     for (std::size_t k = 0; k < road.sections.size(); ++k) {
@@ -313,16 +351,24 @@ OdrMap parseOpenDrive(const std::string& xml, const std::string& file) {
                              bounds::numberText(bounds::kMaxOdrMapLength) + " m");
   }
   if (map.roads.empty()) throw ParseError(file, "road", "the map has no roads");
+}
+
+void readJunctions(const pugi::xml_node& root, OdrMap& map) {
+  std::set<std::string> ids;
   for (const pugi::xml_node j : root.children("junction")) {
     OdrJunction junction;
     junction.id = j.attribute("id").value();
     junction.name = j.attribute("name").value();
-    const Reader R(file, "junction " + junction.id);
+    const Reader R(map.file, "junction " + junction.id, &map.warnings);
+    if (!ids.insert(junction.id).second)
+      R.fail("", "junction id '" + junction.id + "' appears twice");
     for (const pugi::xml_node c : j.children("connection")) {
       OdrConnection con;
       con.id = c.attribute("id").value();
       con.incoming_road = c.attribute("incomingRoad").value();
-      con.connecting_road = c.attribute("connectingRoad").value();
+      // A direct junction (OpenDRIVE 1.7) links the incoming road to a `linkedRoad` instead.
+      con.connecting_road = c.attribute("connectingRoad") ? c.attribute("connectingRoad").value()
+                                                          : c.attribute("linkedRoad").value();
       con.contact_point = c.attribute("contactPoint").value();
       for (const pugi::xml_node ll : c.children("laneLink"))
         con.lane_links.push_back({R.integer(ll, "from"), R.integer(ll, "to")});
@@ -330,6 +376,18 @@ OdrMap parseOpenDrive(const std::string& xml, const std::string& file) {
     }
     map.junctions.push_back(junction);
   }
+}
+
+}  // namespace
+
+OdrMap parseOpenDrive(const std::string& xml, const std::string& file) {
+  pugi::xml_document doc;
+  const pugi::xml_node root = detail::xmlRoot(doc, xml, file, "OpenDRIVE");
+  OdrMap map;
+  map.file = file;
+  readHeader(root.child("header"), map);
+  readRoads(root, map);
+  readJunctions(root, map);
   return map;
 }
 

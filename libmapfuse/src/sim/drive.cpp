@@ -5,6 +5,7 @@
 #include <random>
 
 #include "draw_order.hpp"
+#include "mapfuse/core/error.hpp"
 
 namespace mapfuse::sim {
 
@@ -88,6 +89,8 @@ Drive simulateDrive(const Polyline& route, const DriveParams& P, const geo::EnuC
   Drive d;
   // Path: resampled, smoothed, with headings at the vertices (unwrapped).
   const Polyline path = smooth(resample(route, kPathStep), kSmoothHalfWindow, kSmoothPasses);
+  // A route collapsed to a point (degenerate map geometry) has nothing to drive.
+  if (path.size() < 2) throw InputError("the route has no length (its lanes collapse to a point)");
   const auto cum = arcLengths(path);
   const double L = cum.back();
   std::vector<double> heading(path.size());

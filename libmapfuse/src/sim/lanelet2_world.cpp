@@ -71,31 +71,53 @@ struct IdAllocator {
   }
 };
 
-}  // namespace
+/// A point, sign, light or arrow way longer than this is no such element (a node on the other
+/// side of the Earth made a stop line of 12,700 km): dropped with a warning.
+constexpr double kMaxSmallElement = 100.0;  // m
 
-World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin,
-                        const Lanelet2Assumptions& A) {
-  if (map.untyped_ways > 0)
-    MAPFUSE_WARN(map.file << ": " << map.untyped_ways
-                          << " ways have no `type` tag; read as `virtual` (no marking)");
-  World world;
-  world.name = map.file;
-  world.truth.origin = origin;
-  world.truth.source = "simulate ground truth (Lanelet2 " + map.file + ")";
-  const geo::EnuConverter enu(origin);
-  std::vector<Polyline> ways(map.linestrings.size());
-  for (std::size_t i = 0; i < ways.size(); ++i)
-    for (const auto& p : map.linestrings[i].points) ways[i].push_back(enu.toEnu(p));
-  auto wayLine = [&](int64_t id) -> const Polyline& { return ways[map.way_index.at(id)]; };
-
+/// The map, its ways in ENU, the world being built and its element ids.
+struct L2Builder {
+  const io::Lanelet2Map& map;
+  const Lanelet2Assumptions& A;
+  World& world;
+  geo::EnuConverter enu;
+  std::vector<Polyline> ways;
   IdAllocator ids;
-  int64_t max_id = 0;
-  // The reader keeps |id| <= 2^63 - 2^32: abs and the fresh ids after max_id cannot overflow.
-  for (const auto& w : map.linestrings) max_id = std::max(max_id, std::abs(w.id));
-  for (const auto& l : map.lanelets) max_id = std::max(max_id, std::abs(l.id));
-  ids.next = max_id + 1;  // ids of placed elements follow every map id
-  auto add = [&](int64_t wanted, CrowdClass cls, Polyline pts,
-                 const std::string& note) -> MapInstance& {
+  bool map_has_poles = false;
+  int lines = 0, stops = 0, signs = 0, lights = 0, boundaries = 0, crossing_lines = 0;
+  int poles = 0, map_arrows = 0, drivable = 0;
+  std::map<int64_t, std::pair<int64_t, int64_t>> line_ends;  // lane-line instance -> end nodes
+
+  L2Builder(const io::Lanelet2Map& m, const geo::GeoOrigin& origin, const Lanelet2Assumptions& a,
+            World& w)
+      : map(m), A(a), world(w), enu(origin) {}
+
+  /// Every way in ENU; a node beyond the coordinate bound (what the truth's readers refuse) is
+  /// refused here, so that simulate never writes a truth its own readers reject.
+  Eigen::Vector3d toEnu(const geo::LatLonAlt& p, const std::string& what) const {
+    const Eigen::Vector3d q = enu.toEnu(p);
+    if (!(q.cwiseAbs().maxCoeff() <= io::bounds::kMaxCoordinate))
+      throw InputError(map.file + ": " + what + " has a node at ENU (" +
+                       io::bounds::numberText(q.x()) + ", " + io::bounds::numberText(q.y()) + ", " +
+                       io::bounds::numberText(q.z()) + ") m from the origin, beyond " +
+                       io::bounds::numberText(io::bounds::kMaxCoordinate) +
+                       " m (docs/formats.md \"Value bounds\")");
+    return q;
+  }
+  void convertWays() {
+    ways.resize(map.linestrings.size());
+    for (std::size_t i = 0; i < ways.size(); ++i)
+      for (const auto& p : map.linestrings[i].points)
+        ways[i].push_back(toEnu(p, "way " + std::to_string(map.linestrings[i].id)));
+    int64_t max_id = 0;
+    // The reader keeps |id| <= 2^63 - 2^32: abs and the fresh ids after max_id cannot overflow.
+    for (const auto& w : map.linestrings) max_id = std::max(max_id, std::abs(w.id));
+    for (const auto& l : map.lanelets) max_id = std::max(max_id, std::abs(l.id));
+    ids.next = max_id + 1;  // ids of placed elements follow every map id
+  }
+  const Polyline& wayLine(int64_t id) const { return ways[map.way_index.at(id)]; }
+
+  MapInstance& add(int64_t wanted, CrowdClass cls, Polyline pts, const std::string& note) {
     MapInstance m;
     m.id = ids.take(wanted);
     m.cls = cls;
@@ -104,34 +126,25 @@ World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin
     m.source_ids = {wanted};
     world.truth.instances.push_back(std::move(m));
     return world.truth.instances.back();
-  };
+  }
 
-  // Lanes and crosswalks from lanelets, their sampling bounded first.
-  double drivable_length = 0.0;
-  for (const auto& ll : map.lanelets)
-    if (ll.subtype != "crosswalk" && isDrivable(ll.subtype))
-      drivable_length +=
-          std::max(polylineLength(wayLine(ll.left)), polylineLength(wayLine(ll.right)));
-  if (drivable_length > kMaxDrivableLength)
-    throw InputError(
-        map.file + ": drivable lanelets are " +
-        std::to_string(std::lround(drivable_length / 1000)) + " km long in all, more than " +
-        std::to_string(std::lround(kMaxDrivableLength / 1000)) +
-        " km (the simulator samples them every " + io::bounds::numberText(kCenterlineStep) + " m)");
-  int drivable = 0;
-  for (const auto& ll : map.lanelets) {
-    Polyline left = wayLine(ll.left), right = wayLine(ll.right);
-    if ((left.front() - right.front()).norm() + (left.back() - right.back()).norm() >
-        (left.front() - right.back()).norm() + (left.back() - right.front()).norm())
-      right = reversed(right);
-    if (ll.subtype == "crosswalk") {
-      Polyline ring = left;
-      for (auto it = right.rbegin(); it != right.rend(); ++it) ring.push_back(*it);
-      add(ll.id, CrowdClass::kCrosswalk, ring, "");
-      continue;
-    }
-    if (!isDrivable(ll.subtype)) continue;
-    ++drivable;
+  void checkDrivableLength() const {
+    double drivable_length = 0.0;
+    for (const auto& ll : map.lanelets)
+      if (ll.subtype != "crosswalk" && isDrivable(ll.subtype))
+        drivable_length +=
+            std::max(polylineLength(wayLine(ll.left)), polylineLength(wayLine(ll.right)));
+    if (drivable_length > kMaxDrivableLength)
+      throw InputError(map.file + ": drivable lanelets are " +
+                       std::to_string(std::lround(drivable_length / 1000)) +
+                       " km long in all, more than " +
+                       std::to_string(std::lround(kMaxDrivableLength / 1000)) +
+                       " km (the simulator samples them every " +
+                       io::bounds::numberText(kCenterlineStep) + " m)");
+  }
+
+  /// A drivable lanelet's lane (and its reverse twin when two-way).
+  void addLane(const io::Lanelet2Lanelet& ll, const Polyline& left, const Polyline& right) {
     const int n = std::max(
         2, static_cast<int>(
                std::ceil(std::max(polylineLength(left), polylineLength(right)) / kCenterlineStep)) +
@@ -163,86 +176,141 @@ World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin
       world.lanes.push_back(lane);
     }
   }
-  connectLanesByEndpoints(world, kSuccessorTolerance);
 
-  // Poles mapped as points (`type=pole`, `height`); then no pole is placed under signs.
-  bool map_has_poles = false;
-  int poles = 0;
-  for (const auto& p : map.points) {
-    if (p.type != "pole") continue;
-    add(p.id, CrowdClass::kPole, {enu.toEnu(p.position)}, "").height =
-        heightTag(p.tags).value_or(0.0);
-    map_has_poles = true;
-    ++poles;
+  /// Lanes and crosswalks from lanelets; a lanelet whose bounds are one way (zero width) is
+  /// dropped with a warning.
+  void addLanelets() {
+    checkDrivableLength();
+    for (const auto& ll : map.lanelets) {
+      if (ll.left == ll.right) {
+        world.warnings.add("lanelet whose left bound is its right bound (dropped)",
+                           map.file + ": lanelet " + std::to_string(ll.id) + " (way " +
+                               std::to_string(ll.left) + ")");
+        continue;
+      }
+      Polyline left = wayLine(ll.left), right = wayLine(ll.right);
+      if ((left.front() - right.front()).norm() + (left.back() - right.back()).norm() >
+          (left.front() - right.back()).norm() + (left.back() - right.front()).norm())
+        right = reversed(right);
+      if (ll.subtype == "crosswalk") {
+        Polyline ring = left;
+        for (auto it = right.rbegin(); it != right.rend(); ++it) ring.push_back(*it);
+        add(ll.id, CrowdClass::kCrosswalk, ring, "");
+        continue;
+      }
+      if (!isDrivable(ll.subtype)) continue;
+      ++drivable;
+      addLane(ll, left, right);
+    }
+    connectLanesByEndpoints(world, kSuccessorTolerance);
   }
-  // Line strings.
-  int lines = 0, stops = 0, signs = 0, lights = 0, boundaries = 0, crossing_lines = 0;
-  int map_arrows = 0;
-  std::map<int64_t, std::pair<int64_t, int64_t>> line_ends;  // lane-line instance -> end nodes
-  for (std::size_t i = 0; i < map.linestrings.size(); ++i) {
-    const auto& w = map.linestrings[i];
-    const Polyline& pts = ways[i];
-    if ((w.type == "line_thin" || w.type == "line_thick") && pts.size() >= 2) {
-      auto& m = add(w.id, CrowdClass::kLaneLine, pts,
-                    w.subtype == "solid_dashed" || w.subtype == "dashed_solid"
-                        ? "double line " + w.subtype + " mapped to solid"
-                        : "");
-      m.attributes.style = w.subtype == "dashed" ? LineStyle::kDashed : LineStyle::kSolid;
-      line_ends[m.id] = {w.node_ids.front(), w.node_ids.back()};
-      const auto c = w.tags.find("color");
-      m.attributes.color =
-          c != w.tags.end() && c->second == "yellow" ? LineColor::kYellow : LineColor::kWhite;
-      ++lines;
-    } else if (w.type == "stop_line" && pts.size() >= 2) {
-      add(w.id, CrowdClass::kStopLine, {pts.front(), pts.back()}, "");
-      ++stops;
-    } else if (w.type == "traffic_sign") {
-      // With a `height` tag the way is the plate's bottom edge at its true altitude (as mapfuse
-      // writes it); without, the plate is assumed (the example maps carry no heights).
-      const std::optional<double> h = heightTag(w.tags);
-      const double bottom = h ? 0.0 : A.sign_bottom, size = h ? *h : A.sign_size;
-      const Eigen::Vector3d a = pts.front(), b = pts.back(), up(0, 0, 1);
-      add(w.id, CrowdClass::kTrafficSign,
-          {a + bottom * up, b + bottom * up, b + (bottom + size) * up, a + (bottom + size) * up},
-          h ? "" : "mounting height assumed by simulator");
-      if (!map_has_poles)
-        add(ids.fresh(), CrowdClass::kPole, {0.5 * (a + b)}, "placed by simulator under a sign")
-            .height = bottom + size;
-      ++signs;
-    } else if (w.type == "traffic_light") {
-      const std::optional<double> h = heightTag(w.tags);
-      const double bottom = h ? 0.0 : A.light_bottom;
-      const Eigen::Vector3d c = 0.5 * (pts.front() + pts.back());
-      add(w.id, CrowdClass::kTrafficLight, {c + Eigen::Vector3d(0, 0, bottom)},
-          h ? "" : "mounting height assumed by simulator")
-          .height = h ? *h : A.light_height;
-      if (!map_has_poles)
-        add(ids.fresh(), CrowdClass::kPole, {c}, "placed by simulator under a traffic light")
-            .height = A.light_bottom;
-      ++lights;
-    } else if (w.type == "arrow" && pts.size() >= 4) {  // an outline (closed way)
-      Polyline ring = pts;
-      if ((ring.front() - ring.back()).norm() < kJoinTolerance) ring.pop_back();
-      add(w.id, CrowdClass::kGroundArrow, ring, "");
-      ++map_arrows;
-    } else if (w.type == "curbstone" || w.type == "road_border") {
-      ++boundaries;
-    } else if (w.type == "zebra_marking" || w.type == "pedestrian_marking") {
-      ++crossing_lines;
+
+  /// Poles mapped as points (`type=pole`, `height`); then no pole is placed under signs.
+  void addPoles() {
+    for (const auto& p : map.points) {
+      if (p.type != "pole") continue;
+      add(p.id, CrowdClass::kPole, {toEnu(p.position, "pole " + std::to_string(p.id))}, "").height =
+          heightTag(p.tags).value_or(0.0);
+      map_has_poles = true;
+      ++poles;
     }
   }
-  // One marking cut into several ways (at lanelet ends, sharing the end node) is one line.
-  const int joins =
-      joinLineChains(world.truth.instances, kJoinTolerance,
-                     [&](const MapInstance& a, int side_a, const MapInstance& b, int side_b) {
-                       const auto ea = line_ends.find(a.id), eb = line_ends.find(b.id);
-                       if (ea == line_ends.end() || eb == line_ends.end()) return false;
-                       return (side_a == 0 ? ea->second.first : ea->second.second) ==
-                              (side_b == 0 ? eb->second.first : eb->second.second);
-                     });
-  // Arrows before stop lines, one per lane ending at a stop line, unless the map has arrows.
-  // Lanes whose bounding box is farther than kArrowStopDistance from the stop line cannot cross
-  // it: skipped unread.
+
+  void addLaneLine(const io::Lanelet2LineString& w, const Polyline& pts) {
+    auto& m = add(w.id, CrowdClass::kLaneLine, pts,
+                  w.subtype == "solid_dashed" || w.subtype == "dashed_solid"
+                      ? "double line " + w.subtype + " mapped to solid"
+                      : "");
+    m.attributes.style = w.subtype == "dashed" ? LineStyle::kDashed : LineStyle::kSolid;
+    line_ends[m.id] = {w.node_ids.front(), w.node_ids.back()};
+    const auto c = w.tags.find("color");
+    m.attributes.color =
+        c != w.tags.end() && c->second == "yellow" ? LineColor::kYellow : LineColor::kWhite;
+    ++lines;
+  }
+
+  void addSign(const io::Lanelet2LineString& w, const Polyline& pts) {
+    // With a `height` tag the way is the plate's bottom edge at its true altitude (as mapfuse
+    // writes it); without, the plate is assumed (the example maps carry no heights).
+    const std::optional<double> h = heightTag(w.tags);
+    const double bottom = h ? 0.0 : A.sign_bottom, size = h ? *h : A.sign_size;
+    const Eigen::Vector3d a = pts.front(), b = pts.back(), up(0, 0, 1);
+    add(w.id, CrowdClass::kTrafficSign,
+        {a + bottom * up, b + bottom * up, b + (bottom + size) * up, a + (bottom + size) * up},
+        h ? "" : "mounting height assumed by simulator");
+    if (!map_has_poles)
+      add(ids.fresh(), CrowdClass::kPole, {0.5 * (a + b)}, "placed by simulator under a sign")
+          .height = bottom + size;
+    ++signs;
+  }
+
+  void addLight(const io::Lanelet2LineString& w, const Polyline& pts) {
+    const std::optional<double> h = heightTag(w.tags);
+    const double bottom = h ? 0.0 : A.light_bottom;
+    const Eigen::Vector3d c = 0.5 * (pts.front() + pts.back());
+    add(w.id, CrowdClass::kTrafficLight, {c + Eigen::Vector3d(0, 0, bottom)},
+        h ? "" : "mounting height assumed by simulator")
+        .height = h ? *h : A.light_height;
+    if (!map_has_poles)
+      add(ids.fresh(), CrowdClass::kPole, {c}, "placed by simulator under a traffic light").height =
+          A.light_bottom;
+    ++lights;
+  }
+
+  /// Line strings: lane lines, stop lines, signs, lights and arrows.
+  void addLineStrings() {
+    for (std::size_t i = 0; i < map.linestrings.size(); ++i) {
+      const auto& w = map.linestrings[i];
+      const Polyline& pts = ways[i];
+      const bool small = w.type == "stop_line" || w.type == "traffic_sign" ||
+                         w.type == "traffic_light" || w.type == "arrow";
+      if (small && polylineLength(pts) > kMaxSmallElement) {
+        world.warnings.add("stop line, sign, light or arrow way longer than " +
+                               io::bounds::numberText(kMaxSmallElement) + " m (dropped)",
+                           map.file + ": way " + std::to_string(w.id) + " (" + w.type + ", " +
+                               io::bounds::numberText(std::round(polylineLength(pts))) + " m)");
+        continue;
+      }
+      if ((w.type == "line_thin" || w.type == "line_thick") && pts.size() >= 2) {
+        addLaneLine(w, pts);
+      } else if (w.type == "stop_line" && pts.size() >= 2) {
+        add(w.id, CrowdClass::kStopLine, {pts.front(), pts.back()}, "");
+        ++stops;
+      } else if (w.type == "traffic_sign") {
+        addSign(w, pts);
+      } else if (w.type == "traffic_light") {
+        addLight(w, pts);
+      } else if (w.type == "arrow" && pts.size() >= 4) {  // an outline (closed way)
+        Polyline ring = pts;
+        if ((ring.front() - ring.back()).norm() < kJoinTolerance) ring.pop_back();
+        add(w.id, CrowdClass::kGroundArrow, ring, "");
+        ++map_arrows;
+      } else if (w.type == "curbstone" || w.type == "road_border") {
+        ++boundaries;
+      } else if (w.type == "zebra_marking" || w.type == "pedestrian_marking") {
+        ++crossing_lines;
+      }
+    }
+  }
+
+  /// One marking cut into several ways (at lanelet ends, sharing the end node) is one line.
+  int joinLines() {
+    return joinLineChains(world.truth.instances, kJoinTolerance,
+                          [&](const MapInstance& a, int side_a, const MapInstance& b, int side_b) {
+                            const auto ea = line_ends.find(a.id), eb = line_ends.find(b.id);
+                            if (ea == line_ends.end() || eb == line_ends.end()) return false;
+                            return (side_a == 0 ? ea->second.first : ea->second.second) ==
+                                   (side_b == 0 ? eb->second.first : eb->second.second);
+                          });
+  }
+
+  int placeArrows();
+};
+
+/// Arrows before stop lines, one per lane ending at a stop line, unless the map has arrows.
+/// Lanes whose bounding box is farther than kArrowStopDistance from the stop line cannot cross
+/// it: skipped unread. @return the arrows placed.
+int L2Builder::placeArrows() {
   int arrows = 0;
   struct Box {
     Eigen::Vector2d lo, hi;
@@ -292,15 +360,37 @@ World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin
       ++arrows;
     }
   }
+  return arrows;
+}
+
+}  // namespace
+
+World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin,
+                        const Lanelet2Assumptions& A) {
+  if (map.untyped_ways > 0)
+    MAPFUSE_WARN(map.file << ": " << map.untyped_ways
+                          << " ways have no `type` tag; read as `virtual` (no marking)");
+  World world;
+  world.name = map.file;
+  world.truth.origin = origin;
+  world.truth.source = "simulate ground truth (Lanelet2 " + map.file + ")";
+  L2Builder B(map, origin, A, world);
+  B.convertWays();
+  B.addLanelets();
+  B.addPoles();
+  B.addLineStrings();
+  const int joins = B.joinLines();
+  const int arrows = B.placeArrows();
   world.stats["lanelets"] = static_cast<double>(map.lanelets.size());
-  world.stats["drivable_lanelets"] = drivable;
-  world.stats["boundaries_ignored"] = boundaries;
-  world.stats["crossing_lines_ignored"] = crossing_lines;
+  world.stats["drivable_lanelets"] = B.drivable;
+  world.stats["boundaries_ignored"] = B.boundaries;
+  world.stats["crossing_lines_ignored"] = B.crossing_lines;
   world.stats["arrows_placed"] = arrows;
-  world.stats["arrows_mapped"] = map_arrows;
+  world.stats["arrows_mapped"] = B.map_arrows;
   world.stats["untyped_ways_as_virtual"] = map.untyped_ways;
   world.stats["skipped_ways"] = detail::totalOf(map.skipped_way_types);
-  detail::TruthCounts{lines, stops, signs, lights, poles, map_has_poles ? 0 : signs + lights, joins}
+  detail::TruthCounts{
+      B.lines, B.stops, B.signs, B.lights, B.poles, B.map_has_poles ? 0 : B.signs + B.lights, joins}
       .writeTo(world.stats);
   world.stats["skipped_relations"] = detail::totalOf(map.skipped_relation_types);
   return world;

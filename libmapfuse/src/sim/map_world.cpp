@@ -24,11 +24,14 @@ int trueMarkings(const World& world) {
 World loadMapWorld(const std::string& path, bool map_origin, const MapWorldSettings& settings,
                    geo::GeoOrigin* origin) {
   if (!std::filesystem::exists(path)) throw IoError(path, "map file does not exist");
+  // /dev/zero, a FIFO or a folder would be read without end (2.1 GB, then out of memory).
+  if (!std::filesystem::is_regular_file(path))
+    throw IoError(path, "is not a regular file (a folder, device or pipe); give a map file");
   World world;
   int untyped = 0;
   if (std::filesystem::path(path).extension() == ".xodr") {
     const io::OdrMap odr = io::readOpenDrive(path);
-    if (map_origin) *origin = openDriveOrigin(odr, origin->alt);
+    if (map_origin) *origin = openDriveOrigin(odr, *origin);
     world = worldFromOpenDrive(odr, *origin);
   } else {
     const io::Lanelet2Map osm = io::readLanelet2Osm(path);
@@ -39,6 +42,10 @@ World loadMapWorld(const std::string& path, bool map_origin, const MapWorldSetti
     world = worldFromLanelet2(osm, *origin);
     untyped = osm.untyped_ways;
   }
+  // One line per kind of repaired or dropped content (count and first example; the summary's
+  // input_warnings holds the same).
+  for (const auto& [kind, e] : world.warnings.entries())
+    MAPFUSE_WARN(kind << ": " << e.count << "x, first: " << e.first);
   if (world.lanes.empty()) throw InputError(path + ": the map has no drivable lanes");
   const int markings = trueMarkings(world);
   world.stats["true_markings"] = markings;

@@ -15,13 +15,20 @@ constexpr double kFresnelSeriesLimit = 1.5;
 constexpr double kTinyCurvatureRate = 1e-13;  // 1/m^2; below it a spiral is an arc
 constexpr double kPoly3Step = 0.05;           // m of u between arc-length table samples
 
-/// The record with the largest start <= s (the first when s precedes all).
+/// Index of the record with the largest start <= s + tolerance (0 when s precedes all), by
+/// binary search on the records sorted by s (io/opendrive.cpp sorts them): O(log n) per lookup,
+/// so a road of 100,000 records costs its length, not length x records.
+template <class T>
+std::size_t recordIndex(const std::vector<T>& records, double s, double tolerance = 0.0) {
+  const auto it = std::upper_bound(records.begin(), records.end(), s + tolerance,
+                                   [](double v, const T& r) { return v < r.s; });
+  return it == records.begin() ? 0 : static_cast<std::size_t>(it - records.begin()) - 1;
+}
+
+/// The record with the largest start <= s (the first when s precedes all; none when empty).
 template <class T>
 const T* recordAt(const std::vector<T>& records, double s) {
-  const T* best = records.empty() ? nullptr : &records.front();
-  for (const auto& r : records)
-    if (r.s <= s) best = &r;
-  return best;
+  return records.empty() ? nullptr : &records[recordIndex(records, s)];
 }
 
 double poly(double a, double b, double c, double d, double x) {
@@ -179,9 +186,7 @@ RoadGeometry::RoadGeometry(const io::OdrRoad& road) : road_(road) {
 
 RefPose RoadGeometry::reference(double s) const {
   s = std::clamp(s, 0.0, road_.length);
-  std::size_t i = 0;
-  for (std::size_t k = 0; k < road_.plan_view.size(); ++k)
-    if (road_.plan_view[k].s <= s + 1e-9) i = k;
+  const std::size_t i = recordIndex(road_.plan_view, s, 1e-9);
   const io::OdrGeometry& g = road_.plan_view[i];
   const double ds = std::clamp(s - g.s, 0.0, g.length);
   if (g.kind == io::OdrGeometry::Kind::kPoly3) return evalPoly3(g, poly3_arc_[i], ds);
@@ -208,7 +213,8 @@ double RoadGeometry::laneWidth(std::size_t section, int id, double s) const {
   const io::OdrLane* lane = sec.lane(id);
   if (!lane || id == 0 || lane->widths.empty()) return 0.0;
   const double ds = s - sec.s;
-  return recordAt(lane->widths, ds)->at(ds);
+  // Negative widths (tapers overshooting zero) are 0; sim/opendrive_checks.cpp warns of them.
+  return std::max(0.0, recordAt(lane->widths, ds)->at(ds));
 }
 
 double RoadGeometry::borderT(std::size_t section, int id, double s) const {

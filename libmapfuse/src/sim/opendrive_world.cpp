@@ -1,6 +1,7 @@
 #include "mapfuse/sim/opendrive_world.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <map>
 #include <tuple>
@@ -8,6 +9,7 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/io/bounds.hpp"
+#include "mapfuse/sim/opendrive_checks.hpp"
 #include "opendrive_internal.hpp"
 
 namespace mapfuse::sim {
@@ -18,7 +20,8 @@ OdrContext::OdrContext(const io::OdrMap& m, const geo::GeoOrigin& origin,
                        const OpenDriveAssumptions& a)
     : map(m), assumptions(a), enu(origin) {
   for (const auto& r : map.roads) roads.push_back(std::make_unique<RoadGeometry>(r));
-  if (!map.geo_reference.empty()) projection = geo::MapProjection::fromProj(map.geo_reference);
+  if (!map.geo_reference.empty())
+    projection = geo::MapProjection::fromProj(map.geo_reference, map.file);
 }
 
 Eigen::Vector3d OdrContext::toEnu(const Eigen::Vector3d& p) const {
@@ -63,34 +66,25 @@ struct LaneRef {
   int id;
   bool along_s;  ///< drives with increasing s
 };
+using LaneKeys = std::map<std::tuple<std::size_t, std::size_t, int>, std::vector<std::size_t>>;
 
 }  // namespace
 
-geo::GeoOrigin openDriveOrigin(const io::OdrMap& map, double alt) {
-  if (map.geo_reference.empty())
-    throw InputError(map.file +
-                     ": the map has no georeference; give the origin (osm_origin=config)");
-  const geo::MapProjection proj = geo::MapProjection::fromProj(map.geo_reference);
+geo::GeoOrigin openDriveOrigin(const io::OdrMap& map, const geo::GeoOrigin& fallback) {
+  if (map.geo_reference.empty()) return fallback;
+  const geo::MapProjection proj = geo::MapProjection::fromProj(map.geo_reference, map.file);
   geo::LatLonAlt g = proj.toWgs84(map.offset_x, map.offset_y, 0.0);
-  g.alt = alt;
+  g.alt = fallback.alt;
   return g;
 }
 
-World worldFromOpenDrive(const io::OdrMap& map, const geo::GeoOrigin& origin,
-                         const OpenDriveAssumptions& assumptions) {
-  const detail::OdrContext ctx(map, origin, assumptions);
-  if (!ctx.projection)
-    MAPFUSE_WARN(map.file << ": no georeference in the header; map x/y taken as ENU metres");
-  World world;
-  world.name = map.file;
-  world.truth.origin = origin;
-  world.truth.source = "simulate ground truth (OpenDRIVE " + map.file + ")";
+namespace {
 
-  // Lanes: every driving lane of every section, in its driving direction.
-  std::vector<LaneRef> refs;
-  std::map<std::tuple<std::size_t, std::size_t, int>, std::vector<std::size_t>> by_key;
-  std::map<std::string, std::size_t> road_index;
-  for (std::size_t r = 0; r < map.roads.size(); ++r) road_index[map.roads[r].id] = r;
+/// Lanes: every driving lane of every section, in its driving direction (refs parallel to
+/// world.lanes; by_key: the world lanes of (road, section, lane id)).
+void addLanes(const detail::OdrContext& ctx, World& world, std::vector<LaneRef>& refs,
+              LaneKeys& by_key) {
+  const io::OdrMap& map = ctx.map;
   for (std::size_t r = 0; r < map.roads.size(); ++r) {
     const io::OdrRoad& road = map.roads[r];
     const RoadGeometry& geo = *ctx.roads[r];
@@ -126,45 +120,58 @@ World worldFromOpenDrive(const io::OdrMap& map, const geo::GeoOrigin& origin,
       }
     }
   }
+}
 
-  // Successors from lane links, road links and junction connections.
-  int topological = 0, rejected = 0;
+using Target = std::tuple<std::size_t, std::size_t, std::optional<int>>;  // road, section, lane
+
+/// Where lane `ref` continues: the next section, the linked road, or the junction's connections.
+std::vector<Target> linkTargets(const io::OdrMap& map, const LaneRef& ref,
+                                const std::map<std::string, std::size_t>& road_index) {
+  const io::OdrRoad& road = map.roads[ref.road];
+  const io::OdrLane* lane = road.sections[ref.section].lane(ref.id);
+  const std::optional<int> link = ref.along_s ? lane->successor : lane->predecessor;
   auto lastSection = [&](std::size_t r) { return map.roads[r].sections.size() - 1; };
-  for (std::size_t i = 0; i < world.lanes.size(); ++i) {
-    const LaneRef& ref = refs[i];
-    const io::OdrRoad& road = map.roads[ref.road];
-    const io::OdrLane* lane = road.sections[ref.section].lane(ref.id);
-    const std::optional<int> link = ref.along_s ? lane->successor : lane->predecessor;
-    std::vector<std::tuple<std::size_t, std::size_t, std::optional<int>>> targets;
-    const bool inside = ref.along_s ? ref.section + 1 < road.sections.size() : ref.section > 0;
-    if (inside) {
-      targets.push_back({ref.road, ref.along_s ? ref.section + 1 : ref.section - 1, link});
-    } else if (const auto& rl = ref.along_s ? road.successor : road.predecessor; rl) {
-      if (rl->element_type == "road" && road_index.count(rl->element_id)) {
-        const std::size_t r2 = road_index.at(rl->element_id);
-        targets.push_back({r2, rl->contact_point == "end" ? lastSection(r2) : 0, link});
-      } else if (rl->element_type == "junction") {
-        if (const io::OdrJunction* j = map.junction(rl->element_id))
-          for (const auto& c : j->connections) {
-            if (c.incoming_road != road.id || !road_index.count(c.connecting_road)) continue;
-            const std::size_t r2 = road_index.at(c.connecting_road);
-            for (const auto& ll : c.lane_links)
-              if (ll.from == ref.id)
-                targets.push_back({r2, c.contact_point == "end" ? lastSection(r2) : 0, ll.to});
-          }
-      }
+  std::vector<Target> targets;
+  const bool inside = ref.along_s ? ref.section + 1 < road.sections.size() : ref.section > 0;
+  if (inside) {
+    targets.push_back({ref.road, ref.along_s ? ref.section + 1 : ref.section - 1, link});
+  } else if (const auto& rl = ref.along_s ? road.successor : road.predecessor; rl) {
+    if (rl->element_type == "road" && road_index.count(rl->element_id)) {
+      const std::size_t r2 = road_index.at(rl->element_id);
+      targets.push_back({r2, rl->contact_point == "end" ? lastSection(r2) : 0, link});
+    } else if (rl->element_type == "junction") {
+      if (const io::OdrJunction* j = map.junction(rl->element_id))
+        for (const auto& c : j->connections) {
+          if (c.incoming_road != road.id || !road_index.count(c.connecting_road)) continue;
+          const std::size_t r2 = road_index.at(c.connecting_road);
+          for (const auto& ll : c.lane_links)
+            if (ll.from == ref.id)
+              targets.push_back({r2, c.contact_point == "end" ? lastSection(r2) : 0, ll.to});
+        }
     }
-    // Each target lane must start where this one ends (the lane link names it; without a
-    // link id the nearest start in the target section).
+  }
+  return targets;
+}
+
+/// Successors from lane links, road links and junction connections: each target lane must start
+/// where this one ends (the lane link names it; without a link id the nearest start in the
+/// target section). @return {links made, links rejected}.
+std::pair<int, int> linkLanes(const io::OdrMap& map, World& world, const std::vector<LaneRef>& refs,
+                              const LaneKeys& by_key) {
+  std::map<std::string, std::size_t> road_index;
+  for (std::size_t r = 0; r < map.roads.size(); ++r) road_index[map.roads[r].id] = r;
+  int topological = 0, rejected = 0;
+  for (std::size_t i = 0; i < world.lanes.size(); ++i) {
     auto& succ = world.lanes[i].successors;
     const Eigen::Vector3d end = world.lanes[i].centerline.back();
-    for (const auto& [r2, k2, id2] : targets) {
+    for (const auto& [r2, k2, id2] : linkTargets(map, refs[i], road_index)) {
       long best = -1;
       double best_d = kLinkTolerance;
-      for (const auto& [key, lanes] : by_key) {
-        if (std::get<0>(key) != r2 || std::get<1>(key) != k2) continue;
-        if (id2 && std::get<2>(key) != *id2) continue;
-        for (std::size_t j : lanes) {
+      for (auto it = by_key.lower_bound({r2, k2, INT_MIN});
+           it != by_key.end() && std::get<0>(it->first) == r2 && std::get<1>(it->first) == k2;
+           ++it) {
+        if (id2 && std::get<2>(it->first) != *id2) continue;
+        for (std::size_t j : it->second) {
           const double d = (world.lanes[j].centerline.front() - end).norm();
           if (j != i && d < best_d) best = static_cast<long>(j), best_d = d;
         }
@@ -177,6 +184,30 @@ World worldFromOpenDrive(const io::OdrMap& map, const geo::GeoOrigin& origin,
         succ.push_back(static_cast<std::size_t>(best)), ++topological;
     }
   }
+  return {topological, rejected};
+}
+
+}  // namespace
+
+World worldFromOpenDrive(const io::OdrMap& parsed, const geo::GeoOrigin& origin,
+                         const OpenDriveAssumptions& assumptions) {
+  io::OdrMap map = parsed;
+  checkOpenDriveContent(map);
+  const detail::OdrContext ctx(map, origin, assumptions);
+  World world;
+  world.warnings = map.warnings;
+  if (!ctx.projection)
+    world.warnings.add("no georeference: map x/y taken as ENU metres about the configured origin",
+                       map.file + ": origin " + io::bounds::numberText(origin.lat) + ", " +
+                           io::bounds::numberText(origin.lon));
+  world.stats["georeferenced"] = ctx.projection ? 1 : 0;
+  world.name = map.file;
+  world.truth.origin = origin;
+  world.truth.source = "simulate ground truth (OpenDRIVE " + map.file + ")";
+  std::vector<LaneRef> refs;
+  LaneKeys by_key;
+  addLanes(ctx, world, refs, by_key);
+  const auto [topological, rejected] = linkLanes(map, world, refs, by_key);
   int with_successor = 0;
   for (const auto& l : world.lanes) with_successor += !l.successors.empty();
 

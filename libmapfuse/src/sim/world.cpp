@@ -38,6 +38,7 @@ WorldSummary summarize(const World& world) {
   for (const auto& m : world.truth.instances) ++s.elements_by_class[crowdClassName(m.cls)];
   s.lane_line_km = totalLineLength(world.truth, CrowdClass::kLaneLine) / 1000.0;
   s.stats = world.stats;
+  s.warnings = world.warnings;
   return s;
 }
 

@@ -107,6 +107,8 @@ nlohmann::json toJson(const SimulateRun& run) {
                             {"false_positives_injected", run.stats.observations.false_positives},
                             {"missed_detections", run.stats.observations.missed},
                             {"partial_stop_lines", run.stats.observations.partial_stop_lines}};
+  for (const auto& [kind, e] : run.world.warnings.entries())  // what the map reader repaired
+    summary["input_warnings"][kind] = {{"count", e.count}, {"first", e.first}};
   if (run.level == "frames") {
     summary["frames"] = run.stats.frames.frames;
     summary["frame_ground_observations"] = run.stats.frames.ground_observations;

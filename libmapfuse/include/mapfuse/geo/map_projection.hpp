@@ -2,10 +2,14 @@
 /// @file Map projections of georeferenced map files (docs/simulate.md "OpenDRIVE maps"): the
 /// PROJ string of an OpenDRIVE header turned into a transverse Mercator projection
 /// (GeographicLib::TransverseMercator, Krueger series, 5 nm accuracy) between the map's x/y
-/// metres and WGS84. Supported: `+proj=tmerc` (lat_0, lon_0, k / k_0, x_0, y_0) and `+proj=utm`
-/// (zone, south) on the WGS84 or GRS80 ellipsoid (GRS80 / ETRS89 is taken as WGS84: < 1 m).
-/// Anything else (another projection, ellipsoid, unit, a datum shift, an EPSG code) is an
-/// InputError naming the part that is not supported, never a silently wrong position.
+/// metres and WGS84. Supported: `+proj=tmerc` (lat_0, lon_0, k / k_0 in [0.1, 10], x_0, y_0) and
+/// `+proj=utm` (zone, south) on the WGS84 or GRS80 ellipsoid (GRS80 / ETRS89 is taken as WGS84:
+/// < 1 m), on any ellipsoid given by +a with +b / +rf / +f, or on a sphere (+R, +a alone,
+/// +ellps=sphere; its lat/lon used as WGS84, as PROJ does with +nadgrids=@null). Harmless
+/// parameters (+units=m, +no_defs, +wktext, +nadgrids=@null, +towgs84=0,0,0, vertical grids) are
+/// accepted and ignored. Anything else (another projection, ellipsoid, unit, a datum shift, an
+/// EPSG code) is an InputError naming the file and the part that is not supported, never a
+/// silently wrong position.
 #include <Eigen/Core>
 #include <string>
 
@@ -18,8 +22,9 @@ class MapProjection {
   /// @brief Parses a PROJ string ("+proj=tmerc +lat_0=48.1 +lon_0=11.5 +k=1 +x_0=0 +y_0=0
   /// +datum=WGS84 +units=m"). Vertical parameters (geoidgrids, vunits) are accepted and ignored:
   /// heights stay as the map states them.
-  /// @throws InputError naming the string and the unsupported parameter.
-  static MapProjection fromProj(const std::string& proj);
+  /// @param source the file it comes from, named first in errors ("" for none).
+  /// @throws InputError naming the file, the string and the unsupported parameter.
+  static MapProjection fromProj(const std::string& proj, const std::string& source = "");
 
   /// @brief WGS84 of map coordinates (m); alt = z.
   LatLonAlt toWgs84(double x, double y, double z) const;

@@ -3,14 +3,18 @@
 /// georeference, roads (links, plan view, elevation, superelevation, lane offsets, lane sections
 /// with lane widths, road marks and links, signals, objects) and junctions (connections with lane
 /// links). Records are kept as the file states them; the geometry is evaluated by
-/// sim/opendrive_geometry.hpp. Structural faults (XML syntax, a missing or non-numeric required
-/// attribute, an unknown geometry kind, lane `border` records) are ParseErrors naming the file and
-/// the element (road id, lane id).
+/// sim/opendrive_geometry.hpp. Reading policy (docs/formats.md "Map content checks"): structural
+/// faults (XML syntax, a missing or non-numeric required attribute, an unknown geometry kind, lane
+/// `border` records, duplicate road / junction / lane ids) are ParseErrors naming the file and the
+/// element (road id, lane id); values outside the standard's range that can still be used (a
+/// negative `s` / `sOffset`) are clamped and counted in OdrMap::warnings, one entry per kind.
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "mapfuse/core/input_warnings.hpp"
 
 namespace mapfuse::io {
 
@@ -119,6 +123,7 @@ struct OdrMap {
   double offset_x = 0.0, offset_y = 0.0, offset_z = 0.0, offset_hdg = 0.0;  ///< header <offset>
   std::vector<OdrRoad> roads;
   std::vector<OdrJunction> junctions;
+  InputWarnings warnings;  ///< values clamped or records dropped, by kind (count, first example)
 
   const OdrRoad* road(const std::string& id) const;
   const OdrJunction* junction(const std::string& id) const;

@@ -25,12 +25,14 @@ struct OpenDriveAssumptions {
 };
 
 /// @brief The WGS84 origin of the map's own frame: the georeference at map (0, 0) (after the
-/// header offset), altitude `alt`. @throws InputError for an unsupported georeference.
-geo::GeoOrigin openDriveOrigin(const io::OdrMap& map, double alt);
+/// header offset), altitude fallback.alt; a map without georeference keeps `fallback` (a local
+/// frame: its x/y are ENU metres about it). @throws InputError for an unsupported georeference.
+geo::GeoOrigin openDriveOrigin(const io::OdrMap& map, const geo::GeoOrigin& fallback);
 
-/// @brief Converts a parsed OpenDRIVE map into a World in ENU of `origin`. Without a
-/// georeference the map's x/y are taken as ENU metres about `origin` (with a warning).
-/// @throws InputError for an unsupported georeference.
+/// @brief Converts a parsed OpenDRIVE map into a World in ENU of `origin`, after the content
+/// checks (sim/opendrive_checks.hpp; their warnings in World::warnings). Without a georeference
+/// the map's x/y are taken as ENU metres about `origin` (one warning).
+/// @throws InputError for an unsupported georeference; ParseError for structural nonsense.
 World worldFromOpenDrive(const io::OdrMap& map, const geo::GeoOrigin& origin,
                          const OpenDriveAssumptions& assumptions = {});
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "mapfuse/core/input_warnings.hpp"
 #include "mapfuse/core/vector_map.hpp"
 #include "mapfuse/sim/polyline.hpp"
 
@@ -32,6 +33,7 @@ struct World {
   VectorMap truth;  ///< true elements, ENU of truth.origin
   DashPattern dashes;
   std::map<std::string, double> stats;  ///< counts reported in the summary
+  InputWarnings warnings;  ///< what the map reader clamped, repaired or dropped (summary, stderr)
 
   /// @brief Total centreline length of the lanes, m.
   double laneLength() const;
@@ -49,6 +51,7 @@ struct WorldSummary {
   std::map<std::string, int> elements_by_class;  ///< by class name
   double lane_line_km = 0.0;                     ///< true lane lines
   std::map<std::string, double> stats;           ///< the world builder's counts
+  InputWarnings warnings;                        ///< the map reader's, by kind
 };
 
 /// @brief Counts and lengths of a world's lanes and true elements.
