@@ -1,4 +1,4 @@
-#include "mapfuse/sim/opendrive_checks.hpp"
+#include "opendrive_checks.hpp"
 
 #include <algorithm>
 #include <cmath>

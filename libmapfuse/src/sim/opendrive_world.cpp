@@ -9,7 +9,7 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/io/bounds.hpp"
-#include "mapfuse/sim/opendrive_checks.hpp"
+#include "opendrive_checks.hpp"
 #include "opendrive_internal.hpp"
 
 namespace mapfuse::sim {
