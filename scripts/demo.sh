@@ -49,7 +49,7 @@ Made by `make demo` (scripts/demo.sh) from the embedded sample in samples/demo/.
 | crowd/evaluate/ | `evaluate.md` (paper-style table), `evaluate.summary.json`, `error_per_class.png` |
 | crowd-map.geojson, crowd-map.png | copies of the map for a quick look |
 | lidar/sim/ | a synthetic KITTI raw drive with ground truth (`simulate-lidar`: velodyne, oxts, image_02, semantics_02 network-like probabilities, labels/ true SemanticKITTI labels); docs/lidar-ground-truth.md |
-| lidar/map/ | `lidar-semantic-map` output: `map.ply` (x, y, z, RGB, label, confidence; CloudCompare), `map.pcd` (PCL, `label` field), `labels/<frame>.label` (SemanticKITTI), `topdown.png`, `poses.txt` |
+| lidar/map/ | `lidar-semantic-map` output: `map.ply` (x, y, z, RGB, scalar fields label, confidence, semantic_kitti; CloudCompare), `map.pcd` (PCL: rgb, label, confidence, semantic_kitti), `labels/<frame>.label` (SemanticKITTI), `topdown.png`, `poses.txt` |
 | lidar/evaluate/ | `voxels.md` / `voxels.json`: per-class accuracy and IoU (paper Table 1 layout) |
 | lidar-map.png | copy of the top-down picture of the voxel map |
 
