@@ -88,9 +88,10 @@ void drawGround(Canvas& c, const MapInstance& inst) {
   }
 }
 
-/// Signs, lights and poles stand at nearly the same place (a sign on its pole): poles are drawn
-/// first as small dots, then signs as squares and lights as discs, both larger and outlined, so
-/// that each keeps pixels of its own colour.
+/// Signs, lights and poles stand at nearly the same place (a sign on its pole): signs are drawn
+/// as outlined 11 px squares and lights as outlined discs of radius 6 px, then poles on top as
+/// dots of radius 3 px, so that each keeps pixels of its own colour (a pole dot inside its
+/// sign's square).
 void drawUpright(Canvas& c, const MapInstance& inst) {
   const cv::Scalar color = bgr(instanceRgb(inst));
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
@@ -137,7 +138,7 @@ void writeMapPng(const std::filesystem::path& path, const VectorMap& map,
   drawBackground(c, background);
   for (const auto& inst : map.instances)
     if (!upright(inst.cls) && !inst.points.empty()) drawGround(c, inst);
-  for (CrowdClass k : {CrowdClass::kPole, CrowdClass::kTrafficSign, CrowdClass::kTrafficLight})
+  for (CrowdClass k : {CrowdClass::kTrafficSign, CrowdClass::kTrafficLight, CrowdClass::kPole})
     for (const auto& inst : map.instances)
       if (inst.cls == k && !inst.points.empty()) drawUpright(c, inst);
   writePng(path, withPictureKey(c.img, mapKey(map, !background.empty(), opt, c.res)));

@@ -2,8 +2,8 @@
 /// @file Top-down PNG of a vector map over a grey background (the observations it was built
 /// from, or the truth it is scored against), OpenCV drawing, north up: map instances in their
 /// colours on white (core/classes.hpp crowdClassPaperColor; yellow lane lines yellow, dashed lane
-/// lines dashed); poles as dots, signs (squares) and lights (discs) over them, outlined, so each
-/// class keeps pixels of its colour; the picture key on the right (io/picture_key.hpp): title,
+/// lines dashed); signs (squares) and lights (discs) outlined, poles as smaller dots over them,
+/// so each class keeps pixels of its colour; the picture key on the right (io/picture_key.hpp): title,
 /// one legend line per class drawn and the background, scale bar, north arrow.
 #include <Eigen/Core>
 #include <filesystem>
