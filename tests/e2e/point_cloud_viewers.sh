@@ -3,7 +3,8 @@
 # own converter (pcl_pcd2ply, Debian pcl-tools) keeps every point's colour, label, confidence
 # and SemanticKITTI id, point for point equal to map.ply; where CloudCompare is installed
 # (Debian cloudcompare, not in install-deps: 41 MB of Qt GUI), its headless load of map.ply
-# shows label, confidence and semantic_kitti as scalar fields with the same values.
+# shows label, confidence and semantic_kitti as scalar fields with the same values; where Open3D
+# is installed, its tensor reader keeps every field of both files.
 set -euo pipefail
 BIN="${MAPFUSE_BIN_DIR:?}"
 fail() { echo "FAIL: $*"; exit 1; }
@@ -62,5 +63,24 @@ if command -v CloudCompare >/dev/null; then
   python3 "$TMP/compare.py" "$TMP/map/map.ply" "$TMP/cc.asc" asc || fail "CloudCompare dropped a field"
 else
   echo "point_cloud_viewers: CloudCompare not installed, its check skipped (apt-get install cloudcompare)"
+fi
+# Open3D's tensor reader (Debian python3-open3d, not in install-deps: 21 packages), where
+# installed: every field of both files, with the values of map.ply.
+if /usr/bin/python3 -c "import open3d" 2>/dev/null; then
+  /usr/bin/python3 - "$TMP/map" <<'PY' 2>&1 | grep -v -i "warning" || fail "Open3D dropped a field"
+import sys, numpy as np, open3d as o3d
+ply = o3d.t.io.read_point_cloud(sys.argv[1] + "/map.ply").point
+pcd = o3d.t.io.read_point_cloud(sys.argv[1] + "/map.pcd").point
+for name in ("scalar_label", "scalar_confidence", "scalar_semantic_kitti", "colors"):
+    assert name in ply, f"map.ply: Open3D has no {name}"
+for name in ("label", "confidence", "semantic_kitti", "colors"):
+    assert name in pcd, f"map.pcd: Open3D has no {name}"
+for a, b in (("colors", "colors"), ("scalar_label", "label"), ("scalar_confidence", "confidence"),
+             ("scalar_semantic_kitti", "semantic_kitti")):
+    assert np.array_equal(ply[a].numpy().astype(np.float64), pcd[b].numpy().astype(np.float64)), a
+print(f"open3d: {len(ply['positions'])} points, every field in both files")
+PY
+else
+  echo "point_cloud_viewers: Open3D not installed, its check skipped (apt-get install python3-open3d)"
 fi
 echo "point_cloud_viewers: ok"
