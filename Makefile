@@ -30,7 +30,9 @@ configure: deps
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-demo: build
+# The demo builds only the tools it runs (CMake target demo_tools), not the tests and benchmarks.
+demo: configure
+	cmake --build $(BUILD) -j $(JOBS) --target demo_tools
 	bash scripts/demo.sh $(BUILD)/bin out/demo
 
 # CI (.ci/run) and the README's test command: the release build and all its tests, then the

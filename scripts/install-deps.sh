@@ -19,6 +19,9 @@ PACKAGES=(
   # llvm-symbolizer for readable sanitizer reports
   clang libclang-rt-14-dev libomp-dev llvm
   gnuplot-nox
+  # PCL's converters (23 MB beside libpcl-dev): tests/e2e/point_cloud_viewers.sh reads map.pcd
+  # with pcl_pcd2ply
+  pcl-tools
 )
 
 missing=()

@@ -39,14 +39,31 @@ TEST_CASE("PLY round-trip keeps points, labels, confidence and count", "[lidar][
   const std::string text = test::readText(dir / "m.ply");
   CHECK(text.rfind("ply\nformat binary_little_endian 1.0\n", 0) == 0);
   CHECK(text.find("element vertex 1234\n") != std::string::npos);
-  CHECK(text.find("property uchar label\nproperty float confidence\nproperty ushort "
-                  "semantic_kitti\nend_header\n") != std::string::npos);
-  CHECK(text.find("comment label: mapfuse LiDAR class id 0-7") != std::string::npos);
+  // scalar_* (CloudCompare loads them as scalar fields), int32 / float (Open3D keeps them).
+  CHECK(text.find("property uchar red\nproperty uchar green\nproperty uchar blue\n"
+                  "property int scalar_label\nproperty float scalar_confidence\n"
+                  "property int scalar_semantic_kitti\nend_header\n") != std::string::npos);
+  CHECK(text.find("comment scalar_label: mapfuse LiDAR class id 0-7") != std::string::npos);
   checkSame(cloud, io::readPly(dir / "m.ply"));
-  // The semantic_kitti field of the last vertex (label 1233 % 8 = 1, road) is 40.
-  uint16_t kitti = 0;
-  std::memcpy(&kitti, text.data() + text.size() - 2, 2);
+  // The last vertex: label 1233 % 8 = 1 (road, SemanticKITTI 40); the one before: 0.
+  int32_t label = -1, kitti = 0;
+  std::memcpy(&label, text.data() + text.size() - 12, 4);
+  std::memcpy(&kitti, text.data() + text.size() - 4, 4);
+  CHECK(label == 1);
   CHECK(kitti == 40);
+  // A file of the earlier layout (plain label / confidence names) still reads.
+  std::string old =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty float x\n"
+      "property float y\nproperty float z\nproperty uchar label\n"
+      "property float confidence\nend_header\n";
+  const float xyz_conf[4] = {1.0f, 2.0f, 3.0f, 0.25f};
+  old.append(reinterpret_cast<const char*>(xyz_conf), 12).push_back('\x05');
+  old.append(reinterpret_cast<const char*>(xyz_conf + 3), 4);
+  test::writeText(dir / "old.ply", old);
+  const auto back = io::readPly(dir / "old.ply");
+  REQUIRE(back.size() == 1);
+  CHECK(back.labels[0] == 5);
+  CHECK(back.confidence[0] == 0.25f);
   // truncated body
   test::writeText(dir / "t.ply", text.substr(0, text.size() - 7));
   CHECK_THROWS_MATCHES(io::readPly(dir / "t.ply"), ParseError, test::ParseErrorAt("vertex"));
@@ -61,9 +78,11 @@ TEST_CASE("PCD round-trip keeps points, labels, confidence and count", "[lidar][
   const std::string text = test::readText(dir / "m.pcd");
   CHECK(text.find("FIELDS x y z rgb label confidence semantic_kitti\n") != std::string::npos);
   CHECK(text.find("POINTS 777\nDATA binary\n") != std::string::npos);
+  CHECK(text.find("SIZE 4 4 4 4 4 4 4\nTYPE F F F F U F U\n") != std::string::npos);
   checkSame(cloud, io::readPcd(dir / "m.pcd"));
   // The last point: label 776 % 8 = 0 (unlabeled, SemanticKITTI 0); the one before: 7, vehicle:
-  // rgb 0x6496F5 (SemanticKITTI's car colour, its BGR [245, 150, 100] as RGB), id 10.
+  // rgb 0x6496F5 (SemanticKITTI's car colour, its BGR [245, 150, 100] as RGB) in the bits of
+  // a float field (PCL's PointXYZRGB convention), id 10.
   uint32_t rgb = 0, label = 0, kitti = 0;
   const std::size_t prev = text.size() - 2 * 28;
   std::memcpy(&rgb, text.data() + prev + 12, 4);

@@ -1,6 +1,7 @@
 // KITTI odometry / SemanticKITTI sequence folders and poses files: the layout read like a raw
 // drive, the calibration's Tr and P2, times.txt, the poses-file convention (T_world_cam0 in,
 // T_world_cam0 out), the line-to-frame rules and the checks that run before any other work.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <fstream>
 
@@ -162,4 +163,26 @@ TEST_CASE("lidar-semantic-map on a sequence folder: odometry, then the sequence'
   const auto b = test::readSummary(root / "b", "lidar-semantic-map");
   CHECK(b["poses"]["source"] == "poses_file");
   CHECK(b["voxels"].get<double>() == Approx(a["voxels"].get<double>()).epsilon(0.001));
+}
+
+TEST_CASE("lidar-semantic-map refuses a sequence without image_2 before any work, as documented",
+          "[lidar][stage]") {
+  // The shared sequence 00 ships velodyne/ and calib.txt only (docs/kitti.md "Without images").
+  const fs::path seq = test::requireShared(kSeq);
+  REQUIRE_FALSE(fs::exists(seq / "image_2"));
+  const fs::path root = test::tempDir("sequence_no_images");
+  const auto app = test::appPath("lidar-semantic-map").string();
+  for (const char* segmenter : {"auto", "enet", "precomputed"}) {
+    const fs::path out = root / segmenter;
+    const fs::path err = root / (std::string(segmenter) + ".err");
+    CHECK(test::runCommand(app + " " + seq.string() + " -o " + out.string() + " --segmenter " +
+                           segmenter + " --quiet 2> " + err.string()) == 4);
+    const std::string text = test::readText(err);
+    CHECK_THAT(text, Catch::StartsWith("lidar-semantic-map: error: " +
+                                       fs::absolute(seq / "image_2").lexically_normal().string() +
+                                       ": no camera image in the selected frames"));
+    CHECK(std::count(text.begin(), text.end(), '\n') == 1);  // one line, before any other
+    CHECK_FALSE(fs::exists(out / "map.ply"));
+    CHECK_FALSE(fs::exists(out / "lidar-semantic-map.summary.json"));
+  }
 }

@@ -35,3 +35,12 @@ TEST_CASE("BEV key: each class of the LSM, the trajectory and keyframes are in t
   const cv::Mat img = vehicle::renderTopDown(lsm, {Pose3::Identity()}, 0.05);
   CHECK(io::withPictureKey(img, key).cols == img.cols + 200);
 }
+
+TEST_CASE("BEV key: a north arrow only for an LSM in ENU", "[vehicle][picture]") {
+  Lsm lsm;
+  lsm.drive_id = "2011_09_26_drive_0001_sync";
+  CHECK_FALSE(vehicle::topDownKey(lsm, 0.1).north_up);  // odometry frame: north unknown
+  CHECK_FALSE(vehicle::topDownKey(lsm, 0.1).up_note.empty());
+  lsm.frame = LsmFrame::kEnu;
+  CHECK(vehicle::topDownKey(lsm, 0.1).north_up);
+}

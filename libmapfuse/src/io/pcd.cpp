@@ -26,11 +26,12 @@ void writePcd(const std::filesystem::path& path, const LabeledCloud& cloud) {
     << "# label: mapfuse LiDAR class id 0-7 (docs/formats.md \"LiDAR classes\")\n"
     << "# semantic_kitti: SemanticKITTI semantic id of the class\nVERSION 0.7\n"
     << "FIELDS x y z rgb label confidence semantic_kitti\nSIZE 4 4 4 4 4 4 4\n"
-    << "TYPE F F F U U F U\nCOUNT 1 1 1 1 1 1 1\nWIDTH " << cloud.size() << "\nHEIGHT 1\n"
+    << "TYPE F F F F U F U\nCOUNT 1 1 1 1 1 1 1\nWIDTH " << cloud.size() << "\nHEIGHT 1\n"
     << "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << cloud.size() << "\nDATA binary\n";
   writeCloudRecords(path, cloud, h.str(), 28, [&](std::size_t i, char* p) {
     std::memcpy(p, cloud.points[i].data(), 12);
     const auto col = lidarClassColor(static_cast<LidarClass>(cloud.labels[i]));
+    // PCL's PointXYZRGB convention: 0x00RRGGBB stored in the bits of a float field
     const uint32_t rgb = (uint32_t{col[0]} << 16) | (uint32_t{col[1]} << 8) | col[2];
     const uint32_t label = cloud.labels[i];
     std::memcpy(p + 12, &rgb, 4);

@@ -31,7 +31,55 @@ std::string metres(double m) {
   return buf;
 }
 
+int textWidth(const std::string& text, double font_scale) {
+  int baseline = 0;
+  return cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, font_scale, 1, &baseline).width;
+}
+
+// Draws `lines` from row y (top) in the panel; returns the row below them.
+int drawLines(cv::Mat& out, const std::vector<std::string>& lines, int x0, int y, double font) {
+  for (const auto& l : lines) {
+    cv::putText(out, l, {x0, y + 12}, cv::FONT_HERSHEY_SIMPLEX, font, kInk, 1, cv::LINE_AA);
+    y += kRow;
+  }
+  return y;
+}
+
+constexpr double kTitleFont = 0.48;
+constexpr int kTextWidth = kPanelWidth - 2 * kMargin;  // px
+
 }  // namespace
+
+std::vector<std::string> wrapText(const std::string& text, double font_scale, int max_width) {
+  std::vector<std::string> lines;
+  std::string line;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    // The next piece: up to and including a break character, or to the end.
+    std::size_t j = i;
+    while (j < text.size() && text[j] != ' ' && text[j] != '_' && text[j] != '/') ++j;
+    std::string piece = text.substr(i, std::min(text.size(), j + 1) - i);
+    i = std::min(text.size(), j + 1);
+    if (line.empty() && piece == " ") continue;
+    if (textWidth(line + piece, font_scale) <= max_width) {
+      line += piece;
+      continue;
+    }
+    if (!line.empty()) lines.push_back(line);
+    line.clear();
+    if (piece == " ") continue;
+    for (char c : piece) {  // a piece wider than a line is cut anywhere
+      if (!line.empty() && textWidth(line + c, font_scale) > max_width) {
+        lines.push_back(line);
+        line.clear();
+      }
+      line += c;
+    }
+  }
+  while (!line.empty() && line.back() == ' ') line.pop_back();
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
 
 std::vector<LegendEntry> crowdLegend(const std::set<CrowdClass>& present) {
   std::vector<LegendEntry> out;
@@ -72,19 +120,20 @@ double scaleBarLength(double metres_per_pixel, int max_pixels) {
 }
 
 cv::Mat withPictureKey(const cv::Mat& bgr, const PictureKey& key) {
-  const int rows_needed = 2 * kMargin + (key.title.empty() ? 0 : kRow + 4) +
+  const auto title = wrapText(key.title, kTitleFont, kTextWidth);
+  const auto note =
+      key.north_up ? std::vector<std::string>{} : wrapText(key.up_note, kFont, kTextWidth);
+  const int rows_needed = 2 * kMargin + (title.empty() ? 0 : kRow * int(title.size()) + 4) +
                           kRow * static_cast<int>(key.legend.size()) +
-                          (key.metres_per_pixel > 0 ? 50 : 0) + (key.north_up ? 60 : 0);
+                          (key.metres_per_pixel > 0 ? 50 : 0) +
+                          (key.north_up ? 60 : 8 + kRow * int(note.size()));
   const int H = std::max(bgr.rows, rows_needed);
   cv::Mat out(H, bgr.cols + kPanelWidth, CV_8UC3, kPaper);
   bgr.copyTo(out(cv::Rect(0, 0, bgr.cols, bgr.rows)));
   const int x0 = bgr.cols + kMargin;
   cv::line(out, {bgr.cols, 0}, {bgr.cols, H - 1}, kInk, 1);
   int y = kMargin;
-  if (!key.title.empty()) {
-    cv::putText(out, key.title, {x0, y + 12}, cv::FONT_HERSHEY_SIMPLEX, 0.48, kInk, 1, cv::LINE_AA);
-    y += kRow + 4;
-  }
+  if (!title.empty()) y = drawLines(out, title, x0, y, kTitleFont) + 4;
   // Legend: a swatch with a black border (white classes stay visible) and the label.
   for (const auto& e : key.legend) {
     if (e.line) {
@@ -93,7 +142,10 @@ cv::Mat withPictureKey(const cv::Mat& bgr, const PictureKey& key) {
       cv::rectangle(out, cv::Rect(x0, y, 14, 14), bgrOf(e.rgb), cv::FILLED);
       cv::rectangle(out, cv::Rect(x0, y, 14, 14), kInk, 1);
     }
-    cv::putText(out, e.label, {x0 + 22, y + 12}, cv::FONT_HERSHEY_SIMPLEX, kFont, kInk, 1,
+    // a label too long for the panel is shortened (the legend stays one row per entry)
+    std::string label = e.label;
+    while (label.size() > 1 && textWidth(label, kFont) > kTextWidth - 22) label.pop_back();
+    cv::putText(out, label, {x0 + 22, y + 12}, cv::FONT_HERSHEY_SIMPLEX, kFont, kInk, 1,
                 cv::LINE_AA);
     y += kRow;
   }
@@ -119,6 +171,8 @@ cv::Mat withPictureKey(const cv::Mat& bgr, const PictureKey& key) {
     std::vector<cv::Point> head = {{cx, y + 16}, {cx - 7, y + 30}, {cx + 7, y + 30}};
     cv::fillConvexPoly(out, head, kInk, cv::LINE_AA);
     cv::line(out, {cx, y + 30}, {cx, y + 50}, kInk, 2);
+  } else {
+    drawLines(out, note, x0, y + 8, kFont);
   }
   return out;
 }

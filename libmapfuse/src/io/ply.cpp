@@ -44,25 +44,30 @@ double readValue(const char* p, const std::string& t) {
 }  // namespace
 
 void writePly(const std::filesystem::path& path, const LabeledCloud& cloud) {
+  // Per-point values are named scalar_*: CloudCompare loads a vertex property as a scalar field
+  // without asking only when its name contains "SCAL" (and shows it without the prefix), and
+  // int32 / float are types every reader keeps (Open3D's tensor reader drops ushort).
   std::ostringstream h;
   h << "ply\nformat binary_little_endian 1.0\ncomment mapfuse semantic voxel map\n"
-    << "comment label: mapfuse LiDAR class id 0-7 (docs/formats.md \"LiDAR classes\")\n"
-    << "comment semantic_kitti: SemanticKITTI semantic id of the class\n"
+    << "comment scalar_label: mapfuse LiDAR class id 0-7 (docs/formats.md \"LiDAR classes\")\n"
+    << "comment scalar_confidence: the voxel's class probability\n"
+    << "comment scalar_semantic_kitti: SemanticKITTI semantic id of the class\n"
     << "element vertex " << cloud.size() << "\n"
     << "property float x\nproperty float y\nproperty float z\n"
     << "property uchar red\nproperty uchar green\nproperty uchar blue\n"
-    << "property uchar label\nproperty float confidence\nproperty ushort semantic_kitti\n"
-    << "end_header\n";
-  writeCloudRecords(path, cloud, h.str(), 12 + 3 + 1 + 4 + 2, [&](std::size_t i, char* p) {
+    << "property int scalar_label\nproperty float scalar_confidence\n"
+    << "property int scalar_semantic_kitti\nend_header\n";
+  writeCloudRecords(path, cloud, h.str(), 12 + 3 + 4 + 4 + 4, [&](std::size_t i, char* p) {
     std::memcpy(p, cloud.points[i].data(), 12);
     const auto col = lidarClassColor(static_cast<LidarClass>(cloud.labels[i]));
     p[12] = static_cast<char>(col[0]);
     p[13] = static_cast<char>(col[1]);
     p[14] = static_cast<char>(col[2]);
-    p[15] = static_cast<char>(cloud.labels[i]);
-    std::memcpy(p + 16, &cloud.confidence[i], 4);
-    const uint16_t kitti = semanticKittiId(static_cast<LidarClass>(cloud.labels[i]));
-    std::memcpy(p + 20, &kitti, 2);
+    const int32_t label = cloud.labels[i];
+    std::memcpy(p + 15, &label, 4);
+    std::memcpy(p + 19, &cloud.confidence[i], 4);
+    const int32_t kitti = semanticKittiId(static_cast<LidarClass>(cloud.labels[i]));
+    std::memcpy(p + 23, &kitti, 4);
   });
 }
 
@@ -124,8 +129,10 @@ LabeledCloud parsePly(const std::string& bytes, const std::string& file) {
   };
   const Prop *px = findProp("x"), *py = findProp("y"), *pz = findProp("z");
   if (!px || !py || !pz) throw ParseError(file, "property x/y/z", "missing");
-  const Prop* pl = findProp("label");
-  const Prop* pc = findProp("confidence");
+  // scalar_* since issue 35 (CloudCompare's convention); the plain names of earlier files too.
+  const Prop* pl = findProp("scalar_label") ? findProp("scalar_label") : findProp("label");
+  const Prop* pc =
+      findProp("scalar_confidence") ? findProp("scalar_confidence") : findProp("confidence");
   const std::size_t body = end + std::strlen("end_header\n");
   const auto need = bounds::checkedMultiply(n, stride);
   if (!need || uint64_t(*need) > bytes.size() - body)

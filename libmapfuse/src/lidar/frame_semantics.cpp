@@ -10,6 +10,23 @@
 namespace mapfuse::lidar {
 namespace fs = std::filesystem;
 
+namespace {
+/// Refuses, before any work, a drive whose class evidence cannot exist: ENet with no camera
+/// image in the selected frames, or a sequence without image_2 (its image size is unknown, so
+/// neither ENet nor precomputed semantics can be projected into).
+void requireImages(const io::KittiRawDrive& drive, const std::string& source) {
+  bool any = false;
+  for (const auto& f : drive.frames) any = any || !f.image.empty();
+  if (any && drive.calib.image_width > 0 && drive.calib.image_height > 0) return;
+  if (source == "precomputed" && drive.calib.image_width > 0) return;
+  const bool sequence = drive.layout == "sequence";
+  throw IoError((drive.dir / (sequence ? "image_2" : "image_02/data")).string(),
+                "no camera image in the selected frames: lidar-semantic-map labels each LiDAR "
+                "point from the camera picture it projects into (docs/kitti.md \"Without "
+                "images\"); evaluate voxels reads the drive without them");
+}
+}  // namespace
+
 FrameSemantics::FrameSemantics(const io::KittiRawDrive& drive, const FrameSemanticsSettings& s,
                                const fs::path& cache_dir)
     : s_(s), cache_dir_(s.cache ? cache_dir : fs::path()) {
@@ -25,6 +42,7 @@ FrameSemantics::FrameSemantics(const io::KittiRawDrive& drive, const FrameSemant
     throw ConfigError("segmenter = \"" + s.segmenter +
                       "\". Violated constraint: one of auto, enet, precomputed");
   }
+  requireImages(drive, source_);
   if (source_ == "precomputed" && !fs::is_directory(pre_dir_))
     throw IoError(pre_dir_.string(), "precomputed semantics folder not found");
   const fs::path model =

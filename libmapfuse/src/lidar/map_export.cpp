@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <opencv2/imgproc.hpp>
 #include <set>
 
 #include "mapfuse/core/classes.hpp"
@@ -83,10 +84,27 @@ cv::Mat renderTopDown(const SemanticVoxelMap& map, double resolution, Eigen::Vec
   return img;
 }
 
+namespace {
+/// Poles are a few pixels of pale yellow (255, 240, 150), hardly visible on white paper: each pole
+/// pixel becomes a dot of radius 2 px in its colour with a dark grey ring around it.
+void markPoles(cv::Mat& img) {
+  const auto c = lidarClassColor(LidarClass::kPole);
+  const cv::Vec3b pole(c[2], c[1], c[0]);
+  std::vector<cv::Point> at;
+  for (int r = 0; r < img.rows; ++r)
+    for (int u = 0; u < img.cols; ++u)
+      if (img.at<cv::Vec3b>(r, u) == pole) at.emplace_back(u, r);
+  for (const auto& p : at) cv::circle(img, p, 3, cv::Scalar(70, 70, 70), cv::FILLED, cv::LINE_8);
+  for (const auto& p : at) cv::circle(img, p, 2, cv::Scalar(pole), cv::FILLED, cv::LINE_8);
+}
+}  // namespace
+
 TopDownPicture renderTopDownPicture(const SemanticVoxelMap& map,
-                                    const std::vector<Pose3>& T_map_velo, double resolution) {
+                                    const std::vector<Pose3>& T_map_velo, double resolution,
+                                    bool north_up) {
   TopDownPicture out;
   cv::Mat img = renderTopDown(map, resolution, &out.origin_xy);
+  markPoles(img);
   out.width = img.cols;
   out.height = img.rows;
   const std::array<uint8_t, 3> path_rgb{230, 0, 0};
@@ -95,7 +113,8 @@ TopDownPicture renderTopDownPicture(const SemanticVoxelMap& map,
   const int path_shown = io::drawPath(img, path, out.origin_xy, resolution, path_rgb);
   std::set<LidarClass> present;
   for (const auto& v : map.voxels()) present.insert(static_cast<LidarClass>(v.label));
-  io::PictureKey key{io::lidarLegend(present), resolution, true, "top down"};
+  io::PictureKey key{io::lidarLegend(present), resolution, north_up, "LiDAR map, top down"};
+  key.up_note = "no north (no GPS): up is the car's left at the first frame";
   if (path_shown > 0) key.legend.push_back({"trajectory", path_rgb, true});
   out.image = io::withPictureKey(img, key);
   return out;

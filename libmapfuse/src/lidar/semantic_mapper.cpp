@@ -76,9 +76,9 @@ SemanticMapResult buildSemanticMap(const io::KittiRawDrive& drive, const Semanti
   SemanticMapResult r;
   Stopwatch t;
   const FrameFusionSettings fusion = fusionForDrive(s.fusion, drive);
+  FrameSemantics semantics(drive, s.semantics, semantics_cache);  // first: refuses imageless drives
   ForestSource forests = loadForests(s.classifier_dir);
   const ClusterClassifier& classifier = forests.classifier;
-  FrameSemantics semantics(drive, s.semantics, semantics_cache);
   r.timings.open = t.seconds();
 
   t.restart();

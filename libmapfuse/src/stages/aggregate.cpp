@@ -42,6 +42,7 @@ std::vector<std::function<void()>> mapWriters(const std::filesystem::path& out_d
             for (const auto& o : set.items) background.push_back(o.points);
             io::MapPngOptions png;
             png.resolution = params.png_resolution;
+            png.title = "aggregated map (" + std::to_string(lsms.size()) + " drives)";
             io::writeMapPng(out_dir / "map.png", map, background, png);
           },
           [&] {

@@ -9,9 +9,9 @@
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_view.hpp"
-#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/map_png.hpp"
+#include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
 
@@ -61,7 +61,10 @@ void writeReport(const std::filesystem::path& out_dir, const EvaluateMapRun& run
   eval::writeErrorPerClassPng(out_dir / "error_per_class.png", run.maps.back());
   std::vector<std::vector<Eigen::Vector3d>> background;
   for (const auto& t : truth.instances) background.push_back(t.points);
-  io::writeMapPng(out_dir / "map_over_truth.png", last_map, background);
+  io::MapPngOptions png;
+  png.title = "map (colours) over the truth (grey)";
+  png.background_label = "truth";
+  io::writeMapPng(out_dir / "map_over_truth.png", last_map, background, png);
   if (run.maps.size() > 1)
     eval::writeErrorVsTraversalsPng(out_dir / "error_vs_traversals.png", run.maps);
 }

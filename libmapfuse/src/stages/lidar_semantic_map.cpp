@@ -66,7 +66,9 @@ lidar::SemanticMapResult runLidarSemanticMap(const fs::path& drive_dir, const fs
   io::writePly(output / "map.ply", cloud);
   io::writePcd(output / "map.pcd", cloud);
   const double res = p.exports.topdown_resolution;
-  const lidar::TopDownPicture top = lidar::renderTopDownPicture(r.map, r.poses.T_map_velo, res);
+  const bool north_up = r.poses.source == "oxts" || r.poses.source == "oxts_enu";  // else frame 0
+  const lidar::TopDownPicture top =
+      lidar::renderTopDownPicture(r.map, r.poses.T_map_velo, res, north_up);
   io::writePngFrame(output / "topdown.png", top.image);
   io::writeKittiOdometryPoses(
       output / "poses.txt",

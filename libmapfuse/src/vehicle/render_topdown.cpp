@@ -100,6 +100,9 @@ io::PictureKey topDownKey(const Lsm& lsm, double resolution) {
   key.legend.push_back({"keyframe", kKeyframeRgb, false});
   key.metres_per_pixel = resolution;
   key.title = lsm.drive_id;
+  // An LSM in its odometry frame (before georef) does not know where north is.
+  key.north_up = lsm.frame == LsmFrame::kEnu;
+  key.up_note = "no north arrow: odometry frame, +y up (north unknown)";
   return key;
 }
 

@@ -1,9 +1,13 @@
 #pragma once
-/// @file Top-down PNG of a vector map over the observations it was built from (OpenCV drawing):
-/// observations thin and grey, map instances in their class colours (dashed lane lines drawn
-/// dashed), north up, a 10 m scale bar in the lower-left corner.
+/// @file Top-down PNG of a vector map over a grey background (the observations it was built
+/// from, or the truth it is scored against), OpenCV drawing, north up: map instances in their
+/// colours on white (core/classes.hpp crowdClassPaperColor; yellow lane lines yellow, dashed lane
+/// lines dashed); signs (squares) and lights (discs) outlined, poles as smaller dots over them,
+/// so each class keeps pixels of its colour; the picture key on the right (io/picture_key.hpp): title,
+/// one legend line per class drawn and the background, scale bar, north arrow.
 #include <Eigen/Core>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "mapfuse/core/vector_map.hpp"
@@ -11,9 +15,11 @@
 namespace mapfuse::io {
 
 struct MapPngOptions {
-  double resolution = 0.2;  ///< m per pixel (coarsened automatically to respect max_size)
-  int max_size = 4000;      ///< px, largest image side
-  double margin = 5.0;      ///< m around the drawn geometry
+  double resolution = 0.2;           ///< m per pixel (coarsened automatically to respect max_size)
+  int max_size = 4000;               ///< px, largest image side
+  double margin = 5.0;               ///< m around the drawn geometry
+  std::string title = "vector map";  ///< the key's title
+  std::string background_label = "observations";  ///< the grey lines' legend entry
 };
 
 /// @brief Renders the map (and `background` polylines, single points drawn as dots) to a PNG.

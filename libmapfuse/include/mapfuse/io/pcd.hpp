@@ -1,7 +1,8 @@
 #pragma once
 /// @file Binary PCD v0.7 of a labelled cloud, PCL-compatible (pcl::PointXYZRGBL reads it):
 /// FIELDS x y z rgb label confidence semantic_kitti; x, y, z, confidence float32; rgb packed
-/// 0x00RRGGBB in a uint32 (PCL's layout); label uint32 (mapfuse LidarClass id 0-7);
+/// 0x00RRGGBB in the bits of a float32 (TYPE F, PCL's PointXYZRGB convention, which
+/// pcl_pcd2ply and Open3D turn into colours); label uint32 (mapfuse LidarClass id 0-7);
 /// semantic_kitti uint32 (the SemanticKITTI semantic id of that class, docs/formats.md
 /// "LiDAR classes"); header comments say so.
 #include <filesystem>

@@ -27,8 +27,13 @@ struct PictureKey {
   std::vector<LegendEntry> legend;
   double metres_per_pixel = 0.0;  ///< picture scale; 0 = no scale bar
   bool north_up = true;           ///< +y (north) points up in the picture: draw the arrow
-  std::string title;              ///< optional first line
+  std::string title;              ///< optional first line(s), wrapped to the panel's width
+  std::string up_note;            ///< without north: what points up (e.g. "up: car's left")
 };
+
+/// @brief `text` broken into lines of at most `max_width` px at `font_scale` (Hershey simplex),
+/// at spaces, after '_' or '/', or anywhere inside a word longer than a line.
+std::vector<std::string> wrapText(const std::string& text, double font_scale, int max_width);
 
 /// @brief Legend lines of the crowd classes in `present`, in class order, in their map colours.
 std::vector<LegendEntry> crowdLegend(const std::set<CrowdClass>& present);
@@ -48,7 +53,8 @@ int drawPath(cv::Mat& bgr, const std::vector<Eigen::Vector3d>& path,
 double scaleBarLength(double metres_per_pixel, int max_pixels);
 
 /// @brief The picture `bgr` (CV_8UC3) with the key panel on its right (panel width 200 px, the
-/// height grown when the legend needs more rows than the picture is tall).
+/// height grown when the legend needs more rows than the picture is tall). Every text line fits
+/// the panel (titles wrap); without `north_up` no arrow, the `up_note` instead.
 cv::Mat withPictureKey(const cv::Mat& bgr, const PictureKey& key);
 
 }  // namespace mapfuse::io

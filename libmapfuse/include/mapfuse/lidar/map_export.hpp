@@ -64,8 +64,12 @@ struct TopDownPicture {
   int width = 0, height = 0;  ///< px, the map part
 };
 
-/// @brief renderTopDown with the trajectory of `T_map_velo` drawn in red and the picture key.
+/// @brief renderTopDown with pole pixels enlarged and ringed in dark grey (readable on white), the
+/// trajectory of `T_map_velo` drawn in red and the picture key: a north arrow when `north_up`
+/// (OXTS poses: +y is north), else a note that up is the car's left at the first frame (the
+/// Velodyne frame of odometry and poses files: x forward, y left).
 TopDownPicture renderTopDownPicture(const SemanticVoxelMap& map,
-                                    const std::vector<Pose3>& T_map_velo, double resolution);
+                                    const std::vector<Pose3>& T_map_velo, double resolution,
+                                    bool north_up);
 
 }  // namespace mapfuse::lidar

@@ -24,8 +24,8 @@ cv::Mat renderTopDown(const Lsm& lsm, const std::vector<Pose3>& trajectory, doub
                       const std::vector<BevTile>& tiles = {});
 
 /// @brief The key of renderTopDown's picture (io/picture_key.hpp): one legend line per class
-/// present in `lsm`, the trajectory and the keyframes, a scale bar at `resolution` m/px, north
-/// (+y) up.
+/// present in `lsm`, the trajectory and the keyframes, a scale bar at `resolution` m/px, +y up;
+/// a north arrow only for an LSM in ENU (an odometry-frame LSM gets a note instead).
 io::PictureKey topDownKey(const Lsm& lsm, double resolution);
 
 }  // namespace mapfuse::vehicle
