@@ -31,7 +31,8 @@ void CrowdStats::add(const CrowdStats& s) {
 Crowd::Crowd(const World& world, const geo::GeoOrigin& origin, const CrowdSettings& s)
     : world_(world),
       settings_(s),
-      routes_(planRoutes(world, s.routes, s.route_length, deriveSeed(s.seed, kRoutesSeedIndex))),
+      routes_(planRoutes(world, s.routes, s.route_length, deriveSeed(s.seed, kRoutesSeedIndex),
+                         s.route_outward)),
       index_(world, s.obs.point_spacing),
       camera_(s.camera),
       enu_(origin) {}
@@ -40,7 +41,10 @@ Traversal Crowd::traversal(int i, CrowdStats* stats) const {
   const CrowdSettings& P = settings_;
   Traversal t;
   t.seed = deriveSeed(P.seed, static_cast<uint64_t>(i));
-  t.drive = simulateDrive(routes_[i % routes_.size()], P.drive, enu_, deriveSeed(t.seed, 1));
+  DriveParams dp = P.drive;  // the injected biases of the trust tests (docs/simulate.md)
+  if (i == P.inject_pitch_traversal) dp.imu_pitch_mount += P.inject_pitch;
+  if (i == P.inject_wheel_traversal) dp.wheel_scale_offset += P.inject_wheel_scale;
+  t.drive = simulateDrive(routes_[i % routes_.size()], dp, enu_, deriveSeed(t.seed, 1));
   t.drive.vehicle_id = driveId(i % P.vehicles, 0).substr(0, 5);
   t.drive.drive_id = driveId(i % P.vehicles, i);
   t.observed = observeLsm(world_, index_, t.drive, camera_, P.obs, P.drive, deriveSeed(t.seed, 2));

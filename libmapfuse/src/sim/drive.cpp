@@ -31,6 +31,45 @@ Polyline headOf(const Polyline& line, double length) {
   out.push_back(pointAt(line, cum, length));
   return out;
 }
+/// Of `candidates`, the lane whose end lies farthest (horizontally) from `start`.
+std::size_t farthestFrom(const World& world, const std::vector<std::size_t>& candidates,
+                         const Eigen::Vector3d& start) {
+  std::size_t best = candidates.front();
+  double best_d = -1.0;
+  for (std::size_t c : candidates) {
+    const double d = (world.lanes[c].centerline.back() - start).head<2>().norm();
+    if (d > best_d) best = c, best_d = d;
+  }
+  return best;
+}
+/// Heading of the path at each vertex (central difference), unwrapped.
+std::vector<double> unwrappedHeadings(const Polyline& path) {
+  std::vector<double> heading(path.size());
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const Eigen::Vector3d t = path[std::min(path.size() - 1, i + 1)] - path[i > 0 ? i - 1 : 0];
+    heading[i] = std::atan2(t.y(), t.x());
+    if (i > 0) heading[i] = heading[i - 1] + std::remainder(heading[i] - heading[i - 1], 2 * kPi);
+  }
+  return heading;
+}
+/// The body sits on the road: nose up by the path's grade at each vertex (pitch = -asin(dz/ds),
+/// the body x axis of poseFromXyzRpy is (cos p cos y, cos p sin y, -sin p)).
+std::vector<double> gradePitch(const Polyline& path, const std::vector<double>& cum) {
+  std::vector<double> pitch(path.size(), 0.0);
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const std::size_t a = i > 0 ? i - 1 : 0, b = std::min(path.size() - 1, i + 1);
+    const double ds = cum[b] - cum[a];
+    if (ds > 0) pitch[i] = -std::asin(std::clamp((path[b].z() - path[a].z()) / ds, -1.0, 1.0));
+  }
+  return pitch;
+}
+/// An IMU mounted pitched by `pitch` against the body reads gyro and accel in its own frame.
+void mountImu(std::vector<ImuRecord>& imu, double pitch) {
+  if (pitch == 0.0) return;
+  const Eigen::Matrix3d R_imu_body =
+      Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()).toRotationMatrix().transpose();
+  for (auto& r : imu) r.gyro = R_imu_body * r.gyro, r.accel = R_imu_body * r.accel;
+}
 }  // namespace
 
 bool DriveParams::dividesImuRate(double rate) const {
@@ -45,7 +84,8 @@ uint64_t deriveSeed(uint64_t base, uint64_t index) {
   return z ^ (z >> 31);
 }
 
-std::vector<Polyline> planRoutes(const World& world, int count, double length, uint64_t seed) {
+std::vector<Polyline> planRoutes(const World& world, int count, double length, uint64_t seed,
+                                 bool outward) {
   std::mt19937_64 rng(seed);
   std::vector<Polyline> routes;
   if (world.lanes.empty()) return routes;
@@ -68,13 +108,23 @@ std::vector<Polyline> planRoutes(const World& world, int count, double length, u
           if (visits[s] == 0) next.push_back(s);
         if (next.empty()) next = world.lanes[lane].successors;
         if (next.empty()) break;
+        if (outward) {
+          const std::size_t to = farthestFrom(world, next, route.front());
+          // the route ends where every way on leads back towards its start
+          if (visits[to] > 0 ||
+              (world.lanes[to].centerline.back() - route.front()).head<2>().norm() <
+                  (route.back() - route.front()).head<2>().norm())
+            break;
+          lane = to;
+          continue;
+        }
         lane = next[std::uniform_int_distribution<std::size_t>(0, next.size() - 1)(rng)];
         if (visits[lane] > 1) break;
       }
       route = headOf(route, length + kMaxRouteOvershoot);
       const double len = polylineLength(route);
       if (len > best_len) best = route, best_len = len;
-      if (len >= 0.5 * length) break;
+      if (len >= (outward ? length : 0.5 * length)) break;  // outward: the longest of the tries
     }
     routes.push_back(best);
   }
@@ -93,24 +143,20 @@ Drive simulateDrive(const Polyline& route, const DriveParams& P, const geo::EnuC
   if (path.size() < 2) throw InputError("the route has no length (its lanes collapse to a point)");
   const auto cum = arcLengths(path);
   const double L = cum.back();
-  std::vector<double> heading(path.size());
-  for (std::size_t i = 0; i < path.size(); ++i) {
-    const Eigen::Vector3d t = path[std::min(path.size() - 1, i + 1)] - path[i > 0 ? i - 1 : 0];
-    heading[i] = std::atan2(t.y(), t.x());
-    if (i > 0) heading[i] = heading[i - 1] + std::remainder(heading[i] - heading[i - 1], 2 * kPi);
-  }
-  auto headingAt = [&](double s) {
+  const std::vector<double> heading = unwrappedHeadings(path);
+  const std::vector<double> grade_pitch = gradePitch(path, cum);
+  auto interpolated = [&](const std::vector<double>& v, double s) {
     const auto it = std::upper_bound(cum.begin(), cum.end(), s);
     const std::size_t i = std::clamp<std::size_t>(it - cum.begin(), 1, cum.size() - 1);
     const double seg = cum[i] - cum[i - 1];
     const double a = seg > 0 ? std::clamp((s - cum[i - 1]) / seg, 0.0, 1.0) : 0.0;
-    return heading[i - 1] + a * (heading[i] - heading[i - 1]);
+    return v[i - 1] + a * (v[i] - v[i - 1]);
   };
   // Per-traversal truth and error draws.
   d.speed = U(P.speed_min, P.speed_max);
   const double lateral = P.lateral_offset_sigma * N01(rng);
   const double phase_p = U(0, 2 * kPi), phase_r = U(0, 2 * kPi);
-  d.wheel_scale_error = P.wheel_scale_sigma * N01(rng);
+  d.wheel_scale_error = P.wheel_scale_sigma * N01(rng) + P.wheel_scale_offset;
   d.gyro_bias = P.gyro_bias_sigma * drawVector3(N01, rng);
   const double bias_mag = U(P.gps_bias_min, P.gps_bias_max), bias_dir = U(0, 2 * kPi);
   d.gps_bias0 = bias_mag * Eigen::Vector2d(std::cos(bias_dir), std::sin(bias_dir));
@@ -123,10 +169,11 @@ Drive simulateDrive(const Polyline& route, const DriveParams& P, const geo::EnuC
   d.distance.resize(n);
   for (int k = 0; k < n; ++k) {
     const double t = k * dt, s = std::min(L, d.speed * t);
-    const double yaw = headingAt(s);
+    const double yaw = interpolated(heading, s);
     const Eigen::Vector3d p =
         pointAt(path, cum, s) + lateral * Eigen::Vector3d(-std::sin(yaw), std::cos(yaw), 0.0);
-    const double pitch = P.pitch_amplitude * std::sin(2 * kPi * P.pitch_frequency * t + phase_p);
+    const double pitch = interpolated(grade_pitch, s) +
+                         P.pitch_amplitude * std::sin(2 * kPi * P.pitch_frequency * t + phase_p);
     const double roll = P.roll_amplitude * std::sin(2 * kPi * P.roll_frequency * t + phase_r);
     d.stamps[k] = t;
     d.truth[k] = poseFromXyzRpy(p.x(), p.y(), p.z(), roll, pitch, yaw);
@@ -153,6 +200,7 @@ Drive simulateDrive(const Polyline& route, const DriveParams& P, const geo::EnuC
     d.imu[k].accel = d.truth[k].linear().transpose() * (acc + Eigen::Vector3d(0, 0, kGravity)) +
                      P.accel_noise * drawVector3(N01, rng);
   }
+  mountImu(d.imu, P.imu_pitch_mount);  // an injected mount error (trust tests)
   // Wheel speed at the wheel rate.
   const int wheel_every = std::max(1, static_cast<int>(std::lround(P.imu_rate / P.wheel_rate)));
   for (int k = 0; k < n; k += wheel_every)

@@ -88,6 +88,21 @@ double smoothstep(double x) {
   return x * x * (3.0 - 2.0 * x);
 }
 
+/// Lifts every lane and true element onto the terrain z = A (sin(kx + a) + sin(ky + b)): each
+/// point keeps its height above the road surface beneath it.
+void liftOntoTerrain(World& world, const ProceduralParams& P, double phase_a, double phase_b) {
+  if (P.hill_grade <= 0.0) return;
+  const double k = 2.0 * kPi / P.hill_wavelength, A = P.hill_grade / k;
+  auto lift = [&](Eigen::Vector3d& p) {
+    p.z() += A * (std::sin(k * p.x() + phase_a) + std::sin(k * p.y() + phase_b));
+  };
+  for (Lane& lane : world.lanes)
+    for (auto& p : lane.centerline) lift(p);
+  for (MapInstance& m : world.truth.instances)
+    for (auto& p : m.points) lift(p);
+  world.stats["hill_amplitude_m"] = 2.0 * A;
+}
+
 }  // namespace
 
 World buildProceduralWorld(const ProceduralParams& P, const geo::GeoOrigin& origin, uint64_t seed) {
@@ -253,6 +268,10 @@ World buildProceduralWorld(const ProceduralParams& P, const geo::GeoOrigin& orig
         }
       }
   connectLanesByEndpoints(B.world, 0.05);
+  if (P.hill_grade > 0.0) {  // drawn only for a hilly world: flat worlds keep their draws
+    const double phase_a = B.uniform(0, 2 * kPi), phase_b = B.uniform(0, 2 * kPi);
+    liftOntoTerrain(B.world, P, phase_a, phase_b);
+  }
   World& W = B.world;
   W.stats["intersections"] = G * G;
   W.stats["roads"] = 2.0 * G * (G - 1);

@@ -22,12 +22,17 @@ namespace mapfuse::sim {
 
 /// Parameters of the crowd; each declared once, in the visit() of the struct that owns it.
 struct CrowdSettings {
-  uint64_t seed = 42;            ///< every random draw derives from it
-  int traversals = 20;           ///< drives
-  int vehicles = 4;              ///< traversal i uses vehicle i % vehicles
-  int routes = 4;                ///< distinct routes; traversal i drives route i % routes
-  double route_length = 1500.0;  ///< m
-  ProceduralParams world;        ///< the procedural world (when no map is given)
+  uint64_t seed = 42;               ///< every random draw derives from it
+  int traversals = 20;              ///< drives
+  int vehicles = 4;                 ///< traversal i uses vehicle i % vehicles
+  int routes = 4;                   ///< distinct routes; traversal i drives route i % routes
+  double route_length = 1500.0;     ///< m
+  bool route_outward = false;       ///< routes never turn back towards their start
+  int inject_pitch_traversal = -1;  ///< this traversal's IMU is pitched by inject_pitch
+  double inject_pitch = 0.0087;     ///< rad (0.5 deg)
+  int inject_wheel_traversal = -1;  ///< this traversal's wheel scale is off by inject_wheel_scale
+  double inject_wheel_scale = 0.02;
+  ProceduralParams world;  ///< the procedural world (when no map is given)
   DriveParams drive;
   CameraParams camera;
   ObservationParams obs;
@@ -42,6 +47,14 @@ struct CrowdSettings {
       in(1, 100000));
     v("routes", routes, "", "distinct routes; traversal i drives route i % routes", in(1, 10000));
     v("route_length", route_length, "m", "target length of a route", in(50, 1e6));
+    v("route_outward", route_outward, "",
+      "routes take the successor leading farthest from their start (they never loop back)");
+    v("inject_pitch_traversal", inject_pitch_traversal, "",
+      "traversal whose IMU is mounted pitched by inject_pitch (-1: none)", in(-1, 1000000));
+    v("inject_pitch", inject_pitch, "rad", "injected IMU mount pitch", in(-0.5, 0.5));
+    v("inject_wheel_traversal", inject_wheel_traversal, "",
+      "traversal whose wheel scale is off by inject_wheel_scale (-1: none)", in(-1, 1000000));
+    v("inject_wheel_scale", inject_wheel_scale, "", "injected wheel scale error", in(-0.5, 0.5));
     world.visit(v);
     drive.visit(v);
     // a drive holds route_length / speed * imu_rate samples of ~0.4 kB

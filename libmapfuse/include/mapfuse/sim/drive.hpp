@@ -35,15 +35,17 @@ struct DriveParams {
   double gps_reported_sigma_h = 2.5;      ///< m, sigma the receiver reports
   double gps_reported_sigma_v = 4.0;      ///< m
   double wheel_scale_sigma = 0.01;        ///< per-traversal wheel scale error, 1-sigma
-  double wheel_speed_noise = 0.05;        ///< m/s, white noise per wheel sample
-  double gyro_bias_sigma = 0.0005;        ///< rad/s, per-traversal bias per axis
-  double gyro_noise_density = 0.0005;     ///< rad/s/sqrt(Hz)
-  double accel_noise = 0.05;              ///< m/s^2 per sample
-  double attitude_noise = 0.001;          ///< rad, levelled roll/pitch noise of the odometry
-  double pitch_amplitude = 0.01;          ///< rad, body pitch oscillation
-  double pitch_frequency = 0.7;           ///< Hz
-  double roll_amplitude = 0.005;          ///< rad, body roll oscillation
-  double roll_frequency = 0.5;            ///< Hz
+  double imu_pitch_mount = 0.0;     ///< rad, IMU mounted pitched against the body (injected bias)
+  double wheel_scale_offset = 0.0;  ///< added to the drawn wheel scale error (injected bias)
+  double wheel_speed_noise = 0.05;  ///< m/s, white noise per wheel sample
+  double gyro_bias_sigma = 0.0005;  ///< rad/s, per-traversal bias per axis
+  double gyro_noise_density = 0.0005;  ///< rad/s/sqrt(Hz)
+  double accel_noise = 0.05;           ///< m/s^2 per sample
+  double attitude_noise = 0.001;       ///< rad, levelled roll/pitch noise of the odometry
+  double pitch_amplitude = 0.01;       ///< rad, body pitch oscillation
+  double pitch_frequency = 0.7;        ///< Hz
+  double roll_amplitude = 0.005;       ///< rad, body roll oscillation
+  double roll_frequency = 0.5;         ///< Hz
 
   template <class V>
   void visit(V& v) {
@@ -80,6 +82,10 @@ struct DriveParams {
       gt(0) & le(1000));
     v("wheel_scale_sigma", wheel_scale_sigma, "", "per-traversal wheel scale error, 1-sigma",
       in(0, 1));
+    v("imu_pitch_mount", imu_pitch_mount, "rad",
+      "IMU pitched against the body: gyro and accel read in the tilted frame", in(-0.5, 0.5));
+    v("wheel_scale_offset", wheel_scale_offset, "", "added to every drive's wheel scale error",
+      in(-0.5, 0.5));
     v("wheel_speed_noise", wheel_speed_noise, "m/s", "wheel speed white noise", in(0, 100));
     v("gyro_bias_sigma", gyro_bias_sigma, "rad/s", "per-traversal gyro bias per axis", in(0, 1));
     v("gyro_noise_density", gyro_noise_density, "rad/s/sqrt(Hz)", "gyro white noise density",
@@ -138,7 +144,10 @@ struct Drive {
 
 /// @brief Random walks on the lane graph: `count` routes of about `length` m (shorter at dead
 /// ends), each the concatenated centreline of its lanes, cut 1 km past `length` at the most.
-std::vector<Polyline> planRoutes(const World& world, int count, double length, uint64_t seed);
+/// `outward`: at each lane end the route takes, of the lanes not yet driven, the one whose end
+/// lies farthest from the route's start, so it never returns (a drive with nothing to loop on).
+std::vector<Polyline> planRoutes(const World& world, int count, double length, uint64_t seed,
+                                 bool outward = false);
 
 /// @brief Simulates one traversal of `route`. @param seed this traversal's own seed.
 Drive simulateDrive(const Polyline& route, const DriveParams& params, const geo::EnuConverter& enu,

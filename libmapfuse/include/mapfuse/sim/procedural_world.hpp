@@ -21,6 +21,8 @@ struct ProceduralParams {
   double traffic_light_fraction = 0.5;  ///< share of intersections with traffic lights
   double crosswalk_probability = 0.5;   ///< per intersection arm without lights
   double pole_spacing = 60.0;           ///< m between street-lamp poles along a road side
+  double hill_grade = 0.0;              ///< max grade along a grid axis (0: a flat world)
+  double hill_wavelength = 800.0;       ///< m, wavelength of the terrain's hills
 
   template <class V>
   void visit(V& v) {
@@ -42,10 +44,18 @@ struct ProceduralParams {
       "procedural: crosswalk per arm without lights", in(0, 1));
     v("world_pole_spacing", pole_spacing, "m", "procedural: street-lamp spacing",
       gt(5) & le(100000));
+    // terrain z = A (sin(kx + a) + sin(ky + b)), k = 2 pi / wavelength, A = grade / k: a road
+    // along a grid axis climbs at most `grade`, crosses its crests and sags every half
+    // wavelength and leans across by up to `grade` where the other term slopes (cross-slope)
+    v("world_hill_grade", hill_grade, "", "procedural: max terrain grade along a grid axis",
+      in(0, 0.3));
+    v("world_hill_wavelength", hill_wavelength, "m", "procedural: wavelength of the hills",
+      gt(50) & le(100000));
   }
 };
 
-/// @brief Builds the procedural world around `origin` (ENU, flat road surface z = 0).
+/// @brief Builds the procedural world around `origin` (ENU; the road surface is the terrain,
+/// z = 0 when hill_grade is 0; elements keep their heights above it).
 /// @throws ConfigError when the grid is too small for the radius.
 World buildProceduralWorld(const ProceduralParams& params, const geo::GeoOrigin& origin,
                            uint64_t seed);
