@@ -5,7 +5,8 @@
 # it (exit 4, not a 2 GB read); stitch checks its maps against tiles.json (a tile without its
 # map, the same map twice, a map of no tile: exit 2; a tile core that is not the grid's: exit 3);
 # balance without tiles is exit 3; evaluate map warns about an empty truth and a truth 2 km
-# away (a 'problems' line in the summary) and with --strict refuses them (exit 3).
+# away (a 'problems' line in the summary) and with --strict refuses them (exit 3); localize on
+# a map 2 km away names the drive and the cause (outside the map, not no markings).
 set -euo pipefail
 HERE="$(cd "$(dirname "$0")" && pwd)"
 source "$HERE/lib/scratch.sh"  # BIN; TMP, the working folder
@@ -83,4 +84,9 @@ for truth in empty.json far.json; do
     --truth $truth -o evs_$truth
 done
 grep -q "do not overlap" "ev_far.json/evaluate.summary.json" || fail "far truth: no overlap reason"
+
+# localize on a map 2 km away: every keyframe lost, the message names the drives and the cause.
+lsm0=$(ls geo/*.cbor | head -1)
+expect 3 "$lsm0: [0-9]+ of [0-9]+ keyframes lost \\(0 no markings to match.*outside the map" \
+  "$BIN/localize" -q --map far.json -o loc "$lsm0"
 echo "refuse_nonsense: ok"
