@@ -1,4 +1,4 @@
-#include "mapfuse/io/kitti_sequence.hpp"
+#include "kitti_sequence.hpp"
 
 #include <algorithm>
 #include <cmath>
