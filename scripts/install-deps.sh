@@ -22,6 +22,9 @@ PACKAGES=(
   # PCL's converters (23 MB beside libpcl-dev): tests/e2e/point_cloud_viewers.sh reads map.pcd
   # with pcl_pcd2ply
   pcl-tools
+  # the real Lanelet2 library that tests/e2e/lanelet2_validate.sh builds from ../shared/tools/lanelet2
+  # (cached outside the repository, in ~/.cache/mapfuse/lanelet2-build)
+  libboost-filesystem-dev libboost-serialization-dev libboost-program-options-dev
 )
 
 missing=()

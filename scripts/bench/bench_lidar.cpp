@@ -178,7 +178,7 @@ int main(int argc, char** argv) {
   const io::KittiRawDrive drive = io::openKittiRawDrive(drive_dir, {});
   auto poses = lidar::oxtsVeloPoses(drive, false);
   lidar::recenter(poses);
-  const auto fset = lidar::fusionForDrive(p.fusion, drive);
+  const auto& fset = p.fusion;
   lidar::FrameSemantics semantics(drive, p.semantics);
   std::vector<io::VelodyneScan> scans;
   std::vector<io::SemanticImage> sems;
@@ -203,7 +203,7 @@ int main(int argc, char** argv) {
     forests = lidar::ClusterClassifier::load(classifier_dir);
     if (train_drives.empty()) em_note = "forests loaded from " + classifier_dir;
   }
-  const auto P = drive.calib.veloToImage2();
+  const auto P = lidar::ImageProjection::of(drive.calib);
   for (int with_em = 0; with_em <= (forests.empty() ? 0 : 1); ++with_em) {
     const lidar::ClusterClassifier none;
     const lidar::ClusterClassifier& cls = with_em ? forests : none;
@@ -279,7 +279,7 @@ int main(int argc, char** argv) {
   pk.semantics.model = model;
   const io::KittiRawDrive kd = io::openKittiRawDrive(kitti, io::FrameRange{0, kitti_frames - 1, 1});
   lidar::FrameSemantics enet(kd, pk.semantics);
-  const auto kset = lidar::fusionForDrive(pk.fusion, kd);
+  const auto& kset = pk.fusion;
   lidar::SemanticVoxelMap kmap(pk.voxel_size, static_cast<float>(pk.min_log_prob));
   double t_net = 0, t_lab = 0;
   for (const auto& f : kd.frames) {
@@ -288,8 +288,8 @@ int main(int argc, char** argv) {
     const auto sem = enet.get(f);
     t_net += since(t);
     t = Clock::now();
-    lidar::fuseFrame(kmap, scan.points, Pose3::Identity(), kd.calib.veloToImage2(), sem, forests,
-                     kset);
+    lidar::fuseFrame(kmap, scan.points, Pose3::Identity(), lidar::ImageProjection::of(kd.calib),
+                     sem, forests, kset);
     t_lab += since(t);
   }
   const double nk = static_cast<double>(kd.frames.size());

@@ -11,20 +11,13 @@
 #include "mapfuse/io/map_png.hpp"
 #include "mapfuse/io/picture_key.hpp"
 #include "mapfuse/io/png_decode.hpp"
+#include "support/picture_pixels.hpp"
 #include "support/test_support.hpp"
 
 using namespace mapfuse;
+using test::pixelsOf;
 
 namespace {
-int pixelsOf(const cv::Mat& bgr, const cv::Rect& area, const std::array<uint8_t, 3>& rgb) {
-  int n = 0;
-  for (int r = area.y; r < area.y + area.height; ++r)
-    for (int c = area.x; c < area.x + area.width; ++c) {
-      const cv::Vec3b p = bgr.at<cv::Vec3b>(r, c);
-      n += p[2] == rgb[0] && p[1] == rgb[1] && p[0] == rgb[2];
-    }
-  return n;
-}
 MapInstance instance(CrowdClass c, std::vector<Eigen::Vector3d> pts) {
   MapInstance m;
   m.cls = c;

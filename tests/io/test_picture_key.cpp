@@ -3,20 +3,10 @@
 #include <catch2/catch.hpp>
 
 #include "mapfuse/io/picture_key.hpp"
+#include "support/picture_pixels.hpp"
 
 using namespace mapfuse;
-
-namespace {
-int pixelsOf(const cv::Mat& bgr, const cv::Rect& area, const std::array<uint8_t, 3>& rgb) {
-  int n = 0;
-  for (int r = area.y; r < area.y + area.height; ++r)
-    for (int c = area.x; c < area.x + area.width; ++c) {
-      const cv::Vec3b p = bgr.at<cv::Vec3b>(r, c);
-      n += p[2] == rgb[0] && p[1] == rgb[1] && p[0] == rgb[2];
-    }
-  return n;
-}
-}  // namespace
+using test::pixelsOf;
 
 TEST_CASE("Picture key: the scale bar is the longest 1-2-5 length that fits", "[io][picture]") {
   CHECK(io::scaleBarLength(0.1, 170) == Approx(10.0));  // 17 m fit

@@ -91,10 +91,9 @@ TEST_CASE("drive 0005 frame 0 scan projects onto image_02 as the calibration say
   CHECK(v0 > 172.9);
   CHECK(v0 < 260);
 
-  lidar::ProjectionSettings s;
-  s.image_width = drive.calib.image_width;
-  s.image_height = drive.calib.image_height;
-  const auto pr = lidar::projectScan(scan.points, lib, s);
+  const lidar::ProjectionSettings s;
+  const lidar::ImageProjection camera{lib, drive.calib.image_width, drive.calib.image_height};
+  const auto pr = lidar::projectScan(scan.points, camera, s);
   std::size_t in_range = 0, in_fov = 0;
   const double half_fov = std::atan2(1242.0 / 2.0, 721.5377) * 180.0 / M_PI;  // ~40.7 deg
   for (const auto& p : scan.points) {

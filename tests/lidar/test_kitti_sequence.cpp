@@ -7,8 +7,8 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/kitti_calib.hpp"
+#include "mapfuse/io/kitti_raw.hpp"
 #include "mapfuse/io/kitti_poses.hpp"
-#include "mapfuse/io/kitti_sequence.hpp"
 #include "mapfuse/io/png_frames.hpp"
 #include "mapfuse/io/semantic_image.hpp"
 #include "mapfuse/io/semantic_kitti.hpp"
@@ -49,7 +49,6 @@ fs::path makeSequence(const fs::path& root, bool with_poses) {
 
 TEST_CASE("a KITTI odometry sequence folder opens like a raw drive", "[lidar][io]") {
   const fs::path seq = makeSequence(test::tempDir("sequence"), false);
-  CHECK(io::isKittiSequence(seq));
   const auto d = io::openKittiRawDrive(seq, {});
   CHECK(d.layout == "sequence");
   REQUIRE(d.frames.size() == 6);
@@ -74,6 +73,18 @@ TEST_CASE("a KITTI odometry sequence folder opens like a raw drive", "[lidar][io
   test::writeText(seq / "times.txt", "0.0\nsoon\n");
   CHECK_THROWS_WITH(io::openKittiRawDrive(seq, {}),
                     Catch::Contains("times.txt") && Catch::Contains("line 2"));
+  // Times going back, fewer times than scans, and a missing calib.txt name the file (issue 37).
+  test::writeText(seq / "times.txt", "0.0\n0.1\n0.05\n0.3\n0.4\n0.5\n");
+  CHECK_THROWS_WITH(io::openKittiRawDrive(seq, {}), Catch::Contains("times.txt") &&
+                                                        Catch::Contains("line 3") &&
+                                                        Catch::Contains("goes back"));
+  test::writeText(seq / "times.txt", "0.0\n0.1\n0.2\n");
+  CHECK_THROWS_WITH(io::openKittiRawDrive(seq, {}), Catch::Contains("times.txt") &&
+                                                        Catch::Contains("line 4") &&
+                                                        Catch::Contains("000003"));
+  fs::remove(seq / "calib.txt");
+  CHECK_THROWS_WITH(io::openKittiRawDrive(seq, {}),
+                    Catch::Contains("calib.txt") && Catch::Contains("missing"));
 }
 
 TEST_CASE("poses files: T_world_cam0 in and out, lines matched to frames", "[lidar][io]") {

@@ -14,8 +14,8 @@
 #include "mapfuse/io/opendrive.hpp"
 #include "mapfuse/sim/drive.hpp"
 #include "mapfuse/sim/map_world.hpp"
-#include "mapfuse/sim/opendrive_geometry.hpp"
 #include "mapfuse/sim/opendrive_world.hpp"
+#include "sim/opendrive_geometry.hpp"
 #include "support/test_support.hpp"
 
 using namespace mapfuse;

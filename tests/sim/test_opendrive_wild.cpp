@@ -13,8 +13,8 @@
 #include "mapfuse/geo/map_projection.hpp"
 #include "mapfuse/io/opendrive.hpp"
 #include "mapfuse/sim/map_world.hpp"
-#include "mapfuse/sim/opendrive_geometry.hpp"
 #include "mapfuse/sim/opendrive_world.hpp"
+#include "sim/opendrive_geometry.hpp"
 #include "support/test_support.hpp"
 
 using namespace mapfuse;

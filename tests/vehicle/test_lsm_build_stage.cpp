@@ -132,9 +132,11 @@ TEST_CASE("lsm-build rejects bad inputs with clear errors and exit codes") {
     CHECK(vehicle::observationsFromMask(empty, 20).empty());
   }
   SECTION("not a drive folder -> exit 3; missing folder -> exit 4; poses count mismatch -> 3") {
-    const auto d = test::tempDir("lsm_not_a_drive");
-    CHECK(runApp(d, d / "out") == 3);
-    CHECK(runApp(d / "missing", d / "out") == 4);
+    const auto d = test::tempDir("lsm_not_a_drive") / "drive";
+    std::filesystem::create_directories(d);
+    // The output beside the input: an output inside the drive folder is refused first (exit 2).
+    CHECK(runApp(d, d.parent_path() / "out") == 3);
+    CHECK(runApp(d / "missing", d.parent_path() / "out") == 4);
     const auto good = damagedCopy("lsm_poses");
     test::writeText(good.parent_path() / "poses.txt", "1 0 0 0 0 1 0 0 0 0 1 0\n");
     CHECK(runApp(good, good.parent_path() / "out",

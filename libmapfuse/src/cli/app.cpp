@@ -4,6 +4,9 @@
 #include <fstream>
 #include <iostream>
 
+#include "mapfuse/cli/output_guard.hpp"
+#include "version.hpp"
+
 namespace mapfuse::cli {
 
 void addCommonOptions(CLI::App& app, CommonOptions& common) {
@@ -63,6 +66,8 @@ int run(CLI::App& app, int argc, char** argv, const std::function<void()>& body)
       g_deferred = nullptr;
       std::rethrow_exception(e);
     }
+    if (!app.get_option_no_throw("--version"))
+      app.set_version_flag("--version", versionText(), "Print the mapfuse version and exit");
     try {
       app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -72,9 +77,12 @@ int run(CLI::App& app, int argc, char** argv, const std::function<void()>& body)
     } catch (const CLI::CallForVersion& e) {
       return app.exit(e);
     } catch (const CLI::ParseError& e) {
-      app.exit(e);
+      // CLI11's own errors (missing argument, unknown option) in the one-line form of every
+      // other error.
+      std::cerr << tool << ": error: " << e.what() << " (see " << tool << " --help)\n";
       return static_cast<int>(ExitCode::kUsage);
     }
+    checkOutputsOfCommandLine(app);  // before any work: -o never overlaps an input
     body();
     return static_cast<int>(ExitCode::kOk);
   } catch (const Error& e) {

@@ -401,6 +401,10 @@ nlohmann::json toJson(const ClassMetrics& m) {
                                                                 : nlohmann::json(nullptr)},
                       {"relative_error", toJson(m.relative)},
                       {"absolute_error", toJson(m.absolute)}};
+  if (!m.relative.count)
+    j["relative_precision_reason"] = m.truth_count == 0 ? "no truth element of this class"
+                                     : m.map_count == 0 ? "no map element of this class"
+                                                        : "no map element matched the truth";
   if (m.by_length) {
     j["truth_length_m"] = m.truth_length;
     j["map_length_m"] = m.map_length;

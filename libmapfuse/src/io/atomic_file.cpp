@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -11,6 +12,11 @@
 #include "mapfuse/io/output_transaction.hpp"
 
 namespace mapfuse::io {
+namespace {
+/// Largest file readBytes reads whole [bytes]: a cap so that a mistaken path (a disk image, a
+/// huge log) fails at once naming the file instead of exhausting memory (exit 1).
+constexpr std::uintmax_t kMaxReadBytes = std::uintmax_t(4) << 30;
+}  // namespace
 
 void writeFileAtomic(const std::filesystem::path& path,
                      const std::function<void(std::ostream&)>& write) {
@@ -45,7 +51,16 @@ void writeBytesAtomic(const std::filesystem::path& path, const std::string& byte
 }
 
 std::string readBytes(const std::filesystem::path& path) {
-  if (std::filesystem::is_directory(path)) throw IoError(path.string(), "is a folder, not a file");
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw IoError(path.string(), "is a folder, not a file");
+  // /dev/zero or a FIFO would be read without end (2.1 GB, then "out of memory", exit 1).
+  if (fs::exists(path, ec) && !fs::is_regular_file(path, ec))
+    throw IoError(path.string(), "is not a regular file (a device or pipe); give a file");
+  if (const auto size = fs::file_size(path, ec); !ec && size > kMaxReadBytes)
+    throw IoError(path.string(), "is " + std::to_string(size >> 20) + " MiB, more than the " +
+                                     std::to_string(kMaxReadBytes >> 20) +
+                                     " MiB a mapfuse document may hold");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path.string(), std::string("cannot open: ") + std::strerror(errno));
   std::ostringstream ss;

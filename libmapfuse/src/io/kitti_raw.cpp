@@ -8,7 +8,7 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
-#include "mapfuse/io/kitti_sequence.hpp"
+#include "kitti_sequence.hpp"
 #include "mapfuse/io/oxts_line.hpp"
 
 namespace mapfuse::io {

@@ -1,4 +1,4 @@
-#include "mapfuse/io/kitti_sequence.hpp"
+#include "kitti_sequence.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -27,7 +27,7 @@ bool pngSize(const fs::path& path, int* w, int* h) {
   return *w > 0 && *h > 0;
 }
 
-/// times.txt: one time in seconds per line; empty when absent.
+/// times.txt: one time in seconds per line, never going back; empty when absent.
 std::vector<double> readTimes(const fs::path& path) {
   std::vector<double> out;
   if (!fs::exists(path)) return out;
@@ -46,6 +46,10 @@ std::vector<double> readTimes(const fs::path& path) {
       throw ParseError(path.string(), "line " + std::to_string(n),
                        "not a time in seconds: '" + line + "'");
     }
+    if (out.size() > 1 && out.back() < out[out.size() - 2])
+      throw ParseError(path.string(), "line " + std::to_string(n),
+                       "time goes back (" + std::to_string(out.back()) + " s after " +
+                           std::to_string(out[out.size() - 2]) + " s)");
   }
   return out;
 }
@@ -53,8 +57,14 @@ std::vector<double> readTimes(const fs::path& path) {
 }  // namespace
 
 bool isKittiSequence(const fs::path& dir) {
-  return fs::is_directory(dir / "velodyne") && fs::exists(dir / "calib.txt") &&
-         !fs::is_directory(dir / "velodyne_points");
+  const bool sequence =
+      fs::is_directory(dir / "velodyne") && !fs::is_directory(dir / "velodyne_points");
+  // A sequence without calib.txt would otherwise be taken for a raw drive ("velodyne_points/data:
+  // folder not found"): name the file that is missing.
+  if (sequence && !fs::exists(dir / "calib.txt"))
+    throw IoError((dir / "calib.txt").string(),
+                  "missing: a KITTI odometry sequence (velodyne/) needs its calib.txt");
+  return sequence;
 }
 
 KittiCalibration readKittiSequenceCalibration(const fs::path& dir) {
@@ -94,7 +104,12 @@ KittiRawDrive openKittiSequence(const fs::path& dir_in, const FrameRange& range)
     f.velodyne = path;
     const fs::path img = drive.dir / "image_2" / (f.name + ".png");
     if (fs::exists(img)) f.image = img;
-    if (n < static_cast<long>(times.size())) f.timestamp = times[static_cast<std::size_t>(n)];
+    if (n < static_cast<long>(times.size()))
+      f.timestamp = times[static_cast<std::size_t>(n)];
+    else if (!times.empty())  // a time for some frames only: the stamps would be made up
+      throw ParseError((drive.dir / "times.txt").string(), "line " + std::to_string(n + 1),
+                       "missing: " + std::to_string(times.size()) + " times for scan " +
+                           path.filename().string() + " (frame " + std::to_string(n) + ")");
     drive.frames.push_back(f);
   }
   if (drive.frames.empty())

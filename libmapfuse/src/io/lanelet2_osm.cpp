@@ -125,13 +125,10 @@ const Lanelet2LineString* Lanelet2Map::way(int64_t id) const {
   return it == way_index.end() ? nullptr : &linestrings[it->second];
 }
 
-Lanelet2Map parseLanelet2Osm(const std::string& xml, const std::string& file) {
-  pugi::xml_document doc;
-  const pugi::xml_node osm = detail::xmlRoot(doc, xml, file, "osm");
-
-  Lanelet2Map map;
-  map.file = file;
-  // Nodes.
+namespace {
+/// The nodes (id -> position); tagged points (poles, ...) go to map.points.
+std::unordered_map<int64_t, geo::LatLonAlt> readNodes(const pugi::xml_node& osm,
+                                                      const std::string& file, Lanelet2Map& map) {
   std::unordered_map<int64_t, geo::LatLonAlt> nodes;
   for (const pugi::xml_node n : osm.children("node")) {
     const int64_t id = parseId(n, "id", file, "node");
@@ -158,8 +155,12 @@ Lanelet2Map parseLanelet2Osm(const std::string& xml, const std::string& file) {
     if (type != tags.end() && !isDashMarker(type->second))
       map.points.push_back({id, type->second, tags, p});
   }
-  map.node_count = nodes.size();
-  // Ways.
+  return nodes;
+}
+
+/// The ways as line strings of the nodes they reference, typed by their tags.
+void readWays(const pugi::xml_node& osm, const std::string& file,
+              const std::unordered_map<int64_t, geo::LatLonAlt>& nodes, Lanelet2Map& map) {
   for (const pugi::xml_node w : osm.children("way")) {
     Lanelet2LineString ls;
     ls.id = parseId(w, "id", file, "way");
@@ -188,7 +189,10 @@ Lanelet2Map parseLanelet2Osm(const std::string& xml, const std::string& file) {
       throw ParseError(file, where, "duplicate way id");
     map.linestrings.push_back(std::move(ls));
   }
-  // Relations.
+}
+
+/// The relations: lanelets with their bounds, regulatory elements; other types are counted.
+void readRelations(const pugi::xml_node& osm, const std::string& file, Lanelet2Map& map) {
   for (const pugi::xml_node r : osm.children("relation")) {
     const int64_t id = parseId(r, "id", file, "relation");
     const std::string where = elementName("relation", id);
@@ -248,6 +252,18 @@ Lanelet2Map parseLanelet2Osm(const std::string& xml, const std::string& file) {
       ++map.skipped_relation_types[type.empty() ? "(none)" : type];
     }
   }
+}
+}  // namespace
+
+Lanelet2Map parseLanelet2Osm(const std::string& xml, const std::string& file) {
+  pugi::xml_document doc;
+  const pugi::xml_node osm = detail::xmlRoot(doc, xml, file, "osm");
+  Lanelet2Map map;
+  map.file = file;
+  const auto nodes = readNodes(osm, file, map);
+  map.node_count = nodes.size();
+  readWays(osm, file, nodes, map);
+  readRelations(osm, file, map);
   return map;
 }
 

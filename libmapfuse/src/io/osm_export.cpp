@@ -227,8 +227,10 @@ std::string vectorMapToOsm(const VectorMap& map, const std::vector<DrivePath>& d
         const auto [left, right] = crosswalkBounds(m.points);
         const int64_t l = osm.way(left, idTag(m, {{"type", "zebra_marking"}}));
         const int64_t r = osm.way(right, idTag(m, {{"type", "zebra_marking"}}));
-        osm.relation({{"way", l, "left"}, {"way", r, "right"}},
-                     idTag(m, {{"type", "lanelet"}, {"subtype", "crosswalk"}, {"one_way", "no"}}));
+        osm.relation({{"way", l, "left"}, {"way", r, "right"}}, idTag(m, {{"type", "lanelet"},
+                                                                          {"subtype", "crosswalk"},
+                                                                          {"location", "urban"},
+                                                                          {"one_way", "no"}}));
         ++stats.crosswalk_lanelets;
         break;
       }
@@ -328,8 +330,12 @@ std::string vectorMapToOsm(const VectorMap& map, const std::vector<DrivePath>& d
       double top = corners.front().z();
       for (const auto& q : corners) top = std::max(top, q.z());
       const double height = top - 0.5 * (corners[a].z() + corners[b].z());
-      const int64_t w = osm.way({corners[a], corners[b]},
-                                idTag(m, {{"type", "traffic_sign"}, {"height", fixed(height, 3)}}));
+      const int64_t w = osm.way(
+          {corners[a], corners[b]},
+          // Lanelet2 refuses a traffic_sign regulatory element whose sign has no subtype
+          // (the sign's code, "de205"): the crowd map does not classify signs, so "unknown"
+          idTag(m,
+                {{"type", "traffic_sign"}, {"subtype", "unknown"}, {"height", fixed(height, 3)}}));
       const V3 c = 0.5 * (corners[a] + corners[b]);
       if (StopLine* st = nearestStop(c, kSignBehind))
         st->signs.push_back(w);

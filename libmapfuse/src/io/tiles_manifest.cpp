@@ -1,5 +1,6 @@
 #include "mapfuse/io/tiles_manifest.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -9,6 +10,23 @@
 #include "relative_path.hpp"
 
 namespace mapfuse::io {
+
+namespace {
+/// A tile's `core` must be the grid's [ix*size, iy*size, (ix+1)*size, (iy+1)*size] (formats.md
+/// "Tiled runs"): `tile` writes it, so any other value means the manifest was edited or mixed.
+void checkCore(const JsonView& core, const TilesManifestTile& tile, double size) {
+  if (core.size() != 4) core.fail("must be [min_x, min_y, max_x, max_y]");
+  const double want[4] = {double(tile.ix) * size, double(tile.iy) * size,
+                          double(tile.ix + 1) * size, double(tile.iy + 1) * size};
+  for (std::size_t k = 0; k < 4; ++k) {
+    const double got = core.at(k).number();
+    if (std::abs(got - want[k]) > kCoreTolerance * std::max(1.0, std::abs(want[k])))
+      core.at(k).fail(std::to_string(got) + " is not the grid's " + std::to_string(want[k]) +
+                      " for tile (" + std::to_string(tile.ix) + ", " + std::to_string(tile.iy) +
+                      ")");
+  }
+}
+}  // namespace
 
 TilesManifest tilesManifestFromJson(const Json& doc, const std::string& file) {
   const JsonView v(doc, file);
@@ -36,6 +54,7 @@ TilesManifest tilesManifestFromJson(const Json& doc, const std::string& file) {
     if (!keys.insert({tile.ix, tile.iy}).second)
       t.at("iy").fail("tile (" + std::to_string(tile.ix) + ", " + std::to_string(tile.iy) +
                       ") given twice");
+    if (auto core = t.find("core")) checkCore(*core, tile, m.tile_size);
     const JsonView lsms = t.at("lsms");
     for (std::size_t k = 0; k < lsms.size(); ++k) {
       const std::string f = lsms.at(k).string();

@@ -21,11 +21,11 @@ TrainingDriveStats collectSamples(const io::KittiRawDrive& drive, const Semantic
   const fs::path label_dir = drive.dir / "labels";
   if (!fs::is_directory(label_dir))
     throw IoError(label_dir.string(), "training drive has no labels/ folder");
-  const FrameFusionSettings fusion = fusionForDrive(s.fusion, drive);
+  const FrameFusionSettings& fusion = s.fusion;
   std::array<bool, kNumLidarClasses> mask{};
   for (int l = 1; l < kNumLidarClasses; ++l) mask[l] = true;  // no forest for "unlabeled"
   FrameSemantics semantics(drive, s.semantics, cache_dir);
-  const Eigen::Matrix<double, 3, 4> P = drive.calib.veloToImage2();
+  const ImageProjection camera = ImageProjection::of(drive.calib);
   TrainingDriveStats st;
   st.drive = drive.dir.string();
   Progress progress("training frames", drive.frames.size());
@@ -42,7 +42,7 @@ TrainingDriveStats collectSamples(const io::KittiRawDrive& drive, const Semantic
       throw ParseError(lp.string(), "size",
                        std::to_string(gt.size()) + " labels for " + std::to_string(scan.size()) +
                            " scan points");
-    const auto proj = labelScan(scan.points, P, semantics.get(f), fusion.projection);
+    const auto proj = labelScan(scan.points, camera, semantics.get(f), fusion.projection);
     std::vector<uint8_t> truth(proj.points.size());
     for (std::size_t k = 0; k < truth.size(); ++k) {
       truth[k] = static_cast<uint8_t>(

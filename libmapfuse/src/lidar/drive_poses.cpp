@@ -105,4 +105,17 @@ DrivePoses drivePoses(const io::KittiRawDrive& drive, const DrivePoseSettings& s
   return out;
 }
 
+nlohmann::json posesReport(const DrivePoses& p, const DriveOdometrySettings& odometry) {
+  nlohmann::json j = {{"source", p.source}};
+  if (p.origin_fix) {
+    const Eigen::Vector3d& t = p.origin_translation;
+    j["origin_translation"] = {t.x(), t.y(), t.z()};
+    j["origin_wgs84"] = {
+        {"lat", p.origin_fix->lat}, {"lon", p.origin_fix->lon}, {"alt", p.origin_fix->alt}};
+  }
+  if (!p.file.empty()) j["file"] = p.file.string();
+  if (p.odometry) j.update(odometryReport(*p.odometry, odometry));
+  return j;
+}
+
 }  // namespace mapfuse::lidar

@@ -10,19 +10,19 @@ namespace {
 double seconds(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
 }
-void checkSize(const io::SemanticImage& sem, const ProjectionSettings& s) {
-  if (sem.width != s.image_width || sem.height != s.image_height)
+void checkSize(const io::SemanticImage& sem, const ImageProjection& camera) {
+  if (sem.width != camera.width || sem.height != camera.height)
     throw InputError("semantics image is " + std::to_string(sem.width) + "x" +
-                     std::to_string(sem.height) + ", image_02 is " + std::to_string(s.image_width) +
-                     "x" + std::to_string(s.image_height));
+                     std::to_string(sem.height) + ", image_02 is " + std::to_string(camera.width) +
+                     "x" + std::to_string(camera.height));
 }
 }  // namespace
 
 LabeledProjection labelScan(const std::vector<Eigen::Vector3f>& scan_velo,
-                            const Eigen::Matrix<double, 3, 4>& P, const io::SemanticImage& sem,
+                            const ImageProjection& camera, const io::SemanticImage& sem,
                             const ProjectionSettings& s) {
-  checkSize(sem, s);
-  const ProjectedPoints pr = projectScan(scan_velo, P, s);
+  checkSize(sem, camera);
+  const ProjectedPoints pr = projectScan(scan_velo, camera, s);
   LabeledProjection out;
   out.points.reserve(pr.size());
   out.labels.reserve(pr.size());
@@ -35,16 +35,16 @@ LabeledProjection labelScan(const std::vector<Eigen::Vector3f>& scan_velo,
 }
 
 FrameFusionStats fuseFrame(SemanticVoxelMap& map, const std::vector<Eigen::Vector3f>& scan_velo,
-                           const Pose3& T_map_velo, const Eigen::Matrix<double, 3, 4>& P,
+                           const Pose3& T_map_velo, const ImageProjection& camera,
                            const io::SemanticImage& sem, const ClusterClassifier& classifier,
                            const FrameFusionSettings& s) {
   using Clock = std::chrono::steady_clock;
   FrameFusionStats st;
   st.points = scan_velo.size();
-  checkSize(sem, s.projection);
+  checkSize(sem, camera);
   // Coordinate alignment, eq. (2)-(3).
   const auto t0 = Clock::now();
-  const ProjectedPoints pr = projectScan(scan_velo, P, s.projection);
+  const ProjectedPoints pr = projectScan(scan_velo, camera, s.projection);
   st.projected = pr.size();
   std::vector<Eigen::Vector3f> pts(pr.size());
   std::vector<uint8_t> labels(pr.size());

@@ -37,4 +37,21 @@ MapRefinementResult refineMap(SemanticVoxelMap& map, const std::vector<Pose3>& T
   return r;
 }
 
+nlohmann::json refinementReport(const MapRefinementResult& r) {
+  nlohmann::json j = {{"enabled", r.ran}};
+  if (!r.ran) return j;
+  j["knn_removed_voxels"] = r.knn_removed_voxels;
+  if (r.ran_seen_through) {
+    j["seen_through_tested_voxels"] = r.seen_through.tested_voxels;
+    j["seen_through_removed_voxels"] = r.seen_through.removed_voxels;
+  }
+  if (r.ran_traces) {
+    j["vehicle_voxels"] = r.traces.vehicle_voxels;
+    j["vehicle_clusters"] = r.traces.clusters;
+    j["trace_clusters_removed"] = r.traces.removed_clusters;
+    j["trace_voxels_removed"] = r.traces.removed_voxels;
+  }
+  return j;
+}
+
 }  // namespace mapfuse::lidar

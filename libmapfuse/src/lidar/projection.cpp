@@ -13,16 +13,20 @@ bool projectPoint(const Eigen::Matrix<double, 3, 4>& P, const Eigen::Vector3d& p
   return true;
 }
 
+ImageProjection ImageProjection::of(const io::KittiCalibration& calib) {
+  return {calib.veloToImage2(), calib.image_width, calib.image_height};
+}
+
 ProjectedPoints projectScan(const std::vector<Eigen::Vector3f>& points_velo,
-                            const Eigen::Matrix<double, 3, 4>& P, const ProjectionSettings& s) {
+                            const ImageProjection& camera, const ProjectionSettings& s) {
   ProjectedPoints out;
   out.point_index.reserve(points_velo.size() / 4);
   out.u.reserve(points_velo.size() / 4);
   out.v.reserve(points_velo.size() / 4);
-  const Eigen::Matrix<float, 3, 4> Pf = P.cast<float>();
+  const Eigen::Matrix<float, 3, 4> Pf = camera.P.cast<float>();
   const float r2min = static_cast<float>(s.min_range * s.min_range);
   const float r2max = static_cast<float>(s.max_range * s.max_range);
-  const float w = static_cast<float>(s.image_width), hgt = static_cast<float>(s.image_height);
+  const float w = static_cast<float>(camera.width), hgt = static_cast<float>(camera.height);
   for (std::size_t i = 0; i < points_velo.size(); ++i) {
     const Eigen::Vector3f& p = points_velo[i];
     const float r2 = p.squaredNorm();

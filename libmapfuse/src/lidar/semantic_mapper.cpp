@@ -28,7 +28,7 @@ struct FrameInput {
 void fuseFrames(const io::KittiRawDrive& drive, FrameSemantics& semantics,
                 const ClusterClassifier& classifier, const FrameFusionSettings& settings,
                 SemanticMapResult& r) {
-  const Eigen::Matrix<double, 3, 4> P = drive.calib.veloToImage2();
+  const ImageProjection camera = ImageProjection::of(drive.calib);
   auto read = [&](std::size_t i) {  // one call at a time: semantics is not shared otherwise
     FrameInput in;
     Stopwatch t;
@@ -49,8 +49,8 @@ void fuseFrames(const io::KittiRawDrive& drive, FrameSemantics& semantics,
     if (i + 1 < drive.frames.size()) next = std::async(std::launch::async, read, i + 1);
     r.timings.load_scans += in.t_load;
     r.timings.semantics += in.t_semantics;
-    const auto st =
-        fuseFrame(r.map, in.scan.points, r.poses.T_map_velo[i], P, in.sem, classifier, settings);
+    const auto st = fuseFrame(r.map, in.scan.points, r.poses.T_map_velo[i], camera, in.sem,
+                              classifier, settings);
     r.timings.projection += st.t_projection;
     r.timings.error_minimization += st.t_error_min;
     r.timings.fusion += st.t_fusion;
@@ -65,17 +65,11 @@ void fuseFrames(const io::KittiRawDrive& drive, FrameSemantics& semantics,
 }
 }  // namespace
 
-FrameFusionSettings fusionForDrive(FrameFusionSettings fusion, const io::KittiRawDrive& drive) {
-  fusion.projection.image_width = drive.calib.image_width;
-  fusion.projection.image_height = drive.calib.image_height;
-  return fusion;
-}
-
 SemanticMapResult buildSemanticMap(const io::KittiRawDrive& drive, const SemanticMapSettings& s,
                                    const std::filesystem::path& semantics_cache) {
   SemanticMapResult r;
   Stopwatch t;
-  const FrameFusionSettings fusion = fusionForDrive(s.fusion, drive);
+  const FrameFusionSettings& fusion = s.fusion;
   FrameSemantics semantics(drive, s.semantics, semantics_cache);  // first: refuses imageless drives
   ForestSource forests = loadForests(s.classifier_dir);
   const ClusterClassifier& classifier = forests.classifier;

@@ -6,7 +6,7 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/bounds.hpp"
-#include "mapfuse/sim/opendrive_geometry.hpp"
+#include "opendrive_geometry.hpp"
 
 namespace mapfuse::sim {
 

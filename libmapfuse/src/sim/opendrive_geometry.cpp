@@ -1,4 +1,4 @@
-#include "mapfuse/sim/opendrive_geometry.hpp"
+#include "opendrive_geometry.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -8,9 +8,9 @@
 #include "mapfuse/geo/map_projection.hpp"
 #include "mapfuse/geo/origin.hpp"
 #include "mapfuse/io/opendrive.hpp"
-#include "mapfuse/sim/opendrive_geometry.hpp"
 #include "mapfuse/sim/opendrive_world.hpp"
 #include "mapfuse/sim/world.hpp"
+#include "opendrive_geometry.hpp"
 
 namespace mapfuse::sim::detail {
 

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <map>
 
+#include "mapfuse/cli/output_guard.hpp"
 #include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
@@ -40,8 +41,8 @@ std::vector<std::pair<PieceFiles, tiling::TilePiece>> measureTile(const io::Tile
   const std::vector<int> group = tiling::registrationGroups(int(t.inputs.size()), links);
   std::vector<std::pair<PieceFiles, tiling::TilePiece>> out;
   for (std::size_t i = 0; i < t.inputs.size(); ++i) {
-    const PieceFiles f{{{tile.ix, tile.iy}, group[i]}, tile.name, t.input_files[i],
-                       t.aligned_files[i]};
+    const PieceFiles f{
+        {{tile.ix, tile.iy}, group[i]}, tile.name, t.input_files[i], t.aligned_files[i]};
     try {
       out.emplace_back(f, tiling::measurePiece(t.inputs[i], t.aligned[i]));
     } catch (const InputError& e) {
@@ -52,7 +53,9 @@ std::vector<std::pair<PieceFiles, tiling::TilePiece>> measureTile(const io::Tile
   return out;
 }
 
-nlohmann::json toJson(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+nlohmann::json toJson(const Eigen::Vector3d& v) {
+  return {v.x(), v.y(), v.z()};
+}
 
 nlohmann::json toJson(const std::vector<tiling::GroupShift>& groups) {
   nlohmann::json out = nlohmann::json::array();
@@ -79,9 +82,14 @@ nlohmann::json runBalance(const fs::path& tiles_json, const fs::path& out,
                           const BalanceParams& params) {
   validateParams(params);
   const auto t0 = std::chrono::steady_clock::now();
-  io::OutputTransaction outputs(out);  // locked and writable before the work
   const io::TilesManifest manifest = io::readTilesManifest(tiles_json);
   const fs::path tiles_dir = tiles_json.parent_path();
+  if (manifest.tiles.empty())
+    throw InputError(tiles_json.string() + ": field 'tiles': no tiles (nothing to balance)");
+  std::vector<std::string> tile_dirs{tiles_json.string()};  // what balance reads
+  for (const auto& tile : manifest.tiles) tile_dirs.push_back((tiles_dir / tile.name).string());
+  cli::refuseOutputOverInputs(out.string(), tile_dirs);  // exit 2 before any work
+  io::OutputTransaction outputs(out);                    // locked and writable before the work
 
   // Pass 1, tile by tile: groups and what align did to every piece. Pass 2 reads the aligned
   // LSMs again, one at a time, so that memory holds one tile, not the whole batch.

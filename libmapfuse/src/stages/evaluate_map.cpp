@@ -5,6 +5,7 @@
 #include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
+#include "mapfuse/eval/input_problems.hpp"
 #include "mapfuse/geo/origin.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/document.hpp"
@@ -86,7 +87,8 @@ nlohmann::json toJson(const EvaluateMapRun& run) {
                             {"truth_clipped_to_coverage", run.coverage_trajectories > 0},
                             {"coverage_trajectories", run.coverage_trajectories},
                             {"maps", maps},
-                            {"trajectories", traj}};
+                            {"trajectories", traj},
+                            {"problems", run.problems}};
   if (!ate.empty()) summary["trajectory_ate_rms_mean_m"] = eval::errorStats(ate).mean;
   return summary;
 }
@@ -131,6 +133,8 @@ EvaluateMapRun runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
     e.name = std::filesystem::path(in.maps[i]).filename().string();
     if (in.maps.size() > 1) e.name = in.maps[i];
     e.traversals = in.traversals.empty() ? traversalsOf(in.maps[i], map) : in.traversals[i];
+    eval::warnOrRefuse(eval::mapEvaluationProblems(map, in.maps[i], truth, in.truth), params.strict,
+                       "evaluate map", run.problems);
     e.metrics = eval::evaluateMap(map, truth, params.metrics, &unscored);
     run.maps.push_back(std::move(e));
   }

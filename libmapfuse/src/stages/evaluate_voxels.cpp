@@ -2,6 +2,8 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
+#include "mapfuse/eval/input_problems.hpp"
+#include "mapfuse/eval/voxel_checks.hpp"
 #include "mapfuse/eval/voxel_metrics.hpp"
 #include "mapfuse/eval/voxel_truth.hpp"
 #include "mapfuse/io/atomic_file.hpp"
@@ -52,6 +54,7 @@ nlohmann::json runEvaluateVoxels(const EvaluateVoxelsInputs& in, const std::file
   const io::KittiRawDrive drive = io::openKittiRawDrive(in.drive, io::FrameRange{});
   nlohmann::json doc;
   eval::ConfusionMatrix confusion;
+  std::vector<std::string> problems, noted;  // inputs that cannot be scored
   if (!in.predicted_labels.empty()) {
     // (b) per-scan predictions vs truth, point by point.
     std::size_t scans = 0;
@@ -66,6 +69,7 @@ nlohmann::json runEvaluateVoxels(const EvaluateVoxelsInputs& in, const std::file
       ++scans;
     }
     doc = {{"mode", "scans"}, {"counts", {{"scans", scans}}}};
+    problems = eval::scanLabelProblems(eval::scoreConfusion(confusion), in.drive.string());
   } else {
     // (a) voxel map vs truth voxels from the labelled scans in the same frame.
     std::vector<Pose3> poses = truthPoses(drive, in.drive, P);
@@ -85,6 +89,7 @@ nlohmann::json runEvaluateVoxels(const EvaluateVoxelsInputs& in, const std::file
     const LabeledCloud map = io::readPly(in.map);
     const eval::MapComparison cmp = eval::compareVoxelMap(map, truth);
     confusion = cmp.confusion;
+    problems = eval::voxelMapProblems(cmp, in.map.string(), in.drive.string());
     const auto share = [](uint64_t a, uint64_t b) {
       return b ? nlohmann::json(double(a) / double(b)) : nlohmann::json();
     };
@@ -103,8 +108,10 @@ nlohmann::json runEvaluateVoxels(const EvaluateVoxelsInputs& in, const std::file
           {"parked_voxels_in_map", cmp.parked_in_map},
           {"parked_kept_share", share(cmp.parked_in_map, cmp.parked_truth)}}}};
   }
+  eval::warnOrRefuse(problems, P.strict, "evaluate voxels", noted);
   const eval::LabelScores scores = eval::scoreConfusion(confusion);
   doc["scores"] = eval::scoresToJson(scores);
+  doc["problems"] = noted;
   const std::string md = eval::scoresToMarkdown(scores, P.title);
   io::writeDocument(out / "voxels.json", doc);
   io::writeBytesAtomic(out / "voxels.md", md);
@@ -113,7 +120,9 @@ nlohmann::json runEvaluateVoxels(const EvaluateVoxelsInputs& in, const std::file
                    {{"mode", doc["mode"]},
                     {"mean_iou", doc["scores"]["mean_iou"]},
                     {"mean_accuracy", doc["scores"]["mean_accuracy"]},
-                    {"evaluated", scores.evaluated}});
+                    {"evaluated", scores.evaluated},
+                    {"undefined_reason", eval::undefinedScoreReason(scores)},
+                    {"problems", noted}});
   outputs.commit();
   doc["markdown"] = md;
   return doc;

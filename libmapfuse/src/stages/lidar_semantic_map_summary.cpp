@@ -6,36 +6,6 @@ namespace mapfuse::stages {
 using json = nlohmann::json;
 
 namespace {
-json posesJson(const lidar::DrivePoses& p, const lidar::DriveOdometrySettings& odometry) {
-  json j = {{"source", p.source}};
-  if (p.origin_fix) {
-    const Eigen::Vector3d& t = p.origin_translation;
-    j["origin_translation"] = {t.x(), t.y(), t.z()};
-    j["origin_wgs84"] = {
-        {"lat", p.origin_fix->lat}, {"lon", p.origin_fix->lon}, {"alt", p.origin_fix->alt}};
-  }
-  if (!p.file.empty()) j["file"] = p.file.string();
-  if (p.odometry) j.update(lidar::odometryReport(*p.odometry, odometry));
-  return j;
-}
-
-json refinementJson(const lidar::MapRefinementResult& r) {
-  json j = {{"enabled", r.ran}};
-  if (!r.ran) return j;
-  j["knn_removed_voxels"] = r.knn_removed_voxels;
-  if (r.ran_seen_through) {
-    j["seen_through_tested_voxels"] = r.seen_through.tested_voxels;
-    j["seen_through_removed_voxels"] = r.seen_through.removed_voxels;
-  }
-  if (r.ran_traces) {
-    j["vehicle_voxels"] = r.traces.vehicle_voxels;
-    j["vehicle_clusters"] = r.traces.clusters;
-    j["trace_clusters_removed"] = r.traces.removed_clusters;
-    j["trace_voxels_removed"] = r.traces.removed_voxels;
-  }
-  return j;
-}
-
 json timingsJson(const lidar::SemanticMapResult& r, std::size_t frames) {
   const auto& t = r.timings;
   json j = {{"open", t.open},
@@ -60,7 +30,7 @@ json timingsJson(const lidar::SemanticMapResult& r, std::size_t frames) {
 
 json toJson(const lidar::SemanticMapResult& r, const lidar::DriveOdometrySettings& odometry) {
   json s;
-  s["poses"] = posesJson(r.poses, odometry);
+  s["poses"] = lidar::posesReport(r.poses, odometry);
   s["semantics"] = {{"source", r.semantics.source},
                     {"from_precomputed", r.semantics.from_precomputed},
                     {"from_cache", r.semantics.from_cache},
@@ -87,7 +57,7 @@ json toJson(const lidar::SemanticMapResult& r, const lidar::DriveOdometrySetting
   s["voxels"] = r.map.size();
   s["bytes_per_voxel"] = r.bytes_per_voxel;
   s["bytes_per_voxel_before_shrink"] = r.bytes_per_voxel_before_shrink;
-  s["refinement"] = refinementJson(r.refinement);
+  s["refinement"] = lidar::refinementReport(r.refinement);
   s["timings_s"] = timingsJson(r, r.poses.T_map_velo.size());
   return s;
 }

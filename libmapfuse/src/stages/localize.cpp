@@ -16,6 +16,7 @@
 #include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
+#include "mapfuse/localize/lost_causes.hpp"
 #include "mapfuse/localize/report.hpp"
 
 namespace mapfuse::stages {
@@ -41,6 +42,8 @@ LocalizeRun runLocalize(const LocalizeInputs& in, const std::filesystem::path& o
   if (!in.truth_map.empty()) truth_map = io::readVectorMap(in.truth_map);
   std::vector<std::optional<localize::MapToTruth>> map_to_truth(n);
   for (std::size_t i = 0; i < n; ++i) {  // every input checked before the work
+    if (lsms[i].keyframes.empty())
+      throw InputError(in.lsms[i] + ": field 'keyframes': no keyframes: nothing to localise");
     if (in.frames_dir.empty())
       obs.push_back(
           localize::observationsOf(lsms[i], params.localize.match_attributes, in.lsms[i]));
@@ -108,15 +111,15 @@ LocalizeRun runLocalize(const LocalizeInputs& in, const std::filesystem::path& o
   }
   progress.finish();
   const double share = run.lostShare();
+  std::vector<std::pair<std::string, const localize::LocalizeResult*>> by_drive;
+  for (const auto& d : run.drives) by_drive.emplace_back(d.file, &d.result);
+  const std::string why = localize::lostDiagnosis(by_drive, settings.min_matches);
   if (share > params.lost.max_lost_share)  // before commit: the previous outputs stay
-    throw InputError("localize: map lost on " + std::to_string(run.lost) + " of " +
-                     std::to_string(run.keyframes) + " keyframes (share " + std::to_string(share) +
-                     " > max_lost_share " + std::to_string(params.lost.max_lost_share) + "): map " +
-                     in.map + " does not cover the drives");
-  if (share > params.lost.warn_lost_share)
-    MAPFUSE_WARN("localize: map lost on " << run.lost << " of " << run.keyframes
-                                          << " keyframes (share " << share << ")");
+    throw InputError(why + " (share " + std::to_string(share) + " > max_lost_share " +
+                     std::to_string(params.lost.max_lost_share) + ", map " + in.map + ")");
+  if (share > params.lost.warn_lost_share) MAPFUSE_WARN("localize: " << why);
   nlohmann::json summary = toJson(run);
+  summary["lost_diagnosis"] = why;
   summary["map"] = in.map;
   summary["lost_warning"] = share > params.lost.warn_lost_share;
   io::writeResolvedConfig(out_dir, "localize", paramsToJson(params));

@@ -36,12 +36,16 @@ VectorMap runStitch(const std::filesystem::path& tiles_json, const std::vector<s
   validateParams(params);
   const auto t0 = std::chrono::steady_clock::now();
   const auto dir = out_map.has_parent_path() ? out_map.parent_path() : std::filesystem::path(".");
-  io::OutputTransaction outputs(dir);  // locked and writable before the work
   const io::TilesManifest manifest = io::readTilesManifest(tiles_json);
+  const auto tile_of = io::tileOfEachMap(manifest, tiles_json.string(), maps);  // each tile once
+  io::OutputTransaction outputs(dir);  // locked and writable before the work
   const tiling::TileGrid grid(manifest.tile_size, manifest.margin);
 
   std::vector<std::pair<tiling::TileKey, VectorMap>> tiles;
-  for (const auto& m : maps) tiles.emplace_back(tileOfPath(m), io::readVectorMap(m));
+  for (std::size_t i = 0; i < maps.size(); ++i) {
+    const auto& t = manifest.tiles[tile_of[i]];
+    tiles.emplace_back(tiling::TileKey{t.ix, t.iy}, io::readVectorMap(maps[i]));
+  }
   tiling::StitchReport report;
   const VectorMap stitched = tiling::stitchTiles(tiles, grid, params, report);
 

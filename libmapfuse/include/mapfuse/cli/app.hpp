@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "mapfuse/cli/output_guard.hpp"
 #include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
@@ -175,7 +176,7 @@ class StageTool {
   /// @brief A required option naming an existing file (e.g. --tiles). @return its path.
   const std::string& existingFile(const char* option, const char* help) {
     files_.emplace_back();
-    app_.add_option(option, files_.back(), help)->required()->check(CLI::ExistingFile);
+    app_.add_option(option, files_.back(), help)->required();  // missing: IoError, exit 4
     return files_.back();
   }
 
@@ -190,6 +191,7 @@ class StageTool {
       applyCommonOptions(common_);
       validateParams(params_);
       inputs_ = expandInputList(inputs_);
+      refuseOutputOverInputs(out_, inputs_);  // lists read from stdin are known only now
       if constexpr (std::is_void_v<std::invoke_result_t<Body&, const Params&>>)
         body(std::as_const(params_));
       else

@@ -83,4 +83,8 @@ std::vector<Pose3> cameraPosesForFile(const std::vector<Pose3>& T_map_velo,
 /// keeps z up for OXTS worlds). @return the removed translation (m).
 Eigen::Vector3d recenter(std::vector<Pose3>& T_w_velo);
 
+/// @brief Where the poses came from, for the summary: source, the origin (translation and WGS84
+/// fix), the poses file, and the odometry's report when the poses are LiDAR odometry.
+nlohmann::json posesReport(const DrivePoses& poses, const DriveOdometrySettings& odometry);
+
 }  // namespace mapfuse::lidar

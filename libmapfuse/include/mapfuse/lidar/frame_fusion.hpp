@@ -38,11 +38,10 @@ struct FrameFusionStats {
 /// @brief Labels and fuses one frame into `map`.
 /// @param scan_velo the Velodyne points
 /// @param T_map_velo pose of the scan in the map
-/// @param P_velo_to_image KittiCalibration::veloToImage2()
-/// @param semantics class evidence of image_02 (same size as the projection's image)
+/// @param camera image_02 of the drive's calibration (ImageProjection::of)
+/// @param semantics class evidence of image_02 (the camera's image size)
 FrameFusionStats fuseFrame(SemanticVoxelMap& map, const std::vector<Eigen::Vector3f>& scan_velo,
-                           const Pose3& T_map_velo,
-                           const Eigen::Matrix<double, 3, 4>& P_velo_to_image,
+                           const Pose3& T_map_velo, const ImageProjection& camera,
                            const io::SemanticImage& semantics, const ClusterClassifier& classifier,
                            const FrameFusionSettings& settings);
 
@@ -54,7 +53,7 @@ struct LabeledProjection {
   std::vector<uint32_t> scan_index;
 };
 LabeledProjection labelScan(const std::vector<Eigen::Vector3f>& scan_velo,
-                            const Eigen::Matrix<double, 3, 4>& P_velo_to_image,
-                            const io::SemanticImage& semantics, const ProjectionSettings& s);
+                            const ImageProjection& camera, const io::SemanticImage& semantics,
+                            const ProjectionSettings& s);
 
 }  // namespace mapfuse::lidar

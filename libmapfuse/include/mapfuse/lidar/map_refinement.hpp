@@ -5,6 +5,7 @@
 /// voxels (lidar/refinement.hpp). The voxels taken out keep their labels for the scan labels.
 #include <Eigen/Core>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <vector>
 
 #include "mapfuse/core/param.hpp"
@@ -57,5 +58,9 @@ using ScanSource = std::function<std::vector<Eigen::Vector3f>(std::size_t i)>;
 MapRefinementResult refineMap(SemanticVoxelMap& map, const std::vector<Pose3>& T_map_velo,
                               const ScanSource& scans, const MapRefinementSettings& settings,
                               const SensorReach& reach, int num_threads);
+
+/// @brief What refinement did, for the summary: voxels each step removed (only the steps that
+/// ran).
+nlohmann::json refinementReport(const MapRefinementResult& result);
 
 }  // namespace mapfuse::lidar

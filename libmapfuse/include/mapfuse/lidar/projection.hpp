@@ -7,14 +7,13 @@
 #include <vector>
 
 #include "mapfuse/core/param.hpp"
+#include "mapfuse/io/kitti_calib.hpp"
 
 namespace mapfuse::lidar {
 
 struct ProjectionSettings {
   double min_range = 5.0;   ///< m, Euclidean distance from the Velodyne origin
   double max_range = 50.0;  ///< m
-  int image_width = 0;      ///< px (the drive's calibration, not a parameter)
-  int image_height = 0;     ///< px (the drive's calibration, not a parameter)
 
   template <class V>
   void visit(V& v) {
@@ -22,6 +21,15 @@ struct ProjectionSettings {
     v("max_range", max_range, "m", "farthest point used for labelling", param::in(0, 1000));
     v.relation("max_range", max_range, max_range > min_range, "> min_range");
   }
+};
+
+/// The camera a scan is projected into: the drive's calibration, not a setting.
+struct ImageProjection {
+  Eigen::Matrix<double, 3, 4> P = Eigen::Matrix<double, 3, 4>::Zero();  ///< velo -> image_02
+  int width = 0;                                                        ///< px
+  int height = 0;                                                       ///< px
+  /// @brief image_02 of a KITTI calibration: veloToImage2() and S_rect_02.
+  static ImageProjection of(const io::KittiCalibration& calib);
 };
 
 /// Points of a scan that see the image, with their pixels.
@@ -38,6 +46,6 @@ bool projectPoint(const Eigen::Matrix<double, 3, 4>& P, const Eigen::Vector3d& p
 
 /// @brief eq. (2)-(3): the scan points (velo frame) that land in the image within range.
 ProjectedPoints projectScan(const std::vector<Eigen::Vector3f>& points_velo,
-                            const Eigen::Matrix<double, 3, 4>& P, const ProjectionSettings& s);
+                            const ImageProjection& camera, const ProjectionSettings& s);
 
 }  // namespace mapfuse::lidar

@@ -86,9 +86,6 @@ struct SemanticMapResult {
   SemanticMapTimings timings;
 };
 
-/// @brief `fusion` with the projection's image size taken from the drive's calibration.
-FrameFusionSettings fusionForDrive(FrameFusionSettings fusion, const io::KittiRawDrive& drive);
-
 /// @brief Builds the semantic voxel map of the selected frames of `drive`.
 /// @param semantics_cache where ENet outputs are cached (settings.semantics.cache)
 /// @throws InputError / IoError / ParseError from the inputs, the poses and the forests.

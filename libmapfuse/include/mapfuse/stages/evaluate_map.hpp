@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mapfuse/eval/map_metrics.hpp"
+#include "mapfuse/eval/map_metrics_checks.hpp"
 #include "mapfuse/eval/map_report.hpp"
 #include "mapfuse/eval/trajectory_metrics.hpp"
 
@@ -22,12 +23,16 @@ struct EvaluateMapParams {
   eval::MapEvalParams metrics;
   eval::TrajectoryEvalSettings trajectories;
   eval::CoverageWedge coverage;
+  bool strict = false;  ///< refuse (exit 3) inputs that cannot be scored, instead of a warning
 
   template <class V>
   void visit(V& v) {
     metrics.visit(v);
     trajectories.visit(v);
     coverage.visit(v);
+    v("strict", strict, "",
+      "refuse (exit 3) an empty truth, an empty map or a map that does not overlap the truth "
+      "(default: a warning and a 'problems' list in the summary)");
   }
 };
 
@@ -45,6 +50,7 @@ struct EvaluateMapRun {
   std::size_t coverage_trajectories = 0;   ///< true trajectories the truth was clipped to
   std::vector<eval::MapReportEntry> maps;  ///< per map, in input order
   std::vector<eval::TrajectoryMetrics> trajectories;  ///< per LSM, in input order
+  std::vector<std::string> problems;  ///< eval::mapEvaluationProblems of every map (warned)
 };
 
 /// @brief The summary evaluate.summary.json holds.
@@ -60,7 +66,7 @@ int traversalsOf(const std::filesystem::path& map_file, const VectorMap& map);
 
 /// @brief Runs the evaluation and writes the outputs into `out_dir`.
 /// @throws ConfigError (parameters), IoError, ParseError, InputError (e.g. --lsm without
-/// --truth-trajectories).
+/// --truth-trajectories; with `strict`, inputs that cannot be scored).
 EvaluateMapRun runEvaluateMap(const EvaluateMapInputs& inputs, const std::filesystem::path& out_dir,
                               const EvaluateMapParams& params);
 

@@ -22,6 +22,7 @@ struct EvaluateVoxelsParams {
   std::string poses_file;            ///< T_world_cam0 poses (KITTI), e.g. the map's poses.txt
   bool recenter = true;              ///< first pose at the origin (as the map is written)
   std::string title = "mapfuse";     ///< first column of the Markdown table
+  bool strict = false;  ///< refuse (exit 3) inputs that cannot be scored, instead of a warning
 
   template <class V>
   void visit(V& v) {
@@ -34,6 +35,9 @@ struct EvaluateVoxelsParams {
       "KITTI poses file (T_world_cam0), e.g. the evaluated map's poses.txt");
     v("recenter", recenter, "", "move the first pose to the origin, as the map is written");
     v("title", title, "", "method name in the first column of the Markdown table");
+    v("strict", strict, "",
+      "refuse (exit 3) an empty truth, an empty map or a map that meets no truth voxel "
+      "(default: a warning and a 'problems' list in the summary)");
   }
 };
 

@@ -10,7 +10,8 @@
 
 namespace mapfuse::io {
 
-/// @brief True when `dir` holds velodyne/ and calib.txt (and no velodyne_points/).
+/// @brief True when `dir` holds velodyne/ (and no velodyne_points/).
+/// @throws IoError naming calib.txt when such a folder has none.
 bool isKittiSequence(const std::filesystem::path& dir);
 
 /// @brief Calibration of a sequence: P_rect_02 = P2, R_rect_00 = I, T_cam0_velo = Tr (already
