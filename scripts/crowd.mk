@@ -7,11 +7,13 @@
 #   make -j2 -f scripts/crowd.mk FRAMES_DIR=frames/ WORK=out/crowd         # raw drives as input
 #   ... TRUTH=truth/vector_map.json TRUTH_TRAJ=truth/   # adds evaluate
 #   ... TILE_SIZE=500                          # align per tile, balance, aggregate per tile, stitch
+#   ... MAX_UNTRUSTED_SHARE=0.1   # the trust check (check.json) fails above this share (default 0)
 #
 # Variables: BIN (tools, default build/bin), METHOD (align method, default gba_sgicp),
 # CONFIG_DIR (folder with <stage>.json configs; default: none, built-in defaults),
 # ORIGIN (lat,lon,alt; default: derived once from the first drive's first GPS fix).
 
+CROWD_MK_DIR := $(dir $(lastword $(MAKEFILE_LIST)))
 BIN ?= build/bin
 WORK ?= out/crowd
 METHOD ?= gba_sgicp
@@ -49,9 +51,12 @@ ifneq ($(TILE_SIZE),)
   MAP := $(WORK)/stitch/map.cbor
 endif
 EVAL_SUMMARY := $(WORK)/evaluate/evaluate.summary.json
+CHECK := $(WORK)/check.json
+MAX_UNTRUSTED_SHARE ?= 0
 
-.PHONY: all map evaluate clean
-all: $(if $(TRUTH),$(EVAL_SUMMARY),$(MAP_SUMMARY))
+.PHONY: all map evaluate check clean
+all: $(if $(TRUTH),$(EVAL_SUMMARY),$(MAP_SUMMARY)) $(CHECK)
+check: $(CHECK)
 map: $(MAP_SUMMARY)
 evaluate: $(EVAL_SUMMARY)
 
@@ -119,6 +124,11 @@ $(WORK)/tiles/%/aggregate/aggregate.summary.json: $(WORK)/balance/balance.summar
 # aligned copy of each drive) ----
 $(EVAL_SUMMARY): $(MAP_SUMMARY) $(TRUTH)
 	$(BIN)/evaluate map $(Q) --map $(MAP) --truth $(TRUTH) $(if $(TRUTH_TRAJ),--truth-trajectories $(TRUTH_TRAJ) $(if $(TILE_SIZE),,--lsm $(ALIGNED))) -o $(WORK)/evaluate
+
+# ---- trust check of the batch (issue 33): drives whose odometry and GPS disagree are named;
+# above MAX_UNTRUSTED_SHARE the check exits 3 (make then stops with "Error 3") ----
+$(CHECK): $(MAP_SUMMARY)
+	python3 $(CROWD_MK_DIR)crowd_check.py $(WORK) --max-untrusted-share $(MAX_UNTRUSTED_SHARE)
 
 clean:
 	rm -rf $(WORK)

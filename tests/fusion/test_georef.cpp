@@ -134,3 +134,45 @@ TEST_CASE("georef app: shared origin, summary, exit codes") {
                          (dir / "out3").string() + " --config " + (dir / "cfg.json").string() +
                          " 2>/dev/null") == 2);
 }
+
+TEST_CASE("georef names a drive untrusted when its odometry climbs or stretches away from GPS") {
+  // Issue 33: a dead reckoning that tilts (a pitched IMU, gyro-only pitch) climbs steadily away
+  // from the GPS heights; a wheel scale error stretches it. The drive is then flagged
+  // (trusted = false, docs/fusion.md "Trust"), never silently fused.
+  constexpr double kTilt = 1.0 * M_PI / 180.0;  // rad: heights climb 1.7 % of distance
+  constexpr double kStretch = 1.08;             // an 8 % wheel scale error
+  const auto world = test::trueWorld();
+  test::FixtureOptions o;
+  o.outlier_probability = 0.0;
+  o.scale_error = 0.0;
+  auto tr = test::makeTraversal(world, 0, o);
+  // The fixture's receiver reports 4 m vertical sigma; over its 300 m road a 1 deg climb (5 m) is
+  // then within GPS noise and the fused heights follow the odometry (measured: fused minus
+  // odometry slope 0.003 of the 0.017). A receiver that reports 1 m makes it visible.
+  for (auto& f : tr.lsm.gps) f.sigma_v = 1.0;
+  const auto good = fusion::georeferenceLsm(tr.lsm, test::fixtureOrigin(), {}, "fixture");
+  INFO("good: slope " << good.odom_vertical_slope << " scale " << good.odom_scale_error
+                      << " v rms " << good.residual_v_rms);
+  CHECK(good.trusted);
+  CHECK(std::abs(good.odom_vertical_slope) < fusion::GeorefSettings{}.trust_max_vertical_slope);
+
+  auto tilted = tr.lsm;
+  const Pose3 first = tilted.keyframes.front().T_frame_body;
+  const Pose3 pitch(Eigen::AngleAxisd(-kTilt, Eigen::Vector3d::UnitY()));
+  for (auto& k : tilted.keyframes) k.T_frame_body = first * pitch * first.inverse() * k.T_frame_body;
+  const auto climb = fusion::georeferenceLsm(tilted, test::fixtureOrigin(), {}, "fixture");
+  INFO("tilted: slope " << climb.odom_vertical_slope << " v rms " << climb.residual_v_rms);
+  CHECK_FALSE(climb.trusted);
+  CHECK(std::abs(climb.odom_vertical_slope) > 0.5 * std::tan(kTilt));
+
+  auto stretched = tr.lsm;
+  const Eigen::Vector3d origin = first.translation();
+  for (auto& k : stretched.keyframes)
+    k.T_frame_body.translation() = origin + kStretch * (k.T_frame_body.translation() - origin);
+  const auto stretch = fusion::georeferenceLsm(stretched, test::fixtureOrigin(), {}, "fixture");
+  INFO("stretched: scale " << stretch.odom_scale_error);
+  CHECK_FALSE(stretch.trusted);
+  // the fused length follows the stretched odometry in part (GPS 2.5 m sigma over 300 m): the
+  // fused drive is shorter than the odometry, never longer
+  CHECK(stretch.odom_scale_error < -0.01);
+}

@@ -67,6 +67,42 @@ Pose3 fitYawTranslation(const std::vector<Eigen::Vector3d>& o,
   return T;
 }
 
+constexpr double kScaleWindow = 200.0;  // m of odometry per chord of the scale check
+
+/// Odometry against the fused keyframes (issue 33): the least-squares slope of (fused z minus
+/// odometry z) over odometry distance (a tilted dead reckoning climbs or sinks steadily), and
+/// the median over chords of kScaleWindow m of fused over odometry length, minus 1 (a wheel
+/// scale error). GPS noise averages out over the drive; a short drive gives 0.
+void odometryAgreement(const std::vector<Keyframe>& kfs, GeorefResult& res) {
+  const auto& out = res.lsm.keyframes;
+  std::vector<double> dist(kfs.size(), 0.0), ratios;
+  for (std::size_t i = 1; i < kfs.size(); ++i)
+    dist[i] = dist[i - 1] +
+              (kfs[i].T_frame_body.translation() - kfs[i - 1].T_frame_body.translation()).norm();
+  double ss = 0, sd = 0, sss = 0, ssd = 0;
+  const double n = double(kfs.size());
+  for (std::size_t i = 0; i < kfs.size(); ++i) {
+    const double d =
+        (out[i].T_frame_body.translation().z() - out[0].T_frame_body.translation().z()) -
+        (kfs[i].T_frame_body.translation().z() - kfs[0].T_frame_body.translation().z());
+    ss += dist[i], sd += d, sss += dist[i] * dist[i], ssd += dist[i] * d;
+  }
+  const double var = n * sss - ss * ss;
+  res.odom_vertical_slope = var > 1e-9 ? (n * ssd - ss * sd) / var : 0.0;
+  for (std::size_t i = 0, j = 0; i < kfs.size(); ++i) {
+    while (j < kfs.size() && dist[j] - dist[i] < kScaleWindow) ++j;
+    if (j >= kfs.size()) break;
+    const double odo =
+        (kfs[j].T_frame_body.translation() - kfs[i].T_frame_body.translation()).norm();
+    const double fused =
+        (out[j].T_frame_body.translation() - out[i].T_frame_body.translation()).norm();
+    if (odo > 0) ratios.push_back(fused / odo);
+  }
+  if (ratios.empty()) return;
+  std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+  res.odom_scale_error = ratios[ratios.size() / 2] - 1.0;
+}
+
 }  // namespace
 
 GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin, const GeorefSettings& s,
@@ -200,6 +236,7 @@ GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin, const
 
   // Residual statistics over accepted fixes.
   std::vector<double> r;
+  double h_sq = 0, v_sq = 0, v_sum = 0;  // per axis: horizontal and vertical (signed)
   for (const auto& o : obs) {
     const Eigen::Vector3d p = (1 - o.alpha) * Eigen::Map<Eigen::Vector3d>(poses[o.kf_a].t) +
                               o.alpha * Eigen::Map<Eigen::Vector3d>(poses[o.kf_b].t);
@@ -207,13 +244,27 @@ GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin, const
       ++res.gps_rejected;
       res.rejected_stamps.push_back(lsm.gps[o.index].stamp);
     } else {
-      r.push_back((p - o.enu).norm());
+      const Eigen::Vector3d d = p - o.enu;
+      r.push_back(d.norm());
+      h_sq += d.head<2>().squaredNorm(), v_sq += d.z() * d.z(), v_sum += d.z();
     }
   }
   res.gps_used = int(r.size());
   double sum = 0, sq = 0;
   for (double v : r) sum += v, sq += v * v, res.residual_max = std::max(res.residual_max, v);
-  if (!r.empty()) res.residual_mean = sum / r.size(), res.residual_rms = std::sqrt(sq / r.size());
+  if (!r.empty()) {
+    const double n_r = double(r.size());
+    res.residual_mean = sum / n_r, res.residual_rms = std::sqrt(sq / n_r);
+    res.residual_h_rms = std::sqrt(h_sq / n_r), res.residual_v_rms = std::sqrt(v_sq / n_r);
+    res.residual_v_mean = v_sum / n_r;
+  }
+  // trust (docs/fusion.md): odometry that disagrees with GPS leaves residuals above its noise
+  const double sigma_h = lsm.gps.front().sigma_h, sigma_v = lsm.gps.front().sigma_v;
+  const double rejected_share =
+      obs.empty() ? 0.0 : double(res.gps_rejected) / double(res.gps_rejected + res.gps_used);
+  res.trusted = res.residual_h_rms <= s.trust_sigma_ratio * sigma_h &&
+                res.residual_v_rms <= s.trust_sigma_ratio * sigma_v &&
+                rejected_share <= s.trust_max_rejected_share;
 
   res.lsm = lsm;
   res.lsm.frame = LsmFrame::kEnu;
@@ -227,6 +278,9 @@ GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin, const
     cov.diagonal() << sh * sh, sh * sh, 4 * sh * sh, kfs[i].covariance.diagonal().tail<3>();
     k.covariance = cov;
   }
+  odometryAgreement(kfs, res);
+  res.trusted = res.trusted && std::abs(res.odom_vertical_slope) <= s.trust_max_vertical_slope &&
+                std::abs(res.odom_scale_error) <= s.trust_max_scale_error;
   return res;
 }
 

@@ -26,9 +26,11 @@ geo::GeoOrigin parseOrigin(const std::string& text) {
 nlohmann::json toJson(const GeorefRun& run, const std::vector<std::string>& inputs) {
   nlohmann::json per = nlohmann::json::array();
   int rejected = 0;
+  nlohmann::json untrusted = nlohmann::json::array();
   for (std::size_t i = 0; i < run.lsms.size(); ++i) {
     const auto& r = run.lsms[i];
     rejected += r.gps_rejected;
+    if (!r.trusted) untrusted.push_back(r.lsm.drive_id);
     per.push_back({{"input", inputs[i]},
                    {"drive_id", r.lsm.drive_id},
                    {"keyframes", r.lsm.keyframes.size()},
@@ -43,12 +45,19 @@ nlohmann::json toJson(const GeorefRun& run, const std::vector<std::string>& inpu
                    {"residual_mean_m", r.residual_mean},
                    {"residual_rms_m", r.residual_rms},
                    {"residual_max_m", r.residual_max},
+                   {"residual_h_rms_m", r.residual_h_rms},
+                   {"residual_v_rms_m", r.residual_v_rms},
+                   {"residual_v_mean_m", r.residual_v_mean},
+                   {"odom_vertical_slope", r.odom_vertical_slope},
+                   {"odom_scale_error", r.odom_scale_error},
+                   {"trusted", r.trusted},
                    {"seconds", r.seconds}});
   }
   return {{"origin", {{"lat", run.origin.lat}, {"lon", run.origin.lon}, {"alt", run.origin.alt}}},
           {"origin_source", run.origin_source},
           {"lsms", per},
           {"gps_rejected_total", rejected},
+          {"untrusted_drives", untrusted},
           {"converged", std::all_of(run.lsms.begin(), run.lsms.end(),
                                     [](const auto& r) { return r.converged; })}};
 }
@@ -85,6 +94,14 @@ GeorefRun runGeoref(const std::vector<std::string>& inputs, const std::filesyste
     MAPFUSE_INFO("georef: " << inputs[i] << ": " << r.gps_used << " GPS fixes used, "
                             << r.gps_rejected << " rejected, residual rms " << r.residual_rms
                             << " m");
+    if (!r.trusted)
+      MAPFUSE_WARN("georef: " << inputs[i] << ": drive " << r.lsm.drive_id
+                              << " untrusted: odometry and GPS disagree, " << r.gps_rejected
+                              << " of " << r.gps_rejected + r.gps_used
+                              << " fixes rejected, residual rms horizontal " << r.residual_h_rms
+                              << " m, vertical " << r.residual_v_rms << " m, odometry height slope "
+                              << r.odom_vertical_slope << ", scale error " << r.odom_scale_error
+                              << " (bounds: trust_* in docs/fusion.md)");
   }
   nlohmann::json summary = toJson(run, inputs);
   summary["seconds"] = std::chrono::duration<double>(Clock::now() - t0).count();

@@ -27,6 +27,19 @@ struct GeorefSettings {
   double chi2_gate = 11.34;      ///< reject fixes with whitened squared residual above (3 dof, 99%)
   int max_rejection_rounds = 3;  ///< solve / reject / re-solve rounds
   int max_iterations = 100;      ///< Levenberg-Marquardt iterations per solve
+  /// a drive whose GPS residual rms exceeds this many reported sigmas on an axis (horizontal
+  /// or vertical) has odometry and GPS that disagree: named on stderr and in the summary
+  double trust_sigma_ratio = 2.0;
+  /// a drive whose share of rejected GPS fixes exceeds this is untrusted too: odometry that
+  /// bends away from GPS gets the fixes it contradicts rejected as multipath, and the residual
+  /// over the rest looks fine (gyro-only pitch on an 8 % world: 44 % rejected, 4 m residual)
+  double trust_max_rejected_share = 0.1;
+  /// |fused minus odometry height| growing faster than this per metre: a tilted dead reckoning
+  /// (0.004 = 0.23 deg; an IMU pitched 0.5 deg gives 0.0087)
+  double trust_max_vertical_slope = 0.004;
+  /// |fused / odometry length - 1|: a wheel scale error beyond what wheel odometry shows (a few
+  /// per cent; GPS corrects those), e.g. a wrong tyre radius or a slipping wheel
+  double trust_max_scale_error = 0.05;
 
   template <class V>
   void visit(V& v) {
@@ -53,6 +66,15 @@ struct GeorefSettings {
       in(1, 100));
     v("max_iterations", max_iterations, "", "Levenberg-Marquardt iterations per solve",
       in(1, 100000));
+    v("trust_sigma_ratio", trust_sigma_ratio, "",
+      "GPS residual rms per axis above this many reported sigmas: the drive is untrusted",
+      gt(0) & le(1e6));
+    v("trust_max_rejected_share", trust_max_rejected_share, "",
+      "share of rejected GPS fixes above which the drive is untrusted", in(0, 1));
+    v("trust_max_vertical_slope", trust_max_vertical_slope, "m/m",
+      "fused minus odometry height slope above which the drive is untrusted", in(0, 1));
+    v("trust_max_scale_error", trust_max_scale_error, "",
+      "fused over odometry length minus 1 above which the drive is untrusted", in(0, 1));
   }
 };
 
@@ -62,11 +84,17 @@ struct GeorefResult {
   int iterations = 0;  ///< summed over solves
   int gps_total = 0, gps_used = 0, gps_rejected = 0, gps_dropped = 0;
   std::vector<double> rejected_stamps;  ///< s, stamps of rejected fixes (multipath)
-  double residual_mean = 0.0;  ///< m, horizontal+vertical GPS residual norm over accepted fixes
-  double residual_rms = 0.0;   ///< m
-  double residual_max = 0.0;   ///< m
-  double final_cost = 0.0;     ///< Ceres cost of the last solve
-  double seconds = 0.0;        ///< wall time of this LSM (georeferenceLsms)
+  double residual_mean = 0.0;    ///< m, horizontal+vertical GPS residual norm over accepted fixes
+  double residual_rms = 0.0;     ///< m
+  double residual_max = 0.0;     ///< m
+  double residual_h_rms = 0.0;   ///< m, horizontal part of the GPS residual (accepted fixes)
+  double residual_v_rms = 0.0;   ///< m, vertical part (fused height minus GPS altitude)
+  double residual_v_mean = 0.0;  ///< m, signed mean of the vertical part (a height offset)
+  double odom_vertical_slope = 0.0;  ///< m/m, slope of fused minus odometry height over distance
+  double odom_scale_error = 0.0;     ///< median fused / odometry chord length minus 1
+  bool trusted = true;      ///< residual rms per axis within trust_sigma_ratio reported sigmas
+  double final_cost = 0.0;  ///< Ceres cost of the last solve
+  double seconds = 0.0;     ///< wall time of this LSM (georeferenceLsms)
 };
 
 /// @brief Georeferences one LSM into ENU of `origin`.
