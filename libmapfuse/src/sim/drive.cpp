@@ -131,6 +131,66 @@ std::vector<Polyline> planRoutes(const World& world, int count, double length, u
   return routes;
 }
 
+namespace {
+
+/// IMU samples of the true trajectory: gyro from consecutive rotations, accel from second
+/// differences (specific force), each with its noise; the gyro's bias of the drive added.
+void synthesizeImu(Drive& d, const DriveParams& P, std::normal_distribution<double>& N01,
+                   std::mt19937_64& rng) {
+  const int n = int(d.truth.size());
+  const double dt = 1.0 / P.imu_rate;
+  constexpr int kAccelStride = 25;  // samples, 0.25 s at 100 Hz
+  d.imu.resize(n);
+  const double gyro_sigma = P.gyro_noise_density * std::sqrt(P.imu_rate);
+  for (int k = 0; k < n; ++k) {
+    const int k1 = std::min(n - 1, k + 1);
+    Eigen::Vector3d omega = Eigen::Vector3d::Zero();
+    if (k1 > k) {
+      const Eigen::AngleAxisd aa(d.truth[k].linear().transpose() * d.truth[k1].linear());
+      omega = aa.angle() * aa.axis() / dt;
+    }
+    // The route is a polyline: a second difference over one sample puts a turn's whole change of
+    // direction into the samples at its vertices (spikes of tens of m/s^2, none in between). Over
+    // +-kAccelStride samples it is the acceleration averaged across the vertices, as a car that
+    // turns smoothly feels it.
+    const int a1 = std::min(n - 1, k + kAccelStride), a0 = std::max(0, k - kAccelStride);
+    const int h = std::min(a1 - k, k - a0);
+    Eigen::Vector3d acc = Eigen::Vector3d::Zero();
+    if (h > 0)
+      acc = (d.truth[k + h].translation() - 2 * d.truth[k].translation() +
+             d.truth[k - h].translation()) /
+            (h * h * dt * dt);
+    d.imu[k].stamp = d.stamps[k];
+    d.imu[k].gyro = omega + d.gyro_bias + gyro_sigma * drawVector3(N01, rng);
+    d.imu[k].accel = d.truth[k].linear().transpose() * (acc + Eigen::Vector3d(0, 0, kGravity)) +
+                     P.accel_noise * drawVector3(N01, rng);
+  }
+}
+
+/// Wheel speeds at the wheel rate, with the drive's scale error and noise.
+void synthesizeWheel(Drive& d, const DriveParams& P, std::normal_distribution<double>& N01,
+                     std::mt19937_64& rng) {
+  const int n = int(d.truth.size());
+  const double dt = 1.0 / P.imu_rate;
+  // Wheel speed at the wheel rate: the body's own speed along its x axis (central difference of
+  // the true positions). In a turn the body, a lane off the route's centre line, moves faster or
+  // slower than d.speed (by omega times the offset); a wheel measures the body's speed.
+  const int wheel_every = std::max(1, static_cast<int>(std::lround(P.imu_rate / P.wheel_rate)));
+  for (int k = 0; k < n; k += wheel_every) {
+    const int k1 = std::min(n - 1, k + 1), k0 = std::max(0, k - 1);
+    const double speed =
+        k1 > k0 ? (d.truth[k].linear().transpose() *
+                   (d.truth[k1].translation() - d.truth[k0].translation()))
+                          .x() /
+                      ((k1 - k0) * dt)
+                : d.speed;
+    d.wheel.push_back(
+        {d.stamps[k], (1.0 + d.wheel_scale_error) * speed + P.wheel_speed_noise * N01(rng)});
+  }
+}
+
+}  // namespace
+
 Drive simulateDrive(const Polyline& route, const DriveParams& P, const geo::EnuConverter& enu,
                     uint64_t seed) {
   std::mt19937_64 rng(seed);
@@ -181,31 +241,9 @@ Drive simulateDrive(const Polyline& route, const DriveParams& P, const geo::EnuC
                            : d.distance[k - 1] +
                                  (d.truth[k].translation() - d.truth[k - 1].translation()).norm();
   }
-  // IMU: gyro from consecutive rotations, accel from second differences (specific force).
-  d.imu.resize(n);
-  const double gyro_sigma = P.gyro_noise_density * std::sqrt(P.imu_rate);
-  for (int k = 0; k < n; ++k) {
-    const int k1 = std::min(n - 1, k + 1), k0 = std::max(0, k - 1);
-    Eigen::Vector3d omega = Eigen::Vector3d::Zero();
-    if (k1 > k) {
-      const Eigen::AngleAxisd aa(d.truth[k].linear().transpose() * d.truth[k1].linear());
-      omega = aa.angle() * aa.axis() / dt;
-    }
-    Eigen::Vector3d acc = Eigen::Vector3d::Zero();
-    if (k1 > k && k0 < k)
-      acc = (d.truth[k1].translation() - 2 * d.truth[k].translation() + d.truth[k0].translation()) /
-            (dt * dt);
-    d.imu[k].stamp = d.stamps[k];
-    d.imu[k].gyro = omega + d.gyro_bias + gyro_sigma * drawVector3(N01, rng);
-    d.imu[k].accel = d.truth[k].linear().transpose() * (acc + Eigen::Vector3d(0, 0, kGravity)) +
-                     P.accel_noise * drawVector3(N01, rng);
-  }
+  synthesizeImu(d, P, N01, rng);
   mountImu(d.imu, P.imu_pitch_mount);  // an injected mount error (trust tests)
-  // Wheel speed at the wheel rate.
-  const int wheel_every = std::max(1, static_cast<int>(std::lround(P.imu_rate / P.wheel_rate)));
-  for (int k = 0; k < n; k += wheel_every)
-    d.wheel.push_back(
-        {d.stamps[k], (1.0 + d.wheel_scale_error) * d.speed + P.wheel_speed_noise * N01(rng)});
+  synthesizeWheel(d, P, N01, rng);
   // Dead reckoning: yaw from the gyro, levelled roll/pitch, position from the wheel speed.
   d.odom.resize(n);
   const Eigen::Vector3d rpy0 = rpyFromRotation(d.truth[0].linear());
