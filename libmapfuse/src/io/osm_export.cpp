@@ -1,6 +1,7 @@
 #include "mapfuse/io/osm_export.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -21,6 +22,9 @@ constexpr double kRegulatoryReach = 25.0;  // m from a stop line's middle to its
 constexpr double kLightBehind = 5.0;       // m a light may stand before its stop line
 constexpr double kSignBehind = 15.0;       // m a sign may stand before its stop line
 constexpr double kLoneReach = 15.0;        // m to the lanelet of a light or sign without stop line
+// m: Lanelet2's validator warns about any two points of a map closer than this
+// (mapping.points_too_close); plain nodes that close share one node instead
+constexpr double kNodeMerge = 0.05;
 
 using V3 = Eigen::Vector3d;
 using Tags = std::vector<std::pair<std::string, std::string>>;
@@ -64,21 +68,51 @@ class OsmBuilder {
     return id;
   }
 
+  /// A plain node at p, or an earlier plain node within kNodeMerge of it (a 3D grid of
+  /// kNodeMerge cells, the 27 around p searched).
+  int64_t sharedNode(const V3& p) {
+    const auto cell = [](double v) { return static_cast<int64_t>(std::floor(v / kNodeMerge)); };
+    const int64_t cx = cell(p.x()), cy = cell(p.y()), cz = cell(p.z());
+    for (int64_t dx = -1; dx <= 1; ++dx)
+      for (int64_t dy = -1; dy <= 1; ++dy)
+        for (int64_t dz = -1; dz <= 1; ++dz) {
+          const auto it = nodes_.find({cx + dx, cy + dy, cz + dz});
+          if (it == nodes_.end()) continue;
+          for (const auto& [id, q] : it->second)
+            if ((q - p).norm() < kNodeMerge) return id;
+        }
+    const int64_t id = node(p);
+    nodes_[{cx, cy, cz}].push_back({id, p});
+    return id;
+  }
+
+  /// A way through `nodes`; a node repeated right after itself (points merged by sharedNode)
+  /// is written once.
   int64_t way(const std::vector<int64_t>& nodes, const Tags& tags) {
     auto w = osm_.insert_child_before("way", relations_);
     const int64_t id = next_--;
     w.append_attribute("id") = static_cast<long long>(id);
-    for (int64_t r : nodes)
-      w.append_child("nd").append_attribute("ref") = static_cast<long long>(r);
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      if (i == 0 || nodes[i] != nodes[i - 1])
+        w.append_child("nd").append_attribute("ref") = static_cast<long long>(nodes[i]);
     for (const auto& [k, v] : tags) tag(w, k, v);
     return id;
   }
 
-  /// A way through new nodes at `points`; `closed` repeats the first node at the end.
+  /// A way through plain nodes at `points` (an earlier plain node within kNodeMerge is shared;
+  /// consecutive points that fall on one node become one); `closed` repeats the first node at
+  /// the end. A way that would shrink to one node keeps nodes of its own.
   int64_t way(const std::vector<V3>& points, const Tags& tags, bool closed = false) {
     std::vector<int64_t> ids;
-    for (const auto& p : points) ids.push_back(node(p));
-    if (closed) ids.push_back(ids.front());
+    for (const auto& p : points) {
+      const int64_t id = sharedNode(p);
+      if (ids.empty() || ids.back() != id) ids.push_back(id);
+    }
+    if (ids.size() < 2 && points.size() >= 2) {
+      ids.clear();
+      for (const auto& p : points) ids.push_back(node(p));
+    }
+    if (closed && ids.size() > 1 && ids.back() != ids.front()) ids.push_back(ids.front());
     return way(ids, tags);
   }
 
@@ -116,6 +150,7 @@ class OsmBuilder {
   }
 
   geo::EnuConverter enu_;
+  std::map<std::array<int64_t, 3>, std::vector<std::pair<int64_t, V3>>> nodes_;
   pugi::xml_document doc_;
   pugi::xml_node osm_, ways_, relations_;
   int64_t next_ = -1;
@@ -197,7 +232,7 @@ std::string vectorMapToOsm(const VectorMap& map, const std::vector<DrivePath>& d
     }
     const auto& line = plan.lines[pl->second];
     std::vector<int64_t> nodes;
-    for (const auto& p : line.points) nodes.push_back(osm.node(p));
+    for (const auto& p : line.points) nodes.push_back(osm.sharedNode(p));
     for (std::size_t c = 0; c + 1 < line.cuts.size(); ++c) {
       const int64_t w =
           osm.way(std::vector<int64_t>(nodes.begin() + static_cast<long>(line.cuts[c]),
@@ -423,7 +458,7 @@ std::string vectorMapToOsm(const VectorMap& map, const std::vector<DrivePath>& d
       const auto [pb, b_last] = boundEnd(plan, plan.lanelets[c.to], left, false);
       const auto& pts = left ? c.left : c.right;
       std::vector<int64_t> nodes = {a_last ? piece_nodes[pa].second : piece_nodes[pa].first};
-      for (std::size_t k = 1; k + 1 < pts.size(); ++k) nodes.push_back(osm.node(pts[k]));
+      for (std::size_t k = 1; k + 1 < pts.size(); ++k) nodes.push_back(osm.sharedNode(pts[k]));
       nodes.push_back(b_last ? piece_nodes[pb].second : piece_nodes[pb].first);
       members.push_back({"way", osm.way(nodes, {{"type", "virtual"}}), left ? "left" : "right"});
     }
