@@ -17,8 +17,8 @@ route_length=${ROUTE_LENGTH:-3000}
 grid=${GRID:-9}
 inject=${INJECT_PITCH_TRAVERSAL:--1}
 work=${WORK:-$tmp}
-echo "| seed | grade | km per drive | drives | keyframes vertical RMS m (per drive) | element height RMS / mean m | lane completeness / rel. precision m | untrusted drives | seconds |"
-echo "|---|---|---|---|---|---|---|---|---|"
+echo "| seed | grade | km per drive | drives | keyframes vertical RMS m (per drive) | keyframes horizontal RMS m | element height RMS / mean m | lane completeness / rel. precision m | untrusted drives | seconds |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
 for w in $worlds; do
   seed=${w%%:*} grade=${w##*:}
   sim="$work/sim-$seed-$grade" out="$work/crowd-$seed-$grade"
@@ -51,6 +51,7 @@ stats = json.load(open(f"{sim}/simulate.summary.json"))
 km = stats["km_driven"] / max(1, len(kf["drives"]))  # per drive: one route
 rel = lane.get("relative_precision_m")
 print(f"| {seed} | {grade} | {km:.2f} | {len(kf['drives'])} | {kf['vertical_rms_m']:.2f} ({per}) | "
+      f"{kf['horizontal_rms_m']:.2f} | "
       f"{eh['rms_m']:.2f} / {eh['mean_m']:+.2f} | {lane.get('completeness', 0):.2f} / "
       f"{rel if rel is None else round(rel, 3)} | {', '.join(chk['untrusted']) or 'none'} | {secs} |")
 PY
