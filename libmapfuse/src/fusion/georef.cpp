@@ -258,13 +258,6 @@ GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin, const
     res.residual_h_rms = std::sqrt(h_sq / n_r), res.residual_v_rms = std::sqrt(v_sq / n_r);
     res.residual_v_mean = v_sum / n_r;
   }
-  // trust (docs/fusion.md): odometry that disagrees with GPS leaves residuals above its noise
-  const double sigma_h = lsm.gps.front().sigma_h, sigma_v = lsm.gps.front().sigma_v;
-  const double rejected_share =
-      obs.empty() ? 0.0 : double(res.gps_rejected) / double(res.gps_rejected + res.gps_used);
-  res.trusted = res.residual_h_rms <= s.trust_sigma_ratio * sigma_h &&
-                res.residual_v_rms <= s.trust_sigma_ratio * sigma_v &&
-                rejected_share <= s.trust_max_rejected_share;
 
   res.lsm = lsm;
   res.lsm.frame = LsmFrame::kEnu;
@@ -279,7 +272,15 @@ GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin, const
     k.covariance = cov;
   }
   odometryAgreement(kfs, res);
-  res.trusted = res.trusted && std::abs(res.odom_vertical_slope) <= s.trust_max_vertical_slope &&
+  // trust (docs/fusion.md): odometry that disagrees with GPS leaves residuals above its noise,
+  // many fixes rejected, or a height slope / scale against the fused keyframes
+  const double sigma_h = lsm.gps.front().sigma_h, sigma_v = lsm.gps.front().sigma_v;
+  const double rejected_share =
+      obs.empty() ? 0.0 : double(res.gps_rejected) / double(res.gps_rejected + res.gps_used);
+  res.trusted = res.residual_h_rms <= s.trust_sigma_ratio * sigma_h &&
+                res.residual_v_rms <= s.trust_sigma_ratio * sigma_v &&
+                rejected_share <= s.trust_max_rejected_share &&
+                std::abs(res.odom_vertical_slope) <= s.trust_max_vertical_slope &&
                 std::abs(res.odom_scale_error) <= s.trust_max_scale_error;
   return res;
 }

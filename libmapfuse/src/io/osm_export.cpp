@@ -100,15 +100,12 @@ class OsmBuilder {
   }
 
   /// A way through plain nodes at `points` (an earlier plain node within kNodeMerge is shared;
-  /// consecutive points that fall on one node become one); `closed` repeats the first node at
-  /// the end. A way that would shrink to one node keeps nodes of its own.
+  /// way() writes consecutive points that fall on one node once); `closed` repeats the first
+  /// node at the end. A way whose points all fall on one node keeps nodes of its own.
   int64_t way(const std::vector<V3>& points, const Tags& tags, bool closed = false) {
     std::vector<int64_t> ids;
-    for (const auto& p : points) {
-      const int64_t id = sharedNode(p);
-      if (ids.empty() || ids.back() != id) ids.push_back(id);
-    }
-    if (ids.size() < 2 && points.size() >= 2) {
+    for (const auto& p : points) ids.push_back(sharedNode(p));
+    if (points.size() >= 2 && std::count(ids.begin(), ids.end(), ids.front()) == long(ids.size())) {
       ids.clear();
       for (const auto& p : points) ids.push_back(node(p));
     }

@@ -92,7 +92,7 @@ struct GeorefResult {
   double residual_v_mean = 0.0;  ///< m, signed mean of the vertical part (a height offset)
   double odom_vertical_slope = 0.0;  ///< m/m, slope of fused minus odometry height over distance
   double odom_scale_error = 0.0;     ///< median fused / odometry chord length minus 1
-  bool trusted = true;      ///< residual rms per axis within trust_sigma_ratio reported sigmas
+  bool trusted = true;      ///< every trust_* bound of GeorefSettings held (docs/fusion.md)
   double final_cost = 0.0;  ///< Ceres cost of the last solve
   double seconds = 0.0;     ///< wall time of this LSM (georeferenceLsms)
 };
