@@ -7,6 +7,7 @@
 #include "factors.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/parallel_for.hpp"
+#include "mapfuse/geo/track_agreement.hpp"
 
 namespace mapfuse::fusion {
 
@@ -43,64 +44,18 @@ struct GpsObs {
   bool rejected = false;
 };
 
-// Yaw + translation fit of odometry positions onto ENU positions (4 DOF: odom z is up).
-Pose3 fitYawTranslation(const std::vector<Eigen::Vector3d>& o,
-                        const std::vector<Eigen::Vector3d>& g, const std::vector<char>& use) {
-  Eigen::Vector3d mo = Eigen::Vector3d::Zero(), mg = Eigen::Vector3d::Zero();
-  int n = 0;
-  for (std::size_t k = 0; k < o.size(); ++k)
-    if (use[k]) mo += o[k], mg += g[k], ++n;
-  Pose3 T = Pose3::Identity();
-  if (n == 0) return T;
-  mo /= n;
-  mg /= n;
-  double sxx = 0, sxy = 0;
-  for (std::size_t k = 0; k < o.size(); ++k) {
-    if (!use[k]) continue;
-    const Eigen::Vector3d a = o[k] - mo, b = g[k] - mg;
-    sxx += a.x() * b.x() + a.y() * b.y();
-    sxy += a.x() * b.y() - a.y() * b.x();
-  }
-  const double yaw = (n >= 2 && std::hypot(sxx, sxy) > 1e-9) ? std::atan2(sxy, sxx) : 0.0;
-  T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  T.translation() = mg - T.linear() * mo;
-  return T;
-}
-
-constexpr double kScaleWindow = 200.0;  // m of odometry per chord of the scale check
-
-/// Odometry against the fused keyframes (issue 33): the least-squares slope of (fused z minus
-/// odometry z) over odometry distance (a tilted dead reckoning climbs or sinks steadily), and
-/// the median over chords of kScaleWindow m of fused over odometry length, minus 1 (a wheel
-/// scale error). GPS noise averages out over the drive; a short drive gives 0.
+/// Odometry against the fused keyframes (issue 33, geo/track_agreement.hpp): the slope of the
+/// height difference over odometry distance (a tilted dead reckoning climbs or sinks steadily)
+/// and the median chord scale over geo::kScaleWindow m, minus 1 (a wheel scale error).
 void odometryAgreement(const std::vector<Keyframe>& kfs, GeorefResult& res) {
-  const auto& out = res.lsm.keyframes;
-  std::vector<double> dist(kfs.size(), 0.0), ratios;
-  for (std::size_t i = 1; i < kfs.size(); ++i)
-    dist[i] = dist[i - 1] +
-              (kfs[i].T_frame_body.translation() - kfs[i - 1].T_frame_body.translation()).norm();
-  double ss = 0, sd = 0, sss = 0, ssd = 0;
-  const double n = double(kfs.size());
+  std::vector<Eigen::Vector3d> odom, fused;
   for (std::size_t i = 0; i < kfs.size(); ++i) {
-    const double d =
-        (out[i].T_frame_body.translation().z() - out[0].T_frame_body.translation().z()) -
-        (kfs[i].T_frame_body.translation().z() - kfs[0].T_frame_body.translation().z());
-    ss += dist[i], sd += d, sss += dist[i] * dist[i], ssd += dist[i] * d;
+    odom.push_back(kfs[i].T_frame_body.translation());
+    fused.push_back(res.lsm.keyframes[i].T_frame_body.translation());
   }
-  const double var = n * sss - ss * ss;
-  res.odom_vertical_slope = var > 1e-9 ? (n * ssd - ss * sd) / var : 0.0;
-  for (std::size_t i = 0, j = 0; i < kfs.size(); ++i) {
-    while (j < kfs.size() && dist[j] - dist[i] < kScaleWindow) ++j;
-    if (j >= kfs.size()) break;
-    const double odo =
-        (kfs[j].T_frame_body.translation() - kfs[i].T_frame_body.translation()).norm();
-    const double fused =
-        (out[j].T_frame_body.translation() - out[i].T_frame_body.translation()).norm();
-    if (odo > 0) ratios.push_back(fused / odo);
-  }
-  if (ratios.empty()) return;
-  std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
-  res.odom_scale_error = ratios[ratios.size() / 2] - 1.0;
+  const geo::TrackAgreement a = geo::trackAgreement(odom, fused, geo::kScaleWindow);
+  res.odom_vertical_slope = a.vertical_slope;
+  res.odom_scale_error = a.scale_error;
 }
 
 }  // namespace
@@ -158,7 +113,7 @@ GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin, const
     pg.push_back(o.enu);
   }
   std::vector<char> use(obs.size(), 1);
-  Pose3 T_enu_odom = fitYawTranslation(po, pg, use);
+  Pose3 T_enu_odom = geo::fitYawTranslation(po, pg, use);
   {
     std::vector<double> r;
     for (std::size_t k = 0; k < po.size(); ++k) r.push_back((T_enu_odom * po[k] - pg[k]).norm());
@@ -166,7 +121,7 @@ GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin, const
     std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
     const double gate = std::max(3.0 * sorted[sorted.size() / 2], 3.0 * lsm.gps[0].sigma_h);
     for (std::size_t k = 0; k < r.size(); ++k) use[k] = r[k] <= gate;
-    T_enu_odom = fitYawTranslation(po, pg, use);
+    T_enu_odom = geo::fitYawTranslation(po, pg, use);
   }
 
   std::vector<PoseParams> poses(nk);

@@ -10,6 +10,7 @@
 
 #include "aerial_tracks.hpp"
 #include "body_tilt.hpp"
+#include "mapfuse/geo/origin.hpp"
 #include "path_surface.hpp"
 
 namespace mapfuse::vehicle {
@@ -119,6 +120,22 @@ std::vector<RangedMarking> rangeMarkings(const DriveData& d, const std::vector<G
   return markings;
 }
 
+geo::TrackAgreement egoMotionAgainstGps(const DriveData& d) {
+  std::vector<Eigen::Vector3d> odom, enu;
+  if (d.gps.empty() || d.stamps.size() < 2) return {};
+  const geo::EnuConverter conv(d.gps.front().position);
+  for (const GpsFix& f : d.gps) {
+    const auto it = std::upper_bound(d.stamps.begin(), d.stamps.end(), f.stamp);
+    if (it == d.stamps.begin() || it == d.stamps.end()) continue;
+    const std::size_t k = std::size_t(it - d.stamps.begin());
+    const double span = d.stamps[k] - d.stamps[k - 1];
+    const double a = span > 0 ? (f.stamp - d.stamps[k - 1]) / span : 0.0;
+    odom.push_back(interpolate(d.T_odom_body[k - 1], d.T_odom_body[k], a).translation());
+    enu.push_back(conv.toEnu(f.position));
+  }
+  return geo::trackAgreement(odom, enu, geo::kScaleWindow);
+}
+
 LsmBuildResult buildLsm(const DriveData& d, const LsmBuildSettings& s) {
   LsmBuildResult out;
   const std::size_t n = d.frames.size();
@@ -153,6 +170,7 @@ LsmBuildResult buildLsm(const DriveData& d, const LsmBuildSettings& s) {
 
   for (double c : out.pitch_corrections)
     out.mean_pitch_correction += c / double(std::max<std::size_t>(1, n));
+  out.gps_agreement = egoMotionAgainstGps(d);
   out.frames = int(n);
   out.keyframes = int(kf.size());
   out.ranged_markings = int(markings.size());

@@ -11,6 +11,7 @@
 #include "mapfuse/core/drive_records.hpp"
 #include "mapfuse/core/lsm.hpp"
 #include "mapfuse/core/param.hpp"
+#include "mapfuse/geo/track_agreement.hpp"
 #include "mapfuse/vehicle/dead_reckoning.hpp"
 #include "mapfuse/vehicle/ground_ranging.hpp"
 #include "mapfuse/vehicle/lsm_assembly.hpp"
@@ -93,6 +94,9 @@ struct LsmBuildResult {
   int ranged_points = 0;    ///< their points (eq. 1)
   int ranged_on_path = 0;   ///< ... of them ranged on the road ahead (path_surface.hpp)
   AssemblyStats assembly;   ///< ground instances merged and dropped
+  /// The ego-motion against the drive's GPS fixes, per axis (summary "ego_motion_vs_gps";
+  /// samples 0 without fixes): how far the odom frame can be trusted before georef.
+  geo::TrackAgreement gps_agreement;
   int aerial_tracks = 0, aerial_triangulated = 0;
   std::map<std::string, int> aerial_rejected;  ///< tracks per rejection reason
   int aerial_unassociated_observations = 0;    ///< boxes without a track id
@@ -104,6 +108,10 @@ struct LsmBuildResult {
 /// @brief Builds the LSM of a drive: ground planes, ranging (eq. 1), triangulation (eq. 2-3),
 /// keyframes and assembly (§3.3). Frames are processed in parallel (OpenMP).
 LsmBuildResult buildLsm(const DriveData& drive, const LsmBuildSettings& settings);
+
+/// @brief The ego-motion at each GPS fix's stamp (interpolated; fixes outside the frames' stamps
+/// are skipped) against the fix in a local ENU frame of the first fix (geo/track_agreement.hpp).
+geo::TrackAgreement egoMotionAgainstGps(const DriveData& drive);
 
 /// @brief Per frame, the nominal ground plane tilted with the body over `tilt_window` and, when
 /// enabled, corrected by the median-smoothed vanishing-point pitch of the frames the gate accepts
