@@ -231,3 +231,29 @@ TEST_CASE("changes on the OpenDRIVE MONAEast map world", "[sim][opendrive]") {
   s.moved = s.removed = 0;  // the map's world has lane lines only: nothing to move or remove
   checkChanges(world, s);
 }
+
+TEST_CASE("drives over a changed world observe the changed truth", "[sim]") {
+  sim::World world = proceduralWorld();
+  sim::ChangeSettings s;
+  s.removed = 40;
+  s.moved = 10;
+  s.seed = 5;
+  const MapChanges changes = sim::applyWorldChanges(world, s);
+  std::set<int64_t> removed, ids;
+  for (const auto& c : changes.changes)
+    if (c.kind == ChangeKind::kRemoved) removed.insert(c.before->id);
+  for (const auto& m : world.truth.instances) ids.insert(m.id);
+  sim::CrowdSettings settings;
+  settings.traversals = 4;
+  const geo::GeoOrigin origin{49.0, 8.4, 110.0};
+  const sim::Crowd crowd(world, origin, settings);
+  int observed = 0;
+  for (int i = 0; i < settings.traversals; ++i)
+    for (const auto& e : crowd.traversal(i).observed.lsm.elements) {
+      if (e.truth_id < 0) continue;  // an injected false positive
+      ++observed;
+      CHECK(removed.count(e.truth_id) == 0);
+      CHECK(ids.count(e.truth_id) == 1);
+    }
+  CHECK(observed > 100);
+}
