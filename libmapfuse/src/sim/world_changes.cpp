@@ -117,6 +117,7 @@ class Changer {
     if (m.cls == CrowdClass::kLaneLine) {
       m.attributes.style =
           m.attributes.style == LineStyle::kDashed ? LineStyle::kSolid : LineStyle::kDashed;
+      m.note = "retyped by simulator change";
       return;
     }
     const Eigen::Vector3d c = footprintCentre(m.points);
