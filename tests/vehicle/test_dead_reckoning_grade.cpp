@@ -73,7 +73,7 @@ TEST_CASE("dead reckoning keeps height on an 8 % hilly world along a 3 km outwar
 
   sim::DriveParams dp;
   const geo::EnuConverter enu(geo::GeoOrigin{49.0, 8.4, 110.0});
-  sim::Drive d = sim::simulateDrive(route, dp, enu, 5);
+  sim::Drive d = sim::simulateDrive(route, dp, enu, 5, world.surface_height);
   // a known pitch-rate bias of the default's 1 sigma on top of the drawn one
   for (auto& r : d.imu) r.gyro.y() += kInjectedGyroBias;
   // the true body follows the road's grade: pitch = -asin(dz/ds) within the oscillation
@@ -85,6 +85,21 @@ TEST_CASE("dead reckoning keeps height on an 8 % hilly world along a 3 km outwar
         std::max(grade_err, std::abs(rpyFromRotation(d.truth[k].linear()).y() - grade_pitch));
   }
   CHECK(grade_err < dp.pitch_amplitude + 0.005);
+  // ... and leans with its cross-slope: the body's y axis climbs as the surface does 1 m to the
+  // left (the terrain leans across by up to the grade; an upright body on it was the simulator's
+  // bug that put lane lines 0.1-0.5 m off at the frames level)
+  double bank_err = 0.0, bank_max = 0.0;
+  for (std::size_t k = 100; k + 100 < d.truth.size(); k += 50) {
+    const Eigen::Vector3d y_axis = d.truth[k].linear().col(1);
+    const Eigen::Vector2d left = Eigen::Vector2d(y_axis.x(), y_axis.y()).normalized();
+    const Eigen::Vector2d p = d.truth[k].translation().head<2>();
+    const double slope = (world.surface_height(p + left) - world.surface_height(p - left)) / 2.0;
+    bank_max = std::max(bank_max, std::abs(slope));
+    bank_err = std::max(bank_err, std::abs(std::asin(y_axis.z()) - std::atan(slope)));
+  }
+  INFO("largest cross-slope " << bank_max << ", body roll error " << bank_err << " rad");
+  CHECK(bank_max > 0.5 * wp.hill_grade);  // the route does cross leaning terrain
+  CHECK(bank_err < dp.roll_amplitude + 0.005);
 
   const Run with = deadReckonAgainstTruth(d, vehicle::DeadReckoningSettings{}.gravity_gain);
   const Run without = deadReckonAgainstTruth(d, 0.0);

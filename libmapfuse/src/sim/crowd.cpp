@@ -44,7 +44,8 @@ Traversal Crowd::traversal(int i, CrowdStats* stats) const {
   DriveParams dp = P.drive;  // the injected biases of the trust tests (docs/simulate.md)
   if (i == P.inject_pitch_traversal) dp.imu_pitch_mount += P.inject_pitch;
   if (i == P.inject_wheel_traversal) dp.wheel_scale_offset += P.inject_wheel_scale;
-  t.drive = simulateDrive(routes_[i % routes_.size()], dp, enu_, deriveSeed(t.seed, 1));
+  t.drive = simulateDrive(routes_[i % routes_.size()], dp, enu_, deriveSeed(t.seed, 1),
+                          world_.surface_height);
   t.drive.vehicle_id = driveId(i % P.vehicles, 0).substr(0, 5);
   t.drive.drive_id = driveId(i % P.vehicles, i);
   t.observed = observeLsm(world_, index_, t.drive, camera_, P.obs, P.drive, deriveSeed(t.seed, 2));

@@ -63,6 +63,22 @@ std::vector<double> gradePitch(const Polyline& path, const std::vector<double>& 
   }
   return pitch;
 }
+/// The body sits on the road across, too: it rolls by the surface's cross-slope under each vertex,
+/// measured over ±kBankHalfSpan to either side (roll > 0: left side up, poseFromXyzRpy's body y
+/// axis is (.., .., sin roll) for a level heading). Without a surface every roll is 0.
+constexpr double kBankHalfSpan = 1.0;  // m, about the half-track of a car
+std::vector<double> bankRoll(const Polyline& path, const std::vector<double>& heading,
+                             const std::function<double(const Eigen::Vector2d&)>& surface) {
+  std::vector<double> roll(path.size(), 0.0);
+  if (!surface) return roll;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const Eigen::Vector2d left(-std::sin(heading[i]), std::cos(heading[i]));
+    const Eigen::Vector2d p = path[i].head<2>();
+    roll[i] = std::atan((surface(p + kBankHalfSpan * left) - surface(p - kBankHalfSpan * left)) /
+                        (2.0 * kBankHalfSpan));
+  }
+  return roll;
+}
 /// An IMU mounted pitched by `pitch` against the body reads gyro and accel in its own frame.
 void mountImu(std::vector<ImuRecord>& imu, double pitch) {
   if (pitch == 0.0) return;
@@ -192,7 +208,7 @@ void synthesizeWheel(Drive& d, const DriveParams& P, std::normal_distribution<do
 }  // namespace
 
 Drive simulateDrive(const Polyline& route, const DriveParams& P, const geo::EnuConverter& enu,
-                    uint64_t seed) {
+                    uint64_t seed, const std::function<double(const Eigen::Vector2d&)>& surface) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> N01(0.0, 1.0);
   auto U = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
@@ -205,6 +221,7 @@ Drive simulateDrive(const Polyline& route, const DriveParams& P, const geo::EnuC
   const double L = cum.back();
   const std::vector<double> heading = unwrappedHeadings(path);
   const std::vector<double> grade_pitch = gradePitch(path, cum);
+  const std::vector<double> bank_roll = bankRoll(path, heading, surface);
   auto interpolated = [&](const std::vector<double>& v, double s) {
     const auto it = std::upper_bound(cum.begin(), cum.end(), s);
     const std::size_t i = std::clamp<std::size_t>(it - cum.begin(), 1, cum.size() - 1);
@@ -234,7 +251,8 @@ Drive simulateDrive(const Polyline& route, const DriveParams& P, const geo::EnuC
         pointAt(path, cum, s) + lateral * Eigen::Vector3d(-std::sin(yaw), std::cos(yaw), 0.0);
     const double pitch = interpolated(grade_pitch, s) +
                          P.pitch_amplitude * std::sin(2 * kPi * P.pitch_frequency * t + phase_p);
-    const double roll = P.roll_amplitude * std::sin(2 * kPi * P.roll_frequency * t + phase_r);
+    const double roll = interpolated(bank_roll, s) +
+                        P.roll_amplitude * std::sin(2 * kPi * P.roll_frequency * t + phase_r);
     d.stamps[k] = t;
     d.truth[k] = poseFromXyzRpy(p.x(), p.y(), p.z(), roll, pitch, yaw);
     d.distance[k] = k == 0 ? 0.0

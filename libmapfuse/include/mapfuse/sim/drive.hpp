@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <string>
+#include <functional>
 #include <vector>
 
 #include "mapfuse/core/lsm.hpp"
@@ -150,8 +151,11 @@ std::vector<Polyline> planRoutes(const World& world, int count, double length, u
                                  bool outward = false);
 
 /// @brief Simulates one traversal of `route`. @param seed this traversal's own seed.
+/// @param surface the road surface's height at an ENU point (World::surface_height): the body
+/// rolls with the road's cross-slope under it; empty: level across.
 Drive simulateDrive(const Polyline& route, const DriveParams& params, const geo::EnuConverter& enu,
-                    uint64_t seed);
+                    uint64_t seed,
+                    const std::function<double(const Eigen::Vector2d&)>& surface = {});
 
 /// @brief Seed of item `index` derived from a base seed (splitmix64), so traversals are
 /// independent of the order they are simulated in.

@@ -2,7 +2,9 @@
 /// @file The simulator's world (docs/simulate.md "Worlds"): a directed lane graph to drive on
 /// and the true map elements (a VectorMap in ENU with stable ids). Both the Lanelet2 reader and
 /// the procedural generator produce one.
+#include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -34,6 +36,10 @@ struct World {
   DashPattern dashes;
   std::map<std::string, double> stats;  ///< counts reported in the summary
   InputWarnings warnings;  ///< what the map reader clamped, repaired or dropped (summary, stderr)
+  /// Height of the road surface at an ENU point (x, y), m, where the world knows its surface (the
+  /// procedural terrain): a vehicle rolls with the road's cross-slope (simulateDrive). Empty: each
+  /// road is level across.
+  std::function<double(const Eigen::Vector2d&)> surface_height;
 
   /// @brief Total centreline length of the lanes, m.
   double laneLength() const;
