@@ -19,7 +19,8 @@
 using namespace mapfuse;
 
 namespace {
-constexpr double kExact = 1e-9;           // m, rigid moves and reflections: arithmetic only
+constexpr double kExact = 1e-9;     // m, rigid moves and reflections: arithmetic only
+constexpr double kChordSag = 1e-3;  // m, a 1 m chord of the 8 % terrain to its surface (< 1e-5)
 constexpr double kShiftTolerance = 0.05;  // m, a vertex-normal offset measured to the old line
 // m, a turned arrow stays in place: its extent's centre, about which it turns, is 0.21 m from the
 // mean of the template's vertices (sim/world_changes.cpp kArrowShape)
@@ -48,14 +49,22 @@ bool same(const MapInstance& a, const MapInstance& b) {
          a.height == b.height && a.note == b.note && a.source_ids == b.source_ids;
 }
 
-/// Horizontal displacement of a rigidly moved element; fails if the move is not rigid.
-double rigidShift(const MapInstance& before, const MapInstance& after) {
+/// Height of p above the world's ground (its z where the world has no surface).
+double aboveGround(const sim::World& world, const Eigen::Vector3d& p) {
+  return world.surface_height ? p.z() - world.surface_height(p.head<2>()) : p.z();
+}
+
+/// Horizontal displacement of a rigidly moved element; fails if the move is not rigid in the
+/// ground plane or a point's height above the ground changed.
+double rigidShift(const MapInstance& before, const MapInstance& after, const sim::World& world) {
   REQUIRE(before.points.size() == after.points.size());
-  const Eigen::Vector3d d = after.points[0] - before.points[0];
-  for (std::size_t i = 0; i < before.points.size(); ++i)
-    CHECK((after.points[i] - before.points[i] - d).norm() < kExact);
-  CHECK(std::abs(d.z()) < kExact);
-  return d.head<2>().norm();
+  const Eigen::Vector2d d = (after.points[0] - before.points[0]).head<2>();
+  for (std::size_t i = 0; i < before.points.size(); ++i) {
+    CHECK((after.points[i] - before.points[i]).head<2>().isApprox(d, kExact));
+    CHECK(std::abs(aboveGround(world, after.points[i]) - aboveGround(world, before.points[i])) <
+          kExact);
+  }
+  return d.norm();
 }
 
 double largestOffset(const MapInstance& before, const MapInstance& after) {
@@ -131,7 +140,7 @@ MapChanges checkChanges(const sim::World& world, const sim::ChangeSettings& s) {
         break;
       case ChangeKind::kMoved: {
         CHECK((c.cls == CrowdClass::kPole || c.cls == CrowdClass::kTrafficSign));
-        const double d = rigidShift(*c.before, *c.after);
+        const double d = rigidShift(*c.before, *c.after, world);
         CHECK(d >= s.move_min - kExact);
         CHECK(d <= s.move_max + kExact);
         break;
@@ -256,4 +265,28 @@ TEST_CASE("drives over a changed world observe the changed truth", "[sim]") {
       CHECK(ids.count(e.truth_id) == 1);
     }
   CHECK(observed > 100);
+}
+
+TEST_CASE("changes on a hilly world keep every element on the ground", "[sim]") {
+  sim::CrowdSettings settings;
+  settings.world.hill_grade = 0.08;
+  const sim::World world = sim::proceduralWorld(settings, geo::GeoOrigin{49.0, 8.4, 110.0});
+  REQUIRE(world.surface_height);
+  const MapChanges changes = checkChanges(world, everyKind(8));
+  for (const auto& c : changes.changes) {
+    if (!c.after) continue;
+    for (std::size_t i = 0; i < c.after->points.size(); ++i) {
+      const double h = aboveGround(world, c.after->points[i]);
+      if (c.kind == ChangeKind::kRestriped) {  // on the ground; a stretch is resampled at 1 m,
+        CHECK(std::abs(h) < kChordSag);        // its chords off the curved terrain
+      } else if (c.before) {                   // moved, retyped: as high above the ground as before
+        CHECK(std::abs(h - aboveGround(world, c.before->points[i])) < kExact);
+      } else if (c.cls == CrowdClass::kTrafficSign) {  // a plate 2.0-2.6 m up (placed from
+        // a point of the lane's centre line: its chords too)
+        CHECK((std::abs(h - 2.0) < kChordSag || std::abs(h - 2.6) < kChordSag));
+      } else {  // a pole's base, an arrow, a stop line: on the road surface
+        CHECK(std::abs(h) < kChordSag);
+      }
+    }
+  }
 }

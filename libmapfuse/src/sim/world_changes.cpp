@@ -55,6 +55,17 @@ class Changer {
 
  private:
   double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng_); }
+
+  /// Moves p to `xy`, keeping its height above the ground where the world knows its surface
+  /// (the procedural terrain, World::surface_height); elsewhere its z stays.
+  void moveOnGround(Eigen::Vector3d& p, const Eigen::Vector2d& xy) const {
+    if (world_.surface_height)
+      p.z() += world_.surface_height(xy) - world_.surface_height(p.head<2>());
+    p.head<2>() = xy;
+  }
+  void moveOnGround(Polyline& line, const Polyline& to) const {
+    for (std::size_t i = 0; i < line.size(); ++i) moveOnGround(line[i], to[i].head<2>());
+  }
   bool coin() { return uniform(0.0, 1.0) < 0.5; }
 
   static bool isRemovable(const MapInstance& m) { return m.cls != CrowdClass::kLaneLine; }
@@ -121,7 +132,7 @@ class Changer {
       return;
     }
     const Eigen::Vector3d c = footprintCentre(m.points);
-    for (auto& p : m.points) p.head<2>() = 2.0 * c.head<2>() - p.head<2>();
+    for (auto& p : m.points) moveOnGround(p, 2.0 * c.head<2>() - p.head<2>());
     m.note = "turned round by simulator change";
   }
 
@@ -150,7 +161,7 @@ class Changer {
     const double a = uniform(s_.shift_min, s_.shift_max) * (coin() ? 1.0 : -1.0);
     const double length = polylineLength(m.points);
     if (length < kMinStretchLine || coin()) {
-      m.points = offsetLine(m.points, a);
+      moveOnGround(m.points, offsetLine(m.points, a));
       m.note = "restriped by simulator change";
       return;
     }
@@ -166,7 +177,8 @@ class Changer {
                                               : 0.5 - 0.5 * std::cos(kPi * into / kStretchRamp);
       out[i] = line[i] + a * w * leftNormalAt(line, i);
     }
-    m.points = std::move(out);
+    moveOnGround(line, out);
+    m.points = std::move(line);
     m.note = "restriped on a stretch by simulator change";
   }
 
@@ -179,7 +191,7 @@ class Changer {
     const Eigen::Vector2d d(std::cos(angle) * t.x() - std::sin(angle) * t.y(),
                             std::sin(angle) * t.x() + std::cos(angle) * t.y());
     const double distance = uniform(s_.move_min, s_.move_max);
-    for (auto& p : m.points) p.head<2>() += distance * d;
+    for (auto& p : m.points) moveOnGround(p, p.head<2>() + distance * d);
     m.note = "moved by simulator change";
   }
 
@@ -246,7 +258,8 @@ class Changer {
     t.normalize();
     const Eigen::Vector3d n(-t.y(), t.x(), 0.0);  // left
     const Eigen::Vector3d up(0, 0, 1);
-    const Eigen::Vector3d side = c - (0.5 * lane.width + kRoadsideGap) * n;  // right of the lane
+    Eigen::Vector3d side = c;  // right of the lane, on the ground
+    moveOnGround(side, (c - (0.5 * lane.width + kRoadsideGap) * n).head<2>());
     const double h = 0.5 * kAddedSignSize;
     switch (m.cls) {
       case CrowdClass::kPole:
@@ -259,10 +272,15 @@ class Changer {
                     side + h * n + (kAddedSignBottom + kAddedSignSize) * up};
         break;
       case CrowdClass::kGroundArrow:
-        for (const auto& q : kArrowShape) m.points.push_back(c + q.x() * t + q.y() * n);
+        for (const auto& q : kArrowShape) {
+          m.points.push_back(c);
+          moveOnGround(m.points.back(), (c + q.x() * t + q.y() * n).head<2>());
+        }
         break;
       default:  // stop line across the lane
-        m.points = {c + 0.5 * lane.width * n, c - 0.5 * lane.width * n};
+        m.points = {c, c};
+        moveOnGround(m.points[0], (c + 0.5 * lane.width * n).head<2>());
+        moveOnGround(m.points[1], (c - 0.5 * lane.width * n).head<2>());
         break;
     }
   }
