@@ -60,6 +60,8 @@ nlohmann::json toJson(const vehicle::LsmBuildResult& r) {
             {"roll_max_rad", r.tilt.roll_max},
             {"height_change_rms_m", r.tilt.height_change_rms}}},
           {"ranged_markings", r.ranged_markings},
+          {"ranged_points", r.ranged_points},
+          {"ranged_on_path", r.ranged_on_path},
           {"ground_instances", r.assembly.ground_instances},
           {"ground_instances_dropped", r.assembly.ground_dropped},
           {"aerial_tracks", r.aerial_tracks},

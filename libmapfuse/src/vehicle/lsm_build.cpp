@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <optional>
 
 #include "aerial_tracks.hpp"
 #include "body_tilt.hpp"
+#include "path_surface.hpp"
 
 namespace mapfuse::vehicle {
 namespace {
@@ -79,9 +81,11 @@ void calibrateGroundPlanes(const DriveData& d, const LsmBuildSettings& s, LsmBui
 }
 
 std::vector<RangedMarking> rangeMarkings(const DriveData& d, const std::vector<GroundPlane>& planes,
-                                         const RangingSettings& s) {
+                                         const RangingSettings& s, int* points, int* on_path_out) {
   const std::size_t n = d.frames.size();
+  const PathSurface path(d.T_odom_body, d.calib.T_body_cam, planes, s);
   std::vector<std::vector<RangedMarking>> per_frame(n);
+  std::vector<int> ranged(n, 0), on_path(n, 0);
 #pragma omp parallel for schedule(dynamic)
   for (int i = 0; i < int(n); ++i) {
     const Pose3 T_odom_cam = d.T_odom_body[i] * d.calib.T_body_cam;
@@ -92,14 +96,23 @@ std::vector<RangedMarking> rangeMarkings(const DriveData& d, const std::vector<G
       m.track_id = g.track_id;
       m.truth_id = g.truth_id;
       m.frame = i;
-      for (const auto& gp : rangeGroundPolyline(g.pixels, d.calib.K, planes[i], s)) {  // eq. (1)
-        m.points.push_back(T_odom_cam * gp.p_cam);
-        m.covariances.push_back(rotateCovariance(T_odom_cam.linear(), gp.cov_cam));
+      for (const auto& px : g.pixels) {
+        bool ahead = false;
+        // eq. (1): on the road ahead (path_surface.hpp), or on the plane under the camera
+        const auto gp = s.path_surface ? path.range(i, px, d.calib.K, s, &ahead)
+                                       : rangeGroundPixel(px, d.calib.K, planes[i], s);
+        if (!gp) continue;
+        ++ranged[i];
+        on_path[i] += ahead ? 1 : 0;
+        m.points.push_back(T_odom_cam * gp->p_cam);
+        m.covariances.push_back(rotateCovariance(T_odom_cam.linear(), gp->cov_cam));
       }
       const std::size_t need = geometryKind(g.cls) == GeometryKind::kPlanar ? 1 : 2;
       if (m.points.size() >= need) per_frame[i].push_back(std::move(m));
     }
   }
+  if (points) *points = std::accumulate(ranged.begin(), ranged.end(), 0);
+  if (on_path_out) *on_path_out = std::accumulate(on_path.begin(), on_path.end(), 0);
   std::vector<RangedMarking> markings;
   for (auto& f : per_frame)
     for (auto& m : f) markings.push_back(std::move(m));
@@ -118,7 +131,8 @@ LsmBuildResult buildLsm(const DriveData& d, const LsmBuildSettings& s) {
 
   // 2. Ground ranging (eq. 1) into the odom frame, frame-parallel.
   t = Clock::now();
-  const std::vector<RangedMarking> markings = rangeMarkings(d, out.planes, s.ranging);
+  const std::vector<RangedMarking> markings =
+      rangeMarkings(d, out.planes, s.ranging, &out.ranged_points, &out.ranged_on_path);
   out.seconds_ranging = since(t);
 
   // 3. Aerial triangulation (eq. 2-3), track-parallel.

@@ -20,6 +20,8 @@ struct RangingSettings {
   double sigma_pixel = 1.0;       ///< px, 1-sigma pixel noise of a marking point
   double sigma_height = 0.03;     ///< m, 1-sigma camera height uncertainty
   double sigma_attitude = 0.003;  ///< rad, 1-sigma residual pitch and roll after calibration
+  bool path_surface = true;       ///< range on the road ahead (vehicle/path_surface.hpp)
+  double path_max_offset = 15.0;  ///< m, farthest a point may lie aside of the frame abreast
 
   template <class V>
   void visit(V& v) {
@@ -30,6 +32,14 @@ struct RangingSettings {
     v("sigma_pixel", sigma_pixel, "px", "marking pixel noise (covariances)", gt(0) & le(100));
     v("sigma_height", sigma_height, "m", "camera height uncertainty (covariances)", in(0, 10));
     v("sigma_attitude", sigma_attitude, "rad", "pitch/roll uncertainty (covariances)", in(0, 1));
+    v("path_surface", path_surface, "",
+      "range each ground pixel again on the plane raised to the road abreast of it, by the "
+      "road's vertical bend that the drive's own heights show (crests, sags, ramps); off: the "
+      "plane under the camera only");
+    v("path_max_offset", path_max_offset, "m",
+      "path_surface: farthest a ranged point may lie aside of the frame abreast (else the plane "
+      "under the camera is kept)",
+      gt(0) & le(1000));
   }
 };
 

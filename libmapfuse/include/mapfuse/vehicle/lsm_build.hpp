@@ -90,6 +90,8 @@ struct LsmBuildResult {
   double mean_pitch_correction = 0.0;     ///< rad
   int frames = 0, keyframes = 0;
   int ranged_markings = 0;  ///< ground markings ranged in single frames
+  int ranged_points = 0;    ///< their points (eq. 1)
+  int ranged_on_path = 0;   ///< ... of them ranged on the road ahead (path_surface.hpp)
   AssemblyStats assembly;   ///< ground instances merged and dropped
   int aerial_tracks = 0, aerial_triangulated = 0;
   std::map<std::string, int> aerial_rejected;  ///< tracks per rejection reason
@@ -109,10 +111,14 @@ LsmBuildResult buildLsm(const DriveData& drive, const LsmBuildSettings& settings
 void calibrateGroundPlanes(const DriveData& drive, const LsmBuildSettings& settings,
                            LsmBuildResult& result);
 
-/// @brief Eq. (1) for every ground observation of every frame, in the odom frame; markings
-/// with too few points in the range band (planar 1, lines 2) are dropped.
+/// @brief Eq. (1) for every ground observation of every frame, in the odom frame, on the frame's
+/// plane (calibrateGroundPlanes) and, when `path_surface` is on, on the road ahead as the drive's
+/// path shows it (vehicle/path_surface.hpp); markings with too few points in the range band
+/// (planar 1, lines 2) are dropped. `points` / `on_path`, when given, count the ranged points
+/// and those ranged on the road ahead.
 std::vector<RangedMarking> rangeMarkings(const DriveData& drive,
                                          const std::vector<GroundPlane>& planes,
-                                         const RangingSettings& settings);
+                                         const RangingSettings& settings, int* points = nullptr,
+                                         int* on_path = nullptr);
 
 }  // namespace mapfuse::vehicle
