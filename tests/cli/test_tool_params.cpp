@@ -12,6 +12,7 @@
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/stages/align.hpp"
 #include "mapfuse/stages/balance.hpp"
+#include "mapfuse/stages/evaluate_changes.hpp"
 #include "mapfuse/stages/evaluate_voxels.hpp"
 #include "mapfuse/stages/georef.hpp"
 #include "mapfuse/stages/lidar_semantic_map.hpp"
@@ -146,6 +147,7 @@ TEST_CASE("every tool's parameters are declared once, bounded and refused outsid
   checkTool<stages::SimulateParams>("simulate");
   checkTool<stages::SimulateLidarParams>("simulate-lidar");
   checkTool<stages::EvaluateVoxelsParams>("evaluate-voxels");
+  checkTool<stages::EvaluateChangesParams>("evaluate-changes");
   checkTool<stages::LocalizeParams>("localize");
   checkTool<stages::LidarSemanticMapParams>("lidar-semantic-map");
 }

@@ -5,6 +5,7 @@
 /// always with the ground truth: the true vector map, true keyframe trajectories and truth ids.
 /// The simulation itself is sim::Crowd; this stage reads the map and writes the files.
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -12,6 +13,7 @@
 #include "mapfuse/geo/origin.hpp"
 #include "mapfuse/sim/crowd.hpp"
 #include "mapfuse/sim/map_world.hpp"
+#include "mapfuse/sim/world_changes.hpp"
 
 namespace mapfuse::stages {
 
@@ -24,8 +26,9 @@ struct SimulateParams {
   double origin_lat = 49.0;               ///< deg
   double origin_lon = 8.4;                ///< deg
   double origin_alt = 110.0;              ///< m
-  sim::MapWorldSettings map_world;  ///< how a Lanelet2 map becomes a world
+  sim::MapWorldSettings map_world;        ///< how a Lanelet2 map becomes a world
   sim::CrowdSettings crowd;
+  sim::ChangeSettings changes;  ///< true changes applied to the world before the drives
 
   template <class V>
   void visit(V& v) {
@@ -43,6 +46,7 @@ struct SimulateParams {
     v("origin_lon", origin_lon, "deg", "ENU origin longitude", in(-180, 180));
     v("origin_alt", origin_alt, "m", "ENU origin ellipsoidal altitude", in(-10000, 100000));
     crowd.visit(v);
+    changes.visit(v);
   }
 };
 
@@ -52,9 +56,10 @@ struct SimulateRun {
   geo::GeoOrigin origin;  ///< ENU origin of the world and the outputs
   sim::WorldSummary world;
   int drives = 0, vehicles = 0;
-  sim::CrowdStats stats;   ///< over all traversals
-  sim::DriveParams drive;  ///< the sensor errors configured (for the expected errors)
-  double seconds = 0.0;    ///< wall time
+  sim::CrowdStats stats;               ///< over all traversals
+  sim::DriveParams drive;              ///< the sensor errors configured (for the expected errors)
+  std::map<std::string, int> changes;  ///< true changes applied, by kind (none: empty)
+  double seconds = 0.0;                ///< wall time
 };
 
 /// @brief The summary (without the wall time: simulate.summary.json is byte-identical between
