@@ -208,10 +208,34 @@ std::optional<MapChange> decideLine(const MapInstance& m, const std::vector<Evid
   return std::nullopt;
 }
 
+// Per lane line the map's other lane lines whose bounding box comes within `reach` of its own.
+std::vector<std::vector<const MapInstance*>> laneLineNeighbours(const VectorMap& map,
+                                                                double reach) {
+  const std::size_t n = map.instances.size();
+  std::vector<Eigen::Vector2d> lo(n), hi(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    lo[i] = hi[i] = map.instances[i].points.front().head<2>();
+    for (const auto& p : map.instances[i].points)
+      lo[i] = lo[i].cwiseMin(p.head<2>()), hi[i] = hi[i].cwiseMax(p.head<2>());
+  }
+  std::vector<std::vector<const MapInstance*>> out(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) {
+      if (i == j || map.instances[i].cls != CrowdClass::kLaneLine ||
+          map.instances[j].cls != CrowdClass::kLaneLine)
+        continue;
+      const bool apart = (lo[j].array() > hi[i].array() + reach).any() ||
+                         (hi[j].array() < lo[i].array() - reach).any();
+      if (!apart) out[i].push_back(&map.instances[j]);
+    }
+  return out;
+}
+
 // Per element: the traversals that had it in view and what each saw; then the decision.
 void detectElementChanges(const VectorMap& map, const std::vector<Lsm>& lsms,
                           const std::vector<DriveView>& views, const Assignment& a,
                           const UpdateSettings& s, UpdateResult* out) {
+  const auto neighbours = laneLineNeighbours(map, s.evidence.line_search);
   for (std::size_t e = 0; e < map.instances.size(); ++e) {
     const MapInstance& m = map.instances[e];
     std::vector<Evidence> present, missing;
@@ -219,7 +243,8 @@ void detectElementChanges(const VectorMap& map, const std::vector<Lsm>& lsms,
     for (std::size_t d = 0; d < lsms.size(); ++d) {
       if (m.cls == CrowdClass::kLaneLine) {
         bool in_view = false, data = false;
-        Evidence ev = laneLineEvidence(m, a.lines[d], views[d], int(d), s, &in_view, &data);
+        Evidence ev =
+            laneLineEvidence(m, neighbours[e], a.lines[d], views[d], int(d), s, &in_view, &data);
         any_view |= in_view;
         if (data) present.push_back(ev);
         continue;

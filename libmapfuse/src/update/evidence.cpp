@@ -141,9 +141,10 @@ Evidence discreteEvidence(const MapInstance& element, const DriveObservations& a
   return ev;
 }
 
-Evidence laneLineEvidence(const MapInstance& line, const DriveObservations& lines,
-                          const DriveView& view, int drive, const UpdateSettings& s, bool* in_view,
-                          bool* has_data) {
+Evidence laneLineEvidence(const MapInstance& line,
+                          const std::vector<const MapInstance*>& neighbours,
+                          const DriveObservations& lines, const DriveView& view, int drive,
+                          const UpdateSettings& s, bool* in_view, bool* has_data) {
   Evidence ev;
   ev.drive = drive;
   *in_view = *has_data = false;
@@ -160,6 +161,12 @@ Evidence laneLineEvidence(const MapInstance& line, const DriveObservations& line
     t.normalize();
     LineSample ls;
     if (!nearestBeside(samples[i], t, lines, s.evidence.line_search, &ls)) continue;
+    const Eigen::Vector3d seen_at =
+        samples[i] + ls.offset * Eigen::Vector3d(-t.y(), t.x(), 0.0);  // the observed line
+    bool theirs = false;
+    for (const MapInstance* n : neighbours)
+      theirs = theirs || aggregate::distanceToPolyline2d(seen_at, n->points) < std::abs(ls.offset);
+    if (theirs) continue;
     ls.index = int(i);
     seen.push_back(ls);
     if (std::abs(ls.offset) <= s.evidence.restripe_min_shift) (ls.dashed ? dashed : solid)++;

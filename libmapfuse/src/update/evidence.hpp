@@ -34,10 +34,13 @@ Evidence discreteEvidence(const MapInstance& element, const DriveObservations& a
 
 /// @brief A lane line's evidence: samples in view with an observed line beside them (offset,
 /// style); a sideways-shifted stretch of at least restripe_min_length; the style most samples
-/// see. `has_data` false when no in-view sample had an observation (no evidence).
-Evidence laneLineEvidence(const MapInstance& line, const DriveObservations& lines,
-                          const DriveView& view, int drive, const UpdateSettings& s, bool* in_view,
-                          bool* has_data);
+/// see. `has_data` false when no in-view sample had an observation (no evidence). An observation
+/// nearer to one of `neighbours` (the map's other lane lines near this one) than to this line is
+/// theirs, not evidence about this one.
+Evidence laneLineEvidence(const MapInstance& line,
+                          const std::vector<const MapInstance*>& neighbours,
+                          const DriveObservations& lines, const DriveView& view, int drive,
+                          const UpdateSettings& s, bool* in_view, bool* has_data);
 
 /// @brief Horizontal distance used to assign an observation to an element: centre to centre,
 /// or for a stop line the observed centre to the mapped segment (a partly seen stop line).
