@@ -344,6 +344,11 @@ void detectAdditions(const VectorMap& map, const std::vector<Lsm>& lsms,
 UpdateResult detectChanges(const VectorMap& map, const std::vector<Lsm>& lsms,
                            const std::vector<std::string>& sources,
                            const UpdateSettings& settings) {
+  for (std::size_t d = 0; d < lsms.size(); ++d)
+    if (lsms[d].frame != LsmFrame::kEnu)
+      throw InputError(sources[d] +
+                       ": LSM is in frame 'odom'; update needs the new drives in the "
+                       "map's ENU frame (georef --origin of the map, then align)");
   UpdateResult out;
   out.changes.origin = map.origin;
   out.changes.source = "update";
