@@ -49,14 +49,16 @@ chk = json.load(open(f"{out}/check.json"))
 lane = {c["class"]: c for c in ev["maps"][0]["classes"]}.get("lane_line", {})
 kf = h["keyframes"]
 drives = kf["drives"].values() if isinstance(kf["drives"], dict) else kf["drives"]
-per = " / ".join(f"{d['vertical_rms_m']:.2f}" for d in drives)
+per = " / ".join("n/a" if d['vertical_rms_m'] is None else f"{d['vertical_rms_m']:.2f}" for d in drives)
 eh = h["element_height"]
 stats = json.load(open(f"{sim}/simulate.summary.json"))
 km = stats["km_driven"] / max(1, len(kf["drives"]))  # per drive: one route
 rel = lane.get("relative_precision_m")
-print(f"| {seed} | {grade} | {km:.2f} | {len(kf['drives'])} | {kf['vertical_rms_m']:.2f} ({per}) | "
-      f"{kf['horizontal_rms_m']:.2f} | "
-      f"{eh['rms_m']:.2f} / {eh['mean_m']:+.2f} | {lane.get('completeness', 0):.2f} / "
+f2 = lambda v: "n/a" if v is None else f"{v:.2f}"  # a world with nothing of that kind
+sg = lambda v: "n/a" if v is None else f"{v:+.2f}"
+print(f"| {seed} | {grade} | {km:.2f} | {len(kf['drives'])} | {f2(kf['vertical_rms_m'])} ({per}) | "
+      f"{f2(kf['horizontal_rms_m'])} | "
+      f"{f2(eh['rms_m'])} / {sg(eh['mean_m'])} | {lane.get('completeness', 0):.2f} / "
       f"{rel if rel is None else round(rel, 3)} | {', '.join(chk['untrusted']) or 'none'} | {secs} |")
 PY
 done
