@@ -336,8 +336,9 @@ TEST_CASE("Lanelet2 export: stop lines without lights give all_way_stop or right
                        }),
         minor.instances.end());
     io::Lanelet2ExportStats stats;
-    const io::Lanelet2Map osm =
-        io::parseLanelet2Osm(io::vectorMapToOsm(minor, lanePaths(world), &stats), "export.osm");
+    const io::Lanelet2Map osm = io::parseLanelet2Osm(
+        io::vectorMapToOsm(minor, lanelet::planExport(minor, lanePaths(world)), &stats),
+        "export.osm");
     CHECK(stats.right_of_way_elements == unlit);
     CHECK(stats.all_way_stop_elements == 0);
     int yield = 0, priority = 0;
