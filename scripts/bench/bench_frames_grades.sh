@@ -7,7 +7,9 @@
 # (INJECT_PITCH_TRAVERSAL): the trust check must name that drive. Prints one Markdown row per
 # world; docs/performance-frames-grades.md keeps the rows with machine, command and date.
 # usage: scripts/bench/bench_frames_grades.sh [BIN_DIR=build/bin]
-# env: WORLDS="7:0.08 11:0.05" (seed:grade), TRAVERSALS=4, ROUTE_LENGTH=3000, GRID=9,
+# env: WORLDS="7:0.08 11:0.05" (seed:grade of a procedural world, or seed:FILE.xodr|.osm of a
+#      map world, e.g. 3:../shared/data/maps/opendrive-esmini/xodr__crest-curve.xodr, whose
+#      routes are as long as its roads allow), TRAVERSALS=4, ROUTE_LENGTH=3000, GRID=9,
 #      INJECT_PITCH_TRAVERSAL=-1, WORK (kept when set; else a scratch folder)
 set -euo pipefail
 source "$(dirname "$0")/lib.sh" "$@"
@@ -20,12 +22,14 @@ work=${WORK:-$tmp}
 echo "| seed | grade | km per drive | drives | keyframes vertical RMS m (per drive) | keyframes horizontal RMS m | element height RMS / mean m | lane completeness / rel. precision m | untrusted drives | seconds |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
 for w in $worlds; do
-  seed=${w%%:*} grade=${w##*:}
+  seed=${w%%:*} grade=${w#*:}
+  world=(--world-grid-size "$grid" --world-hill-grade "$grade")
+  case $grade in *.xodr | *.osm) world=(--map "$grade") grade=$(basename "$grade") ;; esac
   sim="$work/sim-$seed-$grade" out="$work/crowd-$seed-$grade"
   rm -rf "$sim" "$out"
   t0=$(date +%s)
-  "$bin/simulate" -q --level frames --seed "$seed" --world-grid-size "$grid" \
-    --world-hill-grade "$grade" --route-outward 1 --route-length "$route_length" --routes 1 \
+  "$bin/simulate" -q --level frames --seed "$seed" "${world[@]}" \
+    --route-outward 1 --route-length "$route_length" --routes 1 \
     --traversals "$traversals" --vehicles "$traversals" --inject-pitch-traversal "$inject" \
     -o "$sim" > /dev/null
   # the trust check must not stop the bench: it is one of the figures
