@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The structural rules of docs/design.md, checked on the source tree (run by the e2e test
 `structure`, so by CI):
-  - layers: core -> geo -> io -> cli -> areas -> stages -> apps; no include from a lower layer
+  - layers: core -> geo -> lanelet -> io -> cli -> areas -> stages -> apps; no include from a lower layer
     to a higher one, and no circle between areas;
   - thin stages: no libmapfuse/src/stages/*.cpp over 120 lines; no `_detail` header;
   - thin tools: no app main() over 25 lines;
@@ -25,8 +25,8 @@ import sys
 
 ROOT = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..")
 LIB = os.path.join(ROOT, "libmapfuse")
-RANK = {"core": 0, "geo": 1, "io": 2, "cli": 3, "stages": 5}
-AREA_RANK = 4
+RANK = {"core": 0, "geo": 1, "lanelet": 2, "io": 3, "cli": 4, "stages": 6}
+AREA_RANK = 5
 MAX_STAGE_LINES = 120
 MAX_FUNCTION_LINES = 120
 MAX_IO_LINES = 300

@@ -7,7 +7,9 @@
 # (INJECT_PITCH_TRAVERSAL): the trust check must name that drive. Prints one Markdown row per
 # world; docs/performance-frames-grades.md keeps the rows with machine, command and date.
 # usage: scripts/bench/bench_frames_grades.sh [BIN_DIR=build/bin]
-# env: WORLDS="7:0.08 11:0.05" (seed:grade), TRAVERSALS=4, ROUTE_LENGTH=3000, GRID=9,
+# env: WORLDS="7:0.08 11:0.05" (seed:grade of a procedural world, or seed:FILE.xodr|.osm of a
+#      map world, e.g. 3:../shared/data/maps/opendrive-esmini/xodr__crest-curve.xodr, whose
+#      routes are as long as its roads allow), TRAVERSALS=4, ROUTE_LENGTH=3000, GRID=9,
 #      INJECT_PITCH_TRAVERSAL=-1, WORK (kept when set; else a scratch folder)
 set -euo pipefail
 source "$(dirname "$0")/lib.sh" "$@"
@@ -20,12 +22,14 @@ work=${WORK:-$tmp}
 echo "| seed | grade | km per drive | drives | keyframes vertical RMS m (per drive) | keyframes horizontal RMS m | element height RMS / mean m | lane completeness / rel. precision m | untrusted drives | seconds |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
 for w in $worlds; do
-  seed=${w%%:*} grade=${w##*:}
+  seed=${w%%:*} grade=${w#*:}
+  world=(--world-grid-size "$grid" --world-hill-grade "$grade")
+  case $grade in *.xodr | *.osm) world=(--map "$grade") grade=$(basename "$grade") ;; esac
   sim="$work/sim-$seed-$grade" out="$work/crowd-$seed-$grade"
   rm -rf "$sim" "$out"
   t0=$(date +%s)
-  "$bin/simulate" -q --level frames --seed "$seed" --world-grid-size "$grid" \
-    --world-hill-grade "$grade" --route-outward 1 --route-length "$route_length" --routes 1 \
+  "$bin/simulate" -q --level frames --seed "$seed" "${world[@]}" \
+    --route-outward 1 --route-length "$route_length" --routes 1 \
     --traversals "$traversals" --vehicles "$traversals" --inject-pitch-traversal "$inject" \
     -o "$sim" > /dev/null
   # the trust check must not stop the bench: it is one of the figures
@@ -45,14 +49,16 @@ chk = json.load(open(f"{out}/check.json"))
 lane = {c["class"]: c for c in ev["maps"][0]["classes"]}.get("lane_line", {})
 kf = h["keyframes"]
 drives = kf["drives"].values() if isinstance(kf["drives"], dict) else kf["drives"]
-per = " / ".join(f"{d['vertical_rms_m']:.2f}" for d in drives)
+per = " / ".join("n/a" if d['vertical_rms_m'] is None else f"{d['vertical_rms_m']:.2f}" for d in drives)
 eh = h["element_height"]
 stats = json.load(open(f"{sim}/simulate.summary.json"))
 km = stats["km_driven"] / max(1, len(kf["drives"]))  # per drive: one route
 rel = lane.get("relative_precision_m")
-print(f"| {seed} | {grade} | {km:.2f} | {len(kf['drives'])} | {kf['vertical_rms_m']:.2f} ({per}) | "
-      f"{kf['horizontal_rms_m']:.2f} | "
-      f"{eh['rms_m']:.2f} / {eh['mean_m']:+.2f} | {lane.get('completeness', 0):.2f} / "
+f2 = lambda v: "n/a" if v is None else f"{v:.2f}"  # a world with nothing of that kind
+sg = lambda v: "n/a" if v is None else f"{v:+.2f}"
+print(f"| {seed} | {grade} | {km:.2f} | {len(kf['drives'])} | {f2(kf['vertical_rms_m'])} ({per}) | "
+      f"{f2(kf['horizontal_rms_m'])} | "
+      f"{f2(eh['rms_m'])} / {sg(eh['mean_m'])} | {lane.get('completeness', 0):.2f} / "
       f"{rel if rel is None else round(rel, 3)} | {', '.join(chk['untrusted']) or 'none'} | {secs} |")
 PY
 done

@@ -13,6 +13,7 @@
 #include "mapfuse/io/lanelet2_osm.hpp"
 #include "mapfuse/io/osm_export.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
+#include "mapfuse/lanelet/regulatory.hpp"
 #include "mapfuse/sim/lanelet2_world.hpp"
 #include "mapfuse/sim/procedural_world.hpp"
 #include "support/test_support.hpp"
@@ -96,8 +97,8 @@ sim::World proceduralWorld() {
   return sim::buildProceduralWorld(sim::ProceduralParams{}, {49.0, 8.4, 110.0}, 1234);
 }
 
-std::vector<io::DrivePath> lanePaths(const sim::World& world) {
-  std::vector<io::DrivePath> drives;
+std::vector<lanelet::DrivePath> lanePaths(const sim::World& world) {
+  std::vector<lanelet::DrivePath> drives;
   for (const auto& l : world.lanes) drives.push_back(l.centerline);
   return drives;
 }
@@ -108,8 +109,10 @@ struct Exported {
   io::Lanelet2ExportStats stats;
   io::Lanelet2Map osm;
   Exported()
-      : osm(io::parseLanelet2Osm(io::vectorMapToOsm(world.truth, lanePaths(world), &stats),
-                                 "export.osm")) {}
+      : osm(io::parseLanelet2Osm(
+            io::vectorMapToOsm(world.truth, lanelet::planExport(world.truth, lanePaths(world)),
+                               &stats),
+            "export.osm")) {}
 };
 
 std::vector<eval::TrueLane> trueLanes(const sim::World& world) {
@@ -160,7 +163,8 @@ TEST_CASE("Lanelet2 export: lanelets with both bounds cover the marked lanes, dr
 
 TEST_CASE("Lanelet2 export: Lanelet2's file conventions", "[sim][osm][export]") {
   const sim::World world = proceduralWorld();
-  const std::string xml = io::vectorMapToOsm(world.truth, lanePaths(world));
+  const std::string xml =
+      io::vectorMapToOsm(world.truth, lanelet::planExport(world.truth, lanePaths(world)));
   pugi::xml_document doc;
   REQUIRE(doc.load_string(xml.c_str()));
   const pugi::xml_node osm = doc.child("osm");
@@ -309,7 +313,8 @@ TEST_CASE("Lanelet2 export: stop lines without lights give all_way_stop or right
   SECTION("every approach has a stop line: one all_way_stop per unlit intersection") {
     io::Lanelet2ExportStats stats;
     const io::Lanelet2Map osm = io::parseLanelet2Osm(
-        io::vectorMapToOsm(world.truth, lanePaths(world), &stats), "export.osm");
+        io::vectorMapToOsm(world.truth, lanelet::planExport(world.truth, lanePaths(world)), &stats),
+        "export.osm");
     CHECK(stats.all_way_stop_elements == unlit);
     CHECK(stats.right_of_way_elements == 0);
     for (const auto& re : osm.regulatory_elements) {
@@ -331,8 +336,9 @@ TEST_CASE("Lanelet2 export: stop lines without lights give all_way_stop or right
                        }),
         minor.instances.end());
     io::Lanelet2ExportStats stats;
-    const io::Lanelet2Map osm =
-        io::parseLanelet2Osm(io::vectorMapToOsm(minor, lanePaths(world), &stats), "export.osm");
+    const io::Lanelet2Map osm = io::parseLanelet2Osm(
+        io::vectorMapToOsm(minor, lanelet::planExport(minor, lanePaths(world)), &stats),
+        "export.osm");
     CHECK(stats.right_of_way_elements == unlit);
     CHECK(stats.all_way_stop_elements == 0);
     int yield = 0, priority = 0;

@@ -51,7 +51,7 @@ bool same(const MapInstance& a, const MapInstance& b) {
 
 /// Height of p above the world's ground (its z where the world has no surface).
 double aboveGround(const sim::World& world, const Eigen::Vector3d& p) {
-  return world.surface_height ? p.z() - world.surface_height(p.head<2>()) : p.z();
+  return world.surface_height ? p.z() - world.surface_height(p) : p.z();
 }
 
 /// Horizontal displacement of a rigidly moved element; fails if the move is not rigid in the

@@ -91,8 +91,8 @@ TEST_CASE("dead reckoning keeps height on an 8 % hilly world along a 3 km outwar
   double bank_err = 0.0, bank_max = 0.0;
   for (std::size_t k = 100; k + 100 < d.truth.size(); k += 50) {
     const Eigen::Vector3d y_axis = d.truth[k].linear().col(1);
-    const Eigen::Vector2d left = Eigen::Vector2d(y_axis.x(), y_axis.y()).normalized();
-    const Eigen::Vector2d p = d.truth[k].translation().head<2>();
+    const Eigen::Vector3d left = Eigen::Vector3d(y_axis.x(), y_axis.y(), 0.0).normalized();
+    const Eigen::Vector3d p = d.truth[k].translation();
     const double slope = (world.surface_height(p + left) - world.surface_height(p - left)) / 2.0;
     bank_max = std::max(bank_max, std::abs(slope));
     bank_err = std::max(bank_err, std::abs(std::asin(y_axis.z()) - std::atan(slope)));

@@ -5,7 +5,7 @@
 #include <limits>
 #include <map>
 
-#include "mapfuse/io/lanelet2_lanes.hpp"
+#include "mapfuse/lanelet/plan.hpp"
 
 namespace mapfuse::eval {
 
@@ -130,7 +130,7 @@ LaneletCoverage measureLaneletCoverage(const std::vector<TrueLane>& lanes, const
         if (const auto* cell = shapes.at(p))
           for (std::size_t l : *cell) {
             const LaneletShape& sh = lanelets[l];
-            if (!io::insideRingXY(sh.ring, p)) continue;
+            if (!lanelet::insideRingXY(sh.ring, p)) continue;
             inside = true;
             if (!sh.one_way) continue;
             std::size_t best = 0;

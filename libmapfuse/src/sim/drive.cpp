@@ -68,12 +68,12 @@ std::vector<double> gradePitch(const Polyline& path, const std::vector<double>& 
 /// axis is (.., .., sin roll) for a level heading). Without a surface every roll is 0.
 constexpr double kBankHalfSpan = 1.0;  // m, about the half-track of a car
 std::vector<double> bankRoll(const Polyline& path, const std::vector<double>& heading,
-                             const std::function<double(const Eigen::Vector2d&)>& surface) {
+                             const std::function<double(const Eigen::Vector3d&)>& surface) {
   std::vector<double> roll(path.size(), 0.0);
   if (!surface) return roll;
   for (std::size_t i = 0; i < path.size(); ++i) {
-    const Eigen::Vector2d left(-std::sin(heading[i]), std::cos(heading[i]));
-    const Eigen::Vector2d p = path[i].head<2>();
+    const Eigen::Vector3d left(-std::sin(heading[i]), std::cos(heading[i]), 0.0);
+    const Eigen::Vector3d& p = path[i];
     roll[i] = std::atan((surface(p + kBankHalfSpan * left) - surface(p - kBankHalfSpan * left)) /
                         (2.0 * kBankHalfSpan));
   }
@@ -194,12 +194,11 @@ void synthesizeWheel(Drive& d, const DriveParams& P, std::normal_distribution<do
   const int wheel_every = std::max(1, static_cast<int>(std::lround(P.imu_rate / P.wheel_rate)));
   for (int k = 0; k < n; k += wheel_every) {
     const int k1 = std::min(n - 1, k + 1), k0 = std::max(0, k - 1);
-    const double speed =
-        k1 > k0 ? (d.truth[k].linear().transpose() *
-                   (d.truth[k1].translation() - d.truth[k0].translation()))
-                          .x() /
-                      ((k1 - k0) * dt)
-                : d.speed;
+    const double speed = k1 > k0 ? (d.truth[k].linear().transpose() *
+                                    (d.truth[k1].translation() - d.truth[k0].translation()))
+                                           .x() /
+                                       ((k1 - k0) * dt)
+                                 : d.speed;
     d.wheel.push_back(
         {d.stamps[k], (1.0 + d.wheel_scale_error) * speed + P.wheel_speed_noise * N01(rng)});
   }
@@ -208,7 +207,7 @@ void synthesizeWheel(Drive& d, const DriveParams& P, std::normal_distribution<do
 }  // namespace
 
 Drive simulateDrive(const Polyline& route, const DriveParams& P, const geo::EnuConverter& enu,
-                    uint64_t seed, const std::function<double(const Eigen::Vector2d&)>& surface) {
+                    uint64_t seed, const std::function<double(const Eigen::Vector3d&)>& surface) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> N01(0.0, 1.0);
   auto U = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };

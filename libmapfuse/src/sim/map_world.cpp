@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "lane_surface.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/io/lanelet2_osm.hpp"
@@ -47,6 +48,7 @@ World loadMapWorld(const std::string& path, bool map_origin, const MapWorldSetti
   for (const auto& [kind, e] : world.warnings.entries())
     MAPFUSE_WARN(kind << ": " << e.count << "x, first: " << e.first);
   if (world.lanes.empty()) throw InputError(path + ": the map has no drivable lanes");
+  world.surface_height = laneSurface(world);  // the body rolls with superelevation and banking
   const int markings = trueMarkings(world);
   world.stats["true_markings"] = markings;
   if (markings == 0) {

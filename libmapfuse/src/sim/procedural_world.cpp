@@ -93,10 +93,10 @@ double smoothstep(double x) {
 void liftOntoTerrain(World& world, const ProceduralParams& P, double phase_a, double phase_b) {
   if (P.hill_grade <= 0.0) return;
   const double k = 2.0 * kPi / P.hill_wavelength, A = P.hill_grade / k;
-  world.surface_height = [k, A, phase_a, phase_b](const Eigen::Vector2d& q) {
+  world.surface_height = [k, A, phase_a, phase_b](const Eigen::Vector3d& q) {
     return A * (std::sin(k * q.x() + phase_a) + std::sin(k * q.y() + phase_b));
   };
-  auto lift = [&](Eigen::Vector3d& p) { p.z() += world.surface_height(p.head<2>()); };
+  auto lift = [&](Eigen::Vector3d& p) { p.z() += world.surface_height(p); };
   for (Lane& lane : world.lanes)
     for (auto& p : lane.centerline) lift(p);
   for (MapInstance& m : world.truth.instances)

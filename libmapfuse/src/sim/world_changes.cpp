@@ -57,10 +57,11 @@ class Changer {
   double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng_); }
 
   /// Moves p to `xy`, keeping its height above the ground where the world knows its surface
-  /// (the procedural terrain, World::surface_height); elsewhere its z stays.
+  /// (World::surface_height); elsewhere its z stays.
   void moveOnGround(Eigen::Vector3d& p, const Eigen::Vector2d& xy) const {
     if (world_.surface_height)
-      p.z() += world_.surface_height(xy) - world_.surface_height(p.head<2>());
+      p.z() +=
+          world_.surface_height(Eigen::Vector3d(xy.x(), xy.y(), p.z())) - world_.surface_height(p);
     p.head<2>() = xy;
   }
   void moveOnGround(Polyline& line, const Polyline& to) const {

@@ -14,6 +14,7 @@
 #include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
+#include "mapfuse/lanelet/regulatory.hpp"
 
 namespace mapfuse::stages {
 namespace {
@@ -29,11 +30,12 @@ std::vector<std::function<void()>> mapWriters(const std::filesystem::path& out_d
                                               const AggregateParams& params,
                                               io::Lanelet2ExportStats* osm_stats) {
   return {[&, osm_stats] {  // the two slowest first
-            std::vector<io::DrivePath> drives(lsms.size());
+            std::vector<lanelet::DrivePath> drives(lsms.size());
             for (std::size_t d = 0; d < lsms.size(); ++d)
               for (const auto& k : lsms[d].keyframes)
                 drives[d].push_back(k.T_frame_body.translation());
-            io::writeOsm(out_dir / "map.osm", map, drives, osm_stats);
+            io::writeOsm(out_dir / "map.osm", map, lanelet::planExport(map, drives, params.lanelet),
+                         osm_stats);
           },
           [&] {
             if (!params.write_png) return;

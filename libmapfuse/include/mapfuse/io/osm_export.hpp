@@ -3,7 +3,7 @@
 /// WGS84 as Lanelet2's own writer produces it (negative ids, no version / visible attributes,
 /// altitude in the `ele` tag of every node). Lane lines are `line_thin` line strings with
 /// `subtype=solid|dashed` and `color`, cut where lanelets begin and end (consecutive pieces share
-/// a node); pairs of neighbouring lane lines are `type=lanelet` relations (io/lanelet2_lanes.hpp)
+/// a node); pairs of neighbouring lane lines are `type=lanelet` relations (lanelet/plan.hpp)
 /// with the travel direction from the drives; stop lines are `stop_line` ways; traffic signs
 /// `traffic_sign` ways along the bottom edge of the plate and traffic lights 0.3 m
 /// `traffic_light` ways across the approach at the housing's bottom, both with `height`; poles
@@ -12,15 +12,17 @@
 /// line become `traffic_light` / `traffic_sign` regulatory elements (refers = the light or sign,
 /// ref_line = the stop line) referenced by the lanelets the stop line crosses; intersections
 /// with stop lines and no lights get `right_of_way` or `all_way_stop` elements
-/// (io/lanelet2_right_of_way.hpp). Where drives cross
+/// (lanelet/right_of_way.hpp). Where drives cross
 /// an unmarked stretch (an intersection) from one lanelet to another, a connector lanelet with
-/// `virtual` bounds shares their end nodes.
+/// `virtual` bounds shares their end nodes. This file only writes: what is derived (lanelets,
+/// directions, which stop line a light serves, right of way) comes planned by
+/// lanelet::planExport (lanelet/regulatory.hpp).
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "mapfuse/core/vector_map.hpp"
-#include "mapfuse/io/lanelet2_lanes.hpp"
+#include "mapfuse/lanelet/regulatory.hpp"
 
 namespace mapfuse::io {
 
@@ -32,7 +34,7 @@ struct Lanelet2ExportStats {
   int connector_lanelets = 0;               ///< across unmarked stretches, `virtual` bounds
   int crosswalk_lanelets = 0;
   int regulatory_elements = 0;       ///< traffic_light + traffic_sign relations
-  int right_of_way_elements = 0;     ///< right_of_way relations (io/lanelet2_right_of_way.hpp)
+  int right_of_way_elements = 0;     ///< right_of_way relations (lanelet/right_of_way.hpp)
   int all_way_stop_elements = 0;     ///< all_way_stop relations
   int lanelets_with_regulatory = 0;  ///< lanelets referring to at least one
   int unmatched_pieces = 0;          ///< piece pairs whose cuts did not line up
@@ -40,13 +42,13 @@ struct Lanelet2ExportStats {
   double bound_m = 0.0;              ///< lane-line length that bounds at least one lanelet
 };
 
-/// @brief The OSM XML document as a string; `drives` (ENU paths of the map's frame) give the
-/// lanelets' travel direction.
-std::string vectorMapToOsm(const VectorMap& map, const std::vector<DrivePath>& drives = {},
+/// @brief The OSM XML document of `map` with the lanelets and regulatory elements of `plan`
+/// (lanelet::planExport of the same map).
+std::string vectorMapToOsm(const VectorMap& map, const lanelet::LaneletExportPlan& plan,
                            Lanelet2ExportStats* stats = nullptr);
 
 /// @brief Atomic write of vectorMapToOsm(). @throws IoError.
 void writeOsm(const std::filesystem::path& path, const VectorMap& map,
-              const std::vector<DrivePath>& drives = {}, Lanelet2ExportStats* stats = nullptr);
+              const lanelet::LaneletExportPlan& plan, Lanelet2ExportStats* stats = nullptr);
 
 }  // namespace mapfuse::io

@@ -155,7 +155,7 @@ std::vector<Polyline> planRoutes(const World& world, int count, double length, u
 /// rolls with the road's cross-slope under it; empty: level across.
 Drive simulateDrive(const Polyline& route, const DriveParams& params, const geo::EnuConverter& enu,
                     uint64_t seed,
-                    const std::function<double(const Eigen::Vector2d&)>& surface = {});
+                    const std::function<double(const Eigen::Vector3d&)>& surface = {});
 
 /// @brief Seed of item `index` derived from a base seed (splitmix64), so traversals are
 /// independent of the order they are simulated in.

@@ -36,10 +36,11 @@ struct World {
   DashPattern dashes;
   std::map<std::string, double> stats;  ///< counts reported in the summary
   InputWarnings warnings;  ///< what the map reader clamped, repaired or dropped (summary, stderr)
-  /// Height of the road surface at an ENU point (x, y), m, where the world knows its surface (the
-  /// procedural terrain): a vehicle rolls with the road's cross-slope (simulateDrive). Empty: each
-  /// road is level across.
-  std::function<double(const Eigen::Vector2d&)> surface_height;
+  /// Height of the road surface at an ENU point's (x, y), m, on the deck nearest in height to the
+  /// point's z (bridges): a vehicle rolls with the road's cross-slope (simulateDrive). The
+  /// procedural terrain is exact; map worlds fit it to their lanes (sim/lane_surface.hpp).
+  /// Empty: each road is level across.
+  std::function<double(const Eigen::Vector3d&)> surface_height;
 
   /// @brief Total centreline length of the lanes, m.
   double laneLength() const;

@@ -11,6 +11,7 @@
 #include "mapfuse/aggregate/aggregator.hpp"
 #include "mapfuse/aggregate/road_length.hpp"
 #include "mapfuse/io/osm_export.hpp"
+#include "mapfuse/lanelet/settings.hpp"
 
 namespace mapfuse::stages {
 
@@ -23,6 +24,7 @@ struct AggregateParams {
   double png_resolution = 0.2;  ///< m/px
   bool write_png = true;
   aggregate::RoadLengthSettings road;
+  lanelet::LaneletSettings lanelet;  ///< map.osm's lanelet inference (docs/formats.md)
 
   template <class V>
   void visit(V& v) {
@@ -36,6 +38,7 @@ struct AggregateParams {
     v("png_resolution", png_resolution, "m/px", "top-down picture resolution", gt(0) & le(100));
     v("write_png", write_png, "", "write map.png");
     road.visit(v);
+    lanelet.visit(v);
   }
 };
 

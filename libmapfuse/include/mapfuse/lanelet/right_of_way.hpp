@@ -7,8 +7,10 @@
 ///   through an unmarked stretch) leaves their end, or a stop line crosses them within 8 m of
 ///   their end; an approach's stop line is the one its axis meets nearest to its end, from 8 m
 ///   before to 10 m beyond it (the lane lines may run on a little past the last lanelet);
-///   approaches whose ends lie within 40 m of each other (single linkage) are one intersection;
-/// - an intersection with a traffic light within 25 m of one of its stop lines is left to the
+///   approaches whose ends lie within 40 m (LaneletSettings::intersection_reach) of each other
+///   (single linkage) are one intersection;
+/// - an intersection with a traffic light within 25 m (regulatory_reach) of one of its stop lines
+/// is left to the
 ///   lights;
 /// - approaches cross when their directions are 30-150 degrees apart;
 /// - one where approaches without a stop line cross approaches with one: the stop-line
@@ -28,9 +30,9 @@
 #include <cstddef>
 #include <vector>
 
-#include "mapfuse/io/lanelet2_lanes.hpp"
+#include "mapfuse/lanelet/plan.hpp"
 
-namespace mapfuse::io {
+namespace mapfuse::lanelet {
 
 /// A stop line of the map.
 struct RightOfWayStop {
@@ -50,6 +52,7 @@ struct RightOfWayRule {
 /// `drives` (the map's ENU paths) show which free approaches were driven through.
 std::vector<RightOfWayRule> deriveRightOfWay(const LaneletPlan& plan,
                                              const std::vector<RightOfWayStop>& stops,
-                                             const std::vector<DrivePath>& drives);
+                                             const std::vector<DrivePath>& drives,
+                                             const LaneletSettings& settings = {});
 
-}  // namespace mapfuse::io
+}  // namespace mapfuse::lanelet

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace mapfuse::io::detail {
+namespace mapfuse::lanelet::detail {
 
 class RingIndex {
  public:
@@ -55,4 +55,4 @@ class RingIndex {
   std::vector<std::vector<Edge>> edges_;
 };
 
-}  // namespace mapfuse::io::detail
+}  // namespace mapfuse::lanelet::detail

@@ -1,11 +1,11 @@
-// Travel directions of lanelets from their oriented neighbours (io/lanelet2_lanes.hpp
+// Travel directions of lanelets from their oriented neighbours (lanelet/plan.hpp
 // neighbourDirections; docs/formats.md "Lanelet2 export").
 #include <cmath>
 #include <map>
 
-#include "mapfuse/io/lanelet2_lanes.hpp"
+#include "mapfuse/lanelet/plan.hpp"
 
-namespace mapfuse::io {
+namespace mapfuse::lanelet {
 namespace {
 
 using V3 = Eigen::Vector3d;
@@ -62,4 +62,4 @@ std::vector<std::pair<std::size_t, bool>> neighbourDirections(const LaneletPlan&
   return out;
 }
 
-}  // namespace mapfuse::io
+}  // namespace mapfuse::lanelet

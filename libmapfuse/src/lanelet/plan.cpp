@@ -1,4 +1,4 @@
-#include "mapfuse/io/lanelet2_lanes.hpp"
+#include "mapfuse/lanelet/plan.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,24 +8,19 @@
 
 #include "ring_index.hpp"
 
-namespace mapfuse::io {
+namespace mapfuse::lanelet {
 
 namespace {
 
 constexpr double kStationStep = 1.0;     // m between stations where neighbours are sought
-constexpr double kMinLaneWidth = 2.0;    // m; a closer line blocks (double lines, duplicates)
-constexpr double kMaxLaneWidth = 5.0;    // m
 constexpr double kMinParallel = 0.9063;  // cos 25 deg between the two bounds
 constexpr double kRunBreak = 3.0;        // m of missing neighbour that ends a pair interval
-constexpr double kMinRun = 4.0;          // m; shorter pair intervals give no lanelet
 constexpr double kCutSnap = 1.0;         // m; a cut this close to another is the same cut
 constexpr double kMinPiece = 0.5;        // m; shorter pieces give no lanelet
 constexpr double kGridCell = 5.0;        // m, segment and drive-sample grid
 constexpr double kDriveStep = 2.0;       // m between drive samples used as votes
-constexpr double kStopLineEnd = 6.0;     // m; a stop line this close to a lanelet end orients it
 constexpr int kMaxPropagation = 20;      // rounds of cut propagation
 constexpr double kConnectorStep = 1.0;   // m between drive samples tracing connections
-constexpr double kMaxConnector = 60.0;   // m of unmarked drive between two lanelets
 constexpr double kConnectorEnd = 4.0;    // m; the drive leaves / enters within this of the ends
 
 using V3 = Eigen::Vector3d;
@@ -192,7 +187,8 @@ namespace {
 
 /// Connector lanelets where drives leave one one-way lanelet at its end and enter another at its
 /// start after an unmarked stretch.
-void addConnectors(LaneletPlan& plan, const std::vector<DrivePath>& drives) {
+void addConnectors(LaneletPlan& plan, const std::vector<DrivePath>& drives,
+                   const LaneletSettings& settings) {
   std::map<Cell, std::vector<std::size_t>> grid;
   std::vector<detail::RingIndex> rings;  // the test of every drive sample against the rings
   rings.reserve(plan.lanelets.size());
@@ -227,7 +223,8 @@ void addConnectors(LaneletPlan& plan, const std::vector<DrivePath>& drives) {
       const auto [p, t] = sampleAt(d, dc, s);
       const long l = containing(p, t);
       if (l < 0) continue;
-      if (last >= 0 && l != last && s - left_at > kConnectorStep && s - left_at <= kMaxConnector) {
+      if (last >= 0 && l != last && s - left_at > kConnectorStep &&
+          s - left_at <= settings.max_connector) {
         const auto& a = plan.lanelets[static_cast<std::size_t>(last)];
         const auto& b = plan.lanelets[static_cast<std::size_t>(l)];
         const V3 exit_p = sampleAt(d, dc, left_at).first;
@@ -272,60 +269,75 @@ void addConnectors(LaneletPlan& plan, const std::vector<DrivePath>& drives) {
   }
 }
 
-}  // namespace
-
-LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& drives) {
-  // Lane lines and their segments.
-  std::vector<std::size_t> inst;
+/// The lane lines long enough to bound a lanelet, with their arc lengths and segment grid.
+struct LineSet {
+  std::vector<std::size_t> inst;  ///< index in VectorMap::instances
   std::vector<Poly> lines;
+  std::vector<std::vector<double>> cum;
+  SegmentGrid grid;
+};
+
+LineSet collectLines(const VectorMap& map, const LaneletSettings& settings) {
+  LineSet set;
   for (std::size_t i = 0; i < map.instances.size(); ++i) {
     const auto& m = map.instances[i];
     if (m.cls != CrowdClass::kLaneLine || m.points.size() < 2) continue;
-    if (polylineLength(m.points) < kMinRun) continue;
-    inst.push_back(i);
-    lines.push_back(m.points);
+    if (polylineLength(m.points) < settings.min_length) continue;
+    set.inst.push_back(i);
+    set.lines.push_back(m.points);
   }
-  const std::size_t n = lines.size();
-  std::vector<std::vector<double>> cum(n);
-  SegmentGrid grid;
-  for (std::size_t i = 0; i < n; ++i) {
-    cum[i] = arcLengths(lines[i]);
-    grid.add(i, lines[i]);
+  set.cum.resize(set.lines.size());
+  for (std::size_t i = 0; i < set.lines.size(); ++i) {
+    set.cum[i] = arcLengths(set.lines[i]);
+    set.grid.add(i, set.lines[i]);
   }
-  // The nearest line across from a station, if it is a lane width away and parallel.
-  auto cast = [&](std::size_t i, const V3& p, const Eigen::Vector2d& t, double side) {
-    const Eigen::Vector2d dir = side * Eigen::Vector2d(-t.y(), t.x());
-    const Eigen::Vector2d o = p.head<2>(), e = o + kMaxLaneWidth * dir;
-    const Cell lo = cellOf(std::min(o.x(), e.x()), std::min(o.y(), e.y()));
-    const Cell hi = cellOf(std::max(o.x(), e.x()), std::max(o.y(), e.y()));
-    Hit best;
-    best.w = kMaxLaneWidth + 1.0;
-    Eigen::Vector2d best_dir(0, 0);
-    std::set<std::pair<std::size_t, std::size_t>> seen;
-    for (int64_t x = lo.first; x <= hi.first; ++x)
-      for (int64_t y = lo.second; y <= hi.second; ++y) {
-        const auto it = grid.cells.find({x, y});
-        if (it == grid.cells.end()) continue;
-        for (const auto& sg : it->second) {
-          if (sg.line == i || !seen.insert({sg.line, sg.index}).second) continue;
-          const Eigen::Vector2d a = lines[sg.line][sg.index].head<2>();
-          const Eigen::Vector2d b = lines[sg.line][sg.index + 1].head<2>();
-          const Eigen::Vector2d d = b - a;
-          const double den = cross2(dir, d);
-          if (std::abs(den) < 1e-12) continue;
-          const double w = cross2(a - o, d) / den;    // along the ray
-          const double u = cross2(a - o, dir) / den;  // along the segment
-          if (u < 0.0 || u > 1.0 || w <= 0.05 || w >= best.w) continue;
-          best = {static_cast<long>(sg.line), cum[sg.line][sg.index] + u * d.norm(), w};
-          best_dir = d.normalized();
-        }
+  return set;
+}
+
+/// The nearest line across from a station of line i, if it is a lane width away and parallel.
+Hit cast(const LineSet& set, std::size_t i, const V3& p, const Eigen::Vector2d& t, double side,
+         const LaneletSettings& settings) {
+  const auto& lines = set.lines;
+  const auto& cum = set.cum;
+  const auto& grid = set.grid;
+  const Eigen::Vector2d dir = side * Eigen::Vector2d(-t.y(), t.x());
+  const Eigen::Vector2d o = p.head<2>(), e = o + settings.max_width * dir;
+  const Cell lo = cellOf(std::min(o.x(), e.x()), std::min(o.y(), e.y()));
+  const Cell hi = cellOf(std::max(o.x(), e.x()), std::max(o.y(), e.y()));
+  Hit best;
+  best.w = settings.max_width + 1.0;
+  Eigen::Vector2d best_dir(0, 0);
+  std::set<std::pair<std::size_t, std::size_t>> seen;
+  for (int64_t x = lo.first; x <= hi.first; ++x)
+    for (int64_t y = lo.second; y <= hi.second; ++y) {
+      const auto it = grid.cells.find({x, y});
+      if (it == grid.cells.end()) continue;
+      for (const auto& sg : it->second) {
+        if (sg.line == i || !seen.insert({sg.line, sg.index}).second) continue;
+        const Eigen::Vector2d a = lines[sg.line][sg.index].head<2>();
+        const Eigen::Vector2d b = lines[sg.line][sg.index + 1].head<2>();
+        const Eigen::Vector2d d = b - a;
+        const double den = cross2(dir, d);
+        if (std::abs(den) < 1e-12) continue;
+        const double w = cross2(a - o, d) / den;    // along the ray
+        const double u = cross2(a - o, dir) / den;  // along the segment
+        if (u < 0.0 || u > 1.0 || w <= 0.05 || w >= best.w) continue;
+        best = {static_cast<long>(sg.line), cum[sg.line][sg.index] + u * d.norm(), w};
+        best_dir = d.normalized();
       }
-    if (best.line < 0 || best.w < kMinLaneWidth || best.w > kMaxLaneWidth ||
-        std::abs(best_dir.dot(t)) < kMinParallel)
-      return Hit{};
-    return best;
-  };
-  // Pair samples from every station of every line, both sides.
+    }
+  if (best.line < 0 || best.w < settings.min_width || best.w > settings.max_width ||
+      std::abs(best_dir.dot(t)) < kMinParallel)
+    return Hit{};
+  return best;
+}
+
+/// Pair samples from every station of every line, both sides.
+std::map<std::pair<std::size_t, std::size_t>, std::vector<PairSample>> pairSamples(
+    const LineSet& set, const LaneletSettings& settings) {
+  const std::size_t n = set.lines.size();
+  const auto& lines = set.lines;
+  const auto& cum = set.cum;
   std::map<std::pair<std::size_t, std::size_t>, std::vector<PairSample>> pair_samples;
   for (std::size_t i = 0; i < n; ++i) {
     const double L = cum[i].back();
@@ -334,7 +346,7 @@ LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& dri
       const double s = L * k / stations;
       const auto [p, t] = sampleAt(lines[i], cum[i], s);
       for (double side : {1.0, -1.0}) {
-        const Hit h = cast(i, p, t, side);
+        const Hit h = cast(set, i, p, t, side, settings);
         if (h.line < 0) continue;
         const std::size_t j = static_cast<std::size_t>(h.line);
         if (i < j)
@@ -344,7 +356,13 @@ LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& dri
       }
     }
   }
-  // Pair intervals: runs of samples along the lower line without a long gap.
+  return pair_samples;
+}
+
+/// Pair intervals: runs of samples along the lower line without a long gap.
+std::vector<PairInterval> pairIntervals(
+    std::map<std::pair<std::size_t, std::size_t>, std::vector<PairSample>>& pair_samples,
+    const LaneletSettings& settings) {
   std::vector<PairInterval> intervals;
   for (auto& [key, samples] : pair_samples) {
     std::sort(samples.begin(), samples.end(),
@@ -364,11 +382,19 @@ LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& dri
       iv.by_b = iv.samples;
       std::sort(iv.by_b.begin(), iv.by_b.end(),
                 [](const PairSample& x, const PairSample& y) { return x.b < y.b; });
-      if (iv.a1 - iv.a0 >= kMinRun && iv.b1 - iv.b0 >= kMinRun) intervals.push_back(iv);
+      if (iv.a1 - iv.a0 >= settings.min_length && iv.b1 - iv.b0 >= settings.min_length)
+        intervals.push_back(iv);
       start = k;
     }
   }
-  // Cuts: line ends, interval ends, then propagated across pairs until side-by-side lanes agree.
+  return intervals;
+}
+
+/// Cuts: line ends, interval ends, then propagated across pairs until side-by-side lanes agree.
+std::vector<std::vector<double>> cutLines(const LineSet& set,
+                                          const std::vector<PairInterval>& intervals) {
+  const std::size_t n = set.lines.size();
+  const auto& cum = set.cum;
   std::vector<std::vector<double>> cuts(n);
   for (std::size_t i = 0; i < n; ++i) cuts[i] = {0.0, cum[i].back()};
   for (const auto& iv : intervals) {
@@ -389,7 +415,17 @@ LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& dri
     }
     if (!changed) break;
   }
-  // Lines with their cut points inserted.
+  return cuts;
+}
+
+/// Lines with their cut points inserted, pieces, and lanelets: consecutive cuts on the lower
+/// line and the matching cuts on the higher, with their geometry.
+LaneletPlan buildLanelets(const LineSet& set, const std::vector<std::vector<double>>& cuts,
+                          const std::vector<PairInterval>& intervals) {
+  const std::size_t n = set.lines.size();
+  const auto& lines = set.lines;
+  const auto& cum = set.cum;
+  const auto& inst = set.inst;
   LaneletPlan plan;
   std::vector<long> plan_line(n, -1);
   auto planLine = [&](std::size_t i) {
@@ -452,7 +488,11 @@ LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& dri
     ll.ring = left;
     ll.ring.insert(ll.ring.end(), right.rbegin(), right.rend());
   }
-  // Travel direction: votes of drive samples inside the lanelet.
+  return plan;
+}
+
+/// Travel direction: votes of drive samples inside each lanelet.
+void voteByDrives(LaneletPlan& plan, const std::vector<DrivePath>& drives) {
   std::map<Cell, std::vector<std::pair<V3, Eigen::Vector2d>>> drive_grid;
   for (const auto& d : drives) {
     if (d.size() < 2) continue;
@@ -485,7 +525,10 @@ LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& dri
         }
       }
   }
-  // A stop line across one end of a lanelet without drives: traffic drives towards it.
+}
+
+/// A stop line across one end of a lanelet without drives: traffic drives towards it.
+void voteByStopLines(LaneletPlan& plan, const VectorMap& map, const LaneletSettings& settings) {
   std::vector<const MapInstance*> stops;
   for (const auto& m : map.instances)
     if (m.cls == CrowdClass::kStopLine && m.points.size() >= 2) stops.push_back(&m);
@@ -499,40 +542,54 @@ LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& dri
       for (std::size_t k = 1; k < ll.centre.size(); ++k)
         if ((ll.centre[k] - mid).head<2>().norm() < (ll.centre[best] - mid).head<2>().norm())
           best = k;
-      if (cc.back() - cc[best] <= kStopLineEnd)
+      if (cc.back() - cc[best] <= settings.stop_line_end)
         ll.votes_for = 1;  // the stop line ends the lanelet: traffic runs along the centre
-      else if (cc[best] <= kStopLineEnd)
+      else if (cc[best] <= settings.stop_line_end)
         ll.votes_against = 1;
     }
   }
-  // Decide, then orient: the left bound lies left of the travel direction.
-  auto orient = [&](LaneletPlan::Lanelet& ll) {
-    ll.direction_known = ll.votes_for > 2 * ll.votes_against || ll.votes_against > 2 * ll.votes_for;
-    if (ll.direction_known && ll.votes_against > ll.votes_for) {
-      std::reverse(ll.centre.begin(), ll.centre.end());
-      std::swap(ll.votes_for, ll.votes_against);
-    }
-    // Which piece is left of the centre's direction (at its middle)?
-    const std::size_t m = ll.centre.size() / 2;
-    const Eigen::Vector2d dir =
-        (ll.centre[std::min(ll.centre.size() - 1, m + 1)] - ll.centre[m > 0 ? m - 1 : 0]).head<2>();
-    const Poly left = piecePoints(plan, ll.left);
-    const auto lc = arcLengths(left);
-    const V3 lp = sampleAt(left, lc, 0.5 * lc.back()).first;
-    if (cross2(dir, (lp - ll.centre[m]).head<2>()) < 0) {
-      std::swap(ll.left, ll.right);
-      const Poly l2 = piecePoints(plan, ll.left);
-      Poly r2 = piecePoints(plan, ll.right);
-      if ((l2.front() - r2.front()).norm() + (l2.back() - r2.back()).norm() >
-          (l2.front() - r2.back()).norm() + (l2.back() - r2.front()).norm())
-        std::reverse(r2.begin(), r2.end());
-      ll.ring = l2;
-      ll.ring.insert(ll.ring.end(), r2.rbegin(), r2.rend());
-    }
-  };
-  for (auto& ll : plan.lanelets) orient(ll);
+}
+
+/// Decides a lanelet's direction from its votes, then orients it: the left bound lies left of
+/// the travel direction.
+void orient(const LaneletPlan& plan, LaneletPlan::Lanelet& ll) {
+  ll.direction_known = ll.votes_for > 2 * ll.votes_against || ll.votes_against > 2 * ll.votes_for;
+  if (ll.direction_known && ll.votes_against > ll.votes_for) {
+    std::reverse(ll.centre.begin(), ll.centre.end());
+    std::swap(ll.votes_for, ll.votes_against);
+  }
+  // Which piece is left of the centre's direction (at its middle)?
+  const std::size_t m = ll.centre.size() / 2;
+  const Eigen::Vector2d dir =
+      (ll.centre[std::min(ll.centre.size() - 1, m + 1)] - ll.centre[m > 0 ? m - 1 : 0]).head<2>();
+  const Poly left = piecePoints(plan, ll.left);
+  const auto lc = arcLengths(left);
+  const V3 lp = sampleAt(left, lc, 0.5 * lc.back()).first;
+  if (cross2(dir, (lp - ll.centre[m]).head<2>()) < 0) {
+    std::swap(ll.left, ll.right);
+    const Poly l2 = piecePoints(plan, ll.left);
+    Poly r2 = piecePoints(plan, ll.right);
+    if ((l2.front() - r2.front()).norm() + (l2.back() - r2.back()).norm() >
+        (l2.front() - r2.back()).norm() + (l2.back() - r2.front()).norm())
+      std::reverse(r2.begin(), r2.end());
+    ll.ring = l2;
+    ll.ring.insert(ll.ring.end(), r2.rbegin(), r2.rend());
+  }
+}
+
+}  // namespace
+
+LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& drives,
+                         const LaneletSettings& settings) {
+  const LineSet set = collectLines(map, settings);
+  auto pair_samples = pairSamples(set, settings);
+  const std::vector<PairInterval> intervals = pairIntervals(pair_samples, settings);
+  LaneletPlan plan = buildLanelets(set, cutLines(set, intervals), intervals);
+  voteByDrives(plan, drives);
+  voteByStopLines(plan, map, settings);
+  for (auto& ll : plan.lanelets) orient(plan, ll);
   // Lanelets no drive or stop line oriented, from their oriented neighbours (right-hand traffic:
-  // io/lanelet2_direction.cpp), round by round.
+  // lanelet/direction.cpp), round by round.
   for (int round = 0; round < kMaxPropagation; ++round) {
     const auto inferred = neighbourDirections(plan, map);
     if (inferred.empty()) break;
@@ -540,11 +597,11 @@ LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& dri
       auto& ll = plan.lanelets[l];
       (along ? ll.votes_for : ll.votes_against) = 1;
       ++plan.lanelets_oriented_by_neighbours;
-      orient(ll);
+      orient(plan, ll);
     }
   }
-  addConnectors(plan, drives);
+  addConnectors(plan, drives, settings);
   return plan;
 }
 
-}  // namespace mapfuse::io
+}  // namespace mapfuse::lanelet

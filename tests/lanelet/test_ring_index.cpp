@@ -2,8 +2,8 @@
 #include <cmath>
 #include <random>
 
-#include "io/ring_index.hpp"
-#include "mapfuse/io/lanelet2_lanes.hpp"
+#include "lanelet/ring_index.hpp"
+#include "mapfuse/lanelet/plan.hpp"
 
 using namespace mapfuse;
 using Vec3 = Eigen::Vector3d;
@@ -39,7 +39,7 @@ TEST_CASE("the banded ring index answers as insideRingXY", "[io][lanelet2]") {
         ring.push_back(origin + Vec3(r * std::cos(a), r * std::sin(a), 0));
       }
     }
-    const mapfuse::io::detail::RingIndex index(ring);
+    const mapfuse::lanelet::detail::RingIndex index(ring);
     Vec3 lo = ring.front(), hi = lo;
     for (const auto& p : ring) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
     for (int k = 0; k < 2000; ++k) {
@@ -51,7 +51,7 @@ TEST_CASE("the banded ring index answers as insideRingXY", "[io][lanelet2]") {
       } else {
         p = lo + Vec3(u(rng), u(rng), 0).cwiseProduct(hi - lo + Vec3(2, 2, 0)) - Vec3(1, 1, 0);
       }
-      const bool expected = io::insideRingXY(ring, p);
+      const bool expected = lanelet::insideRingXY(ring, p);
       REQUIRE(index.contains(p) == expected);
       (expected ? inside : outside) += 1;
     }

@@ -1,4 +1,4 @@
-#include "mapfuse/io/lanelet2_right_of_way.hpp"
+#include "mapfuse/lanelet/right_of_way.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,16 +8,15 @@
 #include <optional>
 #include <set>
 
-namespace mapfuse::io {
+namespace mapfuse::lanelet {
 namespace {
 
-constexpr double kStopBehind = 8.0;  // m before an approach's end where its stop line may cross
-constexpr double kStopAhead = 10.0;  // m beyond its end (the unpaired tail of its lane lines)
-constexpr double kStopStep = 0.5;    // m between the axis samples tested
-constexpr double kStopHit = 0.75;    // m from a sample to the stop line
-constexpr double kIntersectionReach = 40.0;  // m between the ends of one intersection's approaches
-constexpr double kDrivenReach = 10.0;        // m from a free approach's end to a drive's path
-constexpr double kParallelCos = 0.866;       // |cos| above it: parallel or opposite (< 30 deg)
+constexpr double kStopBehind = 8.0;     // m before an approach's end where its stop line may cross
+constexpr double kStopAhead = 10.0;     // m beyond its end (the unpaired tail of its lane lines)
+constexpr double kStopStep = 0.5;       // m between the axis samples tested
+constexpr double kStopHit = 0.75;       // m from a sample to the stop line
+constexpr double kDrivenReach = 10.0;   // m from a free approach's end to a drive's path
+constexpr double kParallelCos = 0.866;  // |cos| above it: parallel or opposite (< 30 deg)
 
 using V3 = Eigen::Vector3d;
 
@@ -78,7 +77,8 @@ bool crossing(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 
 std::vector<RightOfWayRule> deriveRightOfWay(const LaneletPlan& plan,
                                              const std::vector<RightOfWayStop>& stops,
-                                             const std::vector<DrivePath>& drives) {
+                                             const std::vector<DrivePath>& drives,
+                                             const LaneletSettings& settings) {
   // Approaches: one-way lanelets that no lanelet continues or that a connector leaves.
   std::set<std::pair<PieceKey, PieceKey>> oriented_bounds;  // of the oriented lanelets
   for (const auto& ll : plan.lanelets) {
@@ -127,7 +127,7 @@ std::vector<RightOfWayRule> deriveRightOfWay(const LaneletPlan& plan,
     for (std::size_t j = i + 1; j < approaches.size(); ++j) {
       const V3& a = plan.lanelets[approaches[i].lanelet].centre.back();
       const V3& b = plan.lanelets[approaches[j].lanelet].centre.back();
-      if ((a - b).head<2>().norm() <= kIntersectionReach)
+      if ((a - b).head<2>().norm() <= settings.intersection_reach)
         parent[findRoot(parent, i)] = findRoot(parent, j);
     }
   std::map<std::size_t, std::vector<std::size_t>> groups;
@@ -185,4 +185,4 @@ std::vector<RightOfWayRule> deriveRightOfWay(const LaneletPlan& plan,
   return rules;
 }
 
-}  // namespace mapfuse::io
+}  // namespace mapfuse::lanelet

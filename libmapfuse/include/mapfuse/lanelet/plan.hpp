@@ -1,21 +1,22 @@
 #pragma once
 /// @file Lanelets derived from a vector map's lane lines for the Lanelet2 export (docs/formats.md
 /// "Lanelet2 export"). Two lane lines are a lane's bounds where each is the other's nearest line
-/// across, 2-5 m apart and parallel; every line is cut where a neighbouring lane begins or ends
-/// so that side-by-side lanelets begin and end together and consecutive lanelets of one lane
-/// share their bounds' end nodes. The travel direction of a lanelet comes from the drives that
-/// pass through it (majority of their headings), else from a stop line across its end, else from
-/// an oriented neighbour (neighbourDirections); without any it stays unknown (`one_way=no`). Where
-/// a drive leaves one lanelet at its end and enters another at its start across an unmarked stretch
-/// (an intersection), a connector lanelet with `virtual` bounds joins their bounds' end points
-/// (cubic Hermite curves along both lanelets' directions).
+/// across, a lane width apart (LaneletSettings: 2-5 m) and parallel; every line is cut where a
+/// neighbouring lane begins or ends so that side-by-side lanelets begin and end together and
+/// consecutive lanelets of one lane share their bounds' end nodes. The travel direction of a
+/// lanelet comes from the drives that pass through it (majority of their headings), else from a
+/// stop line across its end, else from an oriented neighbour (neighbourDirections); without any it
+/// stays unknown (`one_way=no`). Where a drive leaves one lanelet at its end and enters another at
+/// its start across an unmarked stretch (an intersection), a connector lanelet with `virtual`
+/// bounds joins their bounds' end points (cubic Hermite curves along both lanelets' directions).
 #include <Eigen/Core>
 #include <cstddef>
 #include <vector>
 
 #include "mapfuse/core/vector_map.hpp"
+#include "mapfuse/lanelet/settings.hpp"
 
-namespace mapfuse::io {
+namespace mapfuse::lanelet {
 
 /// A drive's path in the map's ENU frame, in driving order (e.g. LSM keyframe positions).
 using DrivePath = std::vector<Eigen::Vector3d>;
@@ -55,7 +56,8 @@ struct LaneletPlan {
 };
 
 /// @brief Pairs the lane lines of `map` into lanelets; `drives` give travel directions.
-LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& drives);
+LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& drives,
+                         const LaneletSettings& settings = {});
 
 /// @brief Directions of lanelets without one, from oriented lanelets sharing a bound
 /// (right-hand traffic): a lanelet on the right of an oriented one drives its way; one on its
@@ -77,4 +79,4 @@ std::vector<Eigen::Vector3d> piecePoints(const LaneletPlan& plan, std::size_t pi
 /// @brief True when p lies inside the closed ring (xy).
 bool insideRingXY(const std::vector<Eigen::Vector3d>& ring, const Eigen::Vector3d& p);
 
-}  // namespace mapfuse::io
+}  // namespace mapfuse::lanelet
