@@ -94,6 +94,16 @@ inline constexpr const char* kSimulateLidar =
 inline constexpr const char* kStitch =
     "Merge per-tile vector maps (paths containing tile_<ix>_<iy>) into one map.";
 
+inline constexpr const char* kUpdate =
+    "Detect what changed between an existing vector map (aggregate's map.json/.cbor) and new\n"
+    "drives' LSMs in the map's ENU frame (georef --origin of the map, then align): per map\n"
+    "element and new traversal the expected observation area, then removed / moved /\n"
+    "restriped / retyped by accumulated evidence, and added for clusters no element explains.\n"
+    "Outputs below --out: changes.json (mapfuse.map_changes), changes.geojson (WGS84),\n"
+    "update.config.json, update.summary.json (with the map elements no drive verified).\n"
+    "Exit codes: 0 ok, 2 usage/config, 3 bad input (malformed file, frame odom, origin\n"
+    "differs from the map's), 4 I/O.";
+
 inline constexpr const char* kTile = "Cut georeferenced LSMs (frame enu) into per-tile LSM sets.";
 
 }  // namespace mapfuse::apps::about

@@ -3,7 +3,7 @@
 #include <random>
 
 #include "aggregate/bezier_fit.hpp"
-#include "aggregate/dbscan.hpp"
+#include "mapfuse/aggregate/dbscan.hpp"
 #include "aggregate/discrete_merge.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
 #include "mapfuse/io/vector_map_io.hpp"

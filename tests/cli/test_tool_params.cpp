@@ -22,6 +22,7 @@
 #include "mapfuse/stages/simulate_lidar.hpp"
 #include "mapfuse/stages/stitch.hpp"
 #include "mapfuse/stages/tile.hpp"
+#include "mapfuse/stages/update.hpp"
 
 using namespace mapfuse;
 namespace fs = std::filesystem;
@@ -148,6 +149,7 @@ TEST_CASE("every tool's parameters are declared once, bounded and refused outsid
   checkTool<stages::SimulateLidarParams>("simulate-lidar");
   checkTool<stages::EvaluateVoxelsParams>("evaluate-voxels");
   checkTool<stages::EvaluateChangesParams>("evaluate-changes");
+  checkTool<stages::UpdateParams>("update");
   checkTool<stages::LocalizeParams>("localize");
   checkTool<stages::LidarSemanticMapParams>("lidar-semantic-map");
 }

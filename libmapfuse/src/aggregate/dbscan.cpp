@@ -1,4 +1,4 @@
-#include "dbscan.hpp"
+#include "mapfuse/aggregate/dbscan.hpp"
 
 #include <deque>
 

@@ -12,7 +12,7 @@
 #include <map>
 #include <set>
 
-#include "dbscan.hpp"
+#include "mapfuse/aggregate/dbscan.hpp"
 #include "partner_drives.hpp"
 #include "stop_line_merge.hpp"
 

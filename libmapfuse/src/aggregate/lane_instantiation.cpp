@@ -13,7 +13,7 @@
 
 #include "box2d.hpp"
 #include "crossing_lines.hpp"
-#include "dbscan.hpp"
+#include "mapfuse/aggregate/dbscan.hpp"
 #include "lane_fragments.hpp"
 #include "lane_links.hpp"
 #include "line_buffer.hpp"

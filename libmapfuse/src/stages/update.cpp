@@ -1,0 +1,57 @@
+#include "mapfuse/stages/update.hpp"
+
+#include <map>
+
+#include "mapfuse/cli/params.hpp"
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/core/log.hpp"
+#include "mapfuse/io/lsm_io.hpp"
+#include "mapfuse/io/map_changes_io.hpp"
+#include "mapfuse/io/output_transaction.hpp"
+#include "mapfuse/io/stage_report.hpp"
+#include "mapfuse/io/vector_map_io.hpp"
+
+namespace mapfuse::stages {
+
+nlohmann::json toJson(const update::UpdateResult& result) {
+  std::map<std::string, int> by_kind;
+  for (int k = 0; k < kNumChangeKinds; ++k) by_kind[changeKindName(ChangeKind(k))] = 0;
+  for (const auto& c : result.changes.changes) ++by_kind[changeKindName(c.kind)];
+  const auto& s = result.stats;
+  return {{"traversals", s.traversals},
+          {"observations_used", s.observations_used},
+          {"changes", result.changes.changes.size()},
+          {"changes_by_kind", by_kind},
+          {"elements_in_view", s.elements_in_view},
+          {"confirmed", s.confirmed},
+          {"undecided", s.undecided},
+          {"not_verified", s.not_verified.size()},
+          {"not_verified_ids", s.not_verified},
+          {"drive_offsets_m", [&] {
+             nlohmann::json j = nlohmann::json::array();
+             for (const auto& o : s.drive_offsets) j.push_back({o.x(), o.y()});
+             return j;
+           }()}};
+}
+
+update::UpdateResult runUpdate(const std::filesystem::path& map_path,
+                               const std::vector<std::string>& inputs,
+                               const std::filesystem::path& out_dir, const UpdateParams& params) {
+  validateParams(params);
+  if (inputs.empty()) throw InputError("no new drive (LSM) given");
+  io::OutputTransaction outputs(out_dir);  // locked and writable before the work
+  const VectorMap map = io::readVectorMap(map_path);
+  const std::vector<Lsm> lsms = io::readLsmInputs(inputs, /*covariances=*/false);
+  const update::UpdateResult result = update::detectChanges(map, lsms, inputs, params.detection);
+  MAPFUSE_INFO("update: " << result.changes.changes.size() << " changes, "
+                          << result.stats.not_verified.size() << " of " << map.instances.size()
+                          << " map elements not verified (no new drive had them in view)");
+  io::writeMapChanges(out_dir / "changes.json", result.changes);
+  io::writeMapChangesGeoJson(out_dir / "changes.geojson", result.changes);
+  io::writeResolvedConfig(out_dir, "update", paramsToJson(params));
+  io::writeSummary(out_dir, "update", toJson(result));
+  outputs.commit();
+  return result;
+}
+
+}  // namespace mapfuse::stages

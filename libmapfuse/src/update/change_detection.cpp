@@ -1,0 +1,367 @@
+#include "mapfuse/update/change_detection.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "drive_view.hpp"
+#include "evidence.hpp"
+#include "mapfuse/aggregate/dbscan.hpp"
+#include "mapfuse/aggregate/geometry2d.hpp"
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/geo/origin.hpp"
+
+namespace mapfuse::update {
+namespace {
+
+using aggregate::Observation;
+
+double medianOf(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+// Fewer assigned observations than this leave a drive's offset at zero.
+constexpr std::size_t kMinOffsetObservations = 10;
+
+double logit(double p) {
+  return std::log(p / (1 - p));
+}
+
+bool movable(CrowdClass c) {
+  return c == CrowdClass::kPole || c == CrowdClass::kTrafficSign || c == CrowdClass::kTrafficLight;
+}
+
+// The new drives' confident observations; per observation of a discrete class the map element
+// of its class nearest to it within move_max (-1: none, a candidate addition).
+struct Assignment {
+  aggregate::ObservationSet set;
+  std::vector<int> element;                                 ///< per observation
+  std::vector<std::vector<DriveObservations>> per_element;  ///< [element][drive]
+  std::vector<DriveObservations> lines;                     ///< lane lines per drive
+};
+
+void assign(const VectorMap& map, std::size_t drives, const EvidenceSettings& s, Assignment& a) {
+  a.element.assign(a.set.items.size(), -1);
+  a.per_element.assign(map.instances.size(), std::vector<DriveObservations>(drives));
+  a.lines.assign(drives, {});
+  for (std::size_t i = 0; i < a.set.items.size(); ++i) {
+    const Observation& o = a.set.items[i];
+    if (o.confidence < s.min_confidence) continue;
+    if (o.cls == CrowdClass::kLaneLine) {
+      a.lines[o.drive].push_back(&o);
+      continue;
+    }
+    double best = s.move_max;
+    for (std::size_t e = 0; e < map.instances.size(); ++e) {
+      if (map.instances[e].cls != o.cls) continue;
+      const double d = assignmentDistance(map.instances[e], o);
+      if (d < best) best = d, a.element[i] = int(e);
+    }
+    if (a.element[i] >= 0) a.per_element[a.element[i]][o.drive].push_back(&o);
+  }
+}
+
+// Per drive the median horizontal offset of its assigned discrete observations from their
+// elements (changed elements are a minority), removed from all its observations: what is left
+// of the georeferencing error against the map (a stand-in for map-relative registration).
+std::vector<Eigen::Vector2d> removeDriveOffsets(const VectorMap& map, std::size_t drives,
+                                                Assignment& a) {
+  std::vector<std::vector<double>> dx(drives), dy(drives);
+  for (std::size_t i = 0; i < a.set.items.size(); ++i) {
+    if (a.element[i] < 0) continue;
+    const Observation& o = a.set.items[i];
+    MapInstance tmp;
+    tmp.cls = o.cls;
+    tmp.points = o.points;
+    const MapInstance& m = map.instances[a.element[i]];
+    Eigen::Vector3d foot = instanceCentre(m);
+    if (m.cls == CrowdClass::kStopLine)
+      aggregate::distanceToPolyline2d(instanceCentre(tmp), m.points, &foot);
+    const Eigen::Vector2d d = (instanceCentre(tmp) - foot).head<2>();
+    dx[o.drive].push_back(d.x());
+    dy[o.drive].push_back(d.y());
+  }
+  std::vector<Eigen::Vector2d> offsets(drives, Eigen::Vector2d::Zero());
+  for (std::size_t d = 0; d < drives; ++d)
+    if (dx[d].size() >= kMinOffsetObservations) offsets[d] = {medianOf(dx[d]), medianOf(dy[d])};
+  for (auto& o : a.set.items)
+    for (auto& p : o.points) p.head<2>() -= offsets[o.drive];
+  return offsets;
+}
+
+Assignment assignObservations(const VectorMap& map, const std::vector<Lsm>& lsms,
+                              const std::vector<std::string>& sources, const EvidenceSettings& s,
+                              std::vector<Eigen::Vector2d>* offsets) {
+  Assignment a;
+  a.set = aggregate::collectObservations(lsms, sources);
+  if (!geo::sameOrigin(a.set.origin, map.origin))
+    throw InputError(sources[0] +
+                     ": origin differs from the map's; the new drives must be in "
+                     "the map's ENU frame (georef --origin of the map, then align)");
+  assign(map, lsms.size(), s, a);
+  *offsets = removeDriveOffsets(map, lsms.size(), a);
+  assign(map, lsms.size(), s, a);
+  return a;
+}
+
+std::vector<std::string> driveIds(const std::vector<Evidence>& evs, const std::vector<Lsm>& lsms) {
+  std::vector<std::string> ids;
+  for (const auto& e : evs) ids.push_back(lsms[e.drive].drive_id);
+  return ids;
+}
+
+// Removal by log-odds over the traversals that had the element in view: each one that missed
+// it adds log((1 - Pfa) / (1 - Pd)), each one that saw it adds log(Pfa / Pd).
+std::optional<MapChange> decideDiscrete(const MapInstance& m, const std::vector<Evidence>& present,
+                                        const std::vector<Evidence>& missing,
+                                        const std::vector<Lsm>& lsms, const UpdateSettings& s) {
+  const DecisionSettings& d = s.decision;
+  const double l =
+      logit(d.removal_prior) +
+      double(missing.size()) *
+          std::log((1 - d.false_alarm_probability) / (1 - d.detection_probability)) +
+      double(present.size()) * std::log(d.false_alarm_probability / d.detection_probability);
+  MapChange c;
+  c.cls = m.cls;
+  c.before = m;
+  if (l > 0) {
+    c.kind = ChangeKind::kRemoved;
+    c.confidence = 1.0 / (1.0 + std::exp(-l));
+    c.supporting_traversals = driveIds(missing, lsms);
+    return c;
+  }
+  if (present.empty()) return std::nullopt;
+  std::vector<double> dx, dy;
+  std::vector<Evidence> moved, turned;
+  for (const auto& e : present) {
+    dx.push_back(e.displacement.x());
+    dy.push_back(e.displacement.y());
+    if (e.displacement.norm() > s.evidence.match_distance) moved.push_back(e);
+    if (e.other_type) turned.push_back(e);
+  }
+  const Eigen::Vector2d shift(medianOf(dx), medianOf(dy));
+  c.after = m;
+  if (movable(m.cls) && shift.norm() > s.evidence.match_distance) {
+    c.kind = ChangeKind::kMoved;
+    for (auto& p : c.after->points) p.head<2>() += shift;
+    c.confidence = double(moved.size()) / double(present.size());
+    c.supporting_traversals = driveIds(moved, lsms);
+    return c;
+  }
+  if (2 * turned.size() > present.size()) {
+    c.kind = ChangeKind::kRetyped;
+    c.after->points = turnedRound(m.points);
+    c.confidence = double(turned.size()) / double(present.size());
+    c.supporting_traversals = driveIds(turned, lsms);
+    return c;
+  }
+  return std::nullopt;
+}
+
+// The mapped line with the stretch [from, to] (m along it) offset sideways by `shift`.
+std::vector<Eigen::Vector3d> shiftedLine(const std::vector<Eigen::Vector3d>& pts, double from,
+                                         double to, double shift) {
+  std::vector<Eigen::Vector3d> out = pts;
+  double s = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (i > 0) s += (pts[i] - pts[i - 1]).head<2>().norm();
+    const std::size_t a = i > 0 ? i - 1 : i, b = std::min(pts.size() - 1, i + 1);
+    Eigen::Vector2d t = (pts[b] - pts[a]).head<2>();
+    if (s < from || s > to || t.norm() < 1e-9) continue;
+    t.normalize();
+    out[i].head<2>() += shift * Eigen::Vector2d(-t.y(), t.x());
+  }
+  return out;
+}
+
+std::optional<MapChange> decideLine(const MapInstance& m, const std::vector<Evidence>& seen,
+                                    const std::vector<Lsm>& lsms) {
+  std::vector<Evidence> shifted, retyped;
+  for (const auto& e : seen) {
+    if (e.shifted) shifted.push_back(e);
+    if (e.other_type) retyped.push_back(e);
+  }
+  MapChange c;
+  c.cls = m.cls;
+  c.before = c.after = m;
+  if (2 * shifted.size() > seen.size()) {
+    std::vector<double> shift, from, to;
+    for (const auto& e : shifted)
+      shift.push_back(e.shift), from.push_back(e.shift_from), to.push_back(e.shift_to);
+    c.kind = ChangeKind::kRestriped;
+    c.after->points = shiftedLine(m.points, medianOf(from), medianOf(to), medianOf(shift));
+    c.after->bezier.clear();
+    c.confidence = double(shifted.size()) / double(seen.size());
+    c.supporting_traversals = driveIds(shifted, lsms);
+    return c;
+  }
+  if (2 * retyped.size() > seen.size()) {
+    c.kind = ChangeKind::kRetyped;
+    const bool dashed = m.attributes.style == LineStyle::kDashed;
+    c.after->attributes.style = dashed ? LineStyle::kSolid : LineStyle::kDashed;
+    c.confidence = double(retyped.size()) / double(seen.size());
+    c.supporting_traversals = driveIds(retyped, lsms);
+    return c;
+  }
+  return std::nullopt;
+}
+
+// Per lane line the map's other lane lines whose bounding box comes within `reach` of its own.
+std::vector<std::vector<const MapInstance*>> laneLineNeighbours(const VectorMap& map,
+                                                                double reach) {
+  const std::size_t n = map.instances.size();
+  std::vector<Eigen::Vector2d> lo(n), hi(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    lo[i] = hi[i] = map.instances[i].points.front().head<2>();
+    for (const auto& p : map.instances[i].points)
+      lo[i] = lo[i].cwiseMin(p.head<2>()), hi[i] = hi[i].cwiseMax(p.head<2>());
+  }
+  std::vector<std::vector<const MapInstance*>> out(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) {
+      if (i == j || map.instances[i].cls != CrowdClass::kLaneLine ||
+          map.instances[j].cls != CrowdClass::kLaneLine)
+        continue;
+      const bool apart = (lo[j].array() > hi[i].array() + reach).any() ||
+                         (hi[j].array() < lo[i].array() - reach).any();
+      if (!apart) out[i].push_back(&map.instances[j]);
+    }
+  return out;
+}
+
+// Per element: the traversals that had it in view and what each saw; then the decision.
+void detectElementChanges(const VectorMap& map, const std::vector<Lsm>& lsms,
+                          const std::vector<DriveView>& views, const Assignment& a,
+                          const UpdateSettings& s, UpdateResult* out) {
+  const auto neighbours = laneLineNeighbours(map, s.evidence.line_search);
+  for (std::size_t e = 0; e < map.instances.size(); ++e) {
+    const MapInstance& m = map.instances[e];
+    std::vector<Evidence> present, missing;
+    bool any_view = false;
+    for (std::size_t d = 0; d < lsms.size(); ++d) {
+      if (m.cls == CrowdClass::kLaneLine) {
+        bool in_view = false, data = false;
+        Evidence ev =
+            laneLineEvidence(m, neighbours[e], a.lines[d], views[d], int(d), s, &in_view, &data);
+        any_view |= in_view;
+        if (data) present.push_back(ev);
+        continue;
+      }
+      if (!views[d].sees(instanceCentre(m))) continue;
+      any_view = true;
+      Evidence ev = discreteEvidence(m, a.per_element[e][d], int(d), s.evidence);
+      (ev.present ? present : missing).push_back(ev);
+    }
+    if (!any_view) {
+      out->stats.not_verified.push_back(m.id);
+      continue;
+    }
+    ++out->stats.elements_in_view;
+    const auto change = m.cls == CrowdClass::kLaneLine
+                            ? decideLine(m, present, lsms)
+                            : decideDiscrete(m, present, missing, lsms, s);
+    if (change)
+      out->changes.changes.push_back(*change);
+    else if (present.empty())
+      ++out->stats.undecided;
+    else
+      ++out->stats.confirmed;
+  }
+}
+
+// Observations no element explains, clustered per class (DBSCAN, MinPts 1, eps
+// added_cluster_eps); a cluster is an addition when enough traversals saw it and more than half
+// of those that had its place in view.
+void detectAdditions(const VectorMap& map, const std::vector<Lsm>& lsms,
+                     const std::vector<DriveView>& views, const Assignment& a,
+                     const UpdateSettings& s, UpdateResult* out) {
+  int64_t next_id = 0;
+  for (const auto& m : map.instances) next_id = std::max(next_id, m.id);
+  for (int c = 0; c < kNumCrowdClasses; ++c) {
+    const auto cls = static_cast<CrowdClass>(c);
+    if (cls == CrowdClass::kLaneLine) continue;
+    std::vector<std::size_t> idx;
+    std::vector<Eigen::Vector3d> centres;
+    for (std::size_t i = 0; i < a.set.items.size(); ++i) {
+      const Observation& o = a.set.items[i];
+      if (o.cls != cls || a.element[i] >= 0 || o.confidence < s.evidence.min_confidence) continue;
+      MapInstance tmp;
+      tmp.cls = cls;
+      tmp.points = o.points;
+      idx.push_back(i);
+      centres.push_back(instanceCentre(tmp));
+    }
+    const double eps = s.decision.added_cluster_eps;
+    const auto clusters = aggregate::dbscan(idx.size(), 1, [&](std::size_t i) {
+      std::vector<std::size_t> n;
+      for (std::size_t j = 0; j < idx.size(); ++j)
+        if (j != i && (centres[j] - centres[i]).head<2>().norm() <= eps) n.push_back(j);
+      return n;
+    });
+    for (int k = 0; k < clusters.num_clusters; ++k) {
+      std::vector<std::size_t> members;
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+      std::set<int> drives;
+      for (std::size_t i = 0; i < idx.size(); ++i)
+        if (clusters.labels[i] == k) {
+          members.push_back(i);
+          mean += centres[i];
+          drives.insert(a.set.items[idx[i]].drive);
+        }
+      mean /= double(members.size());
+      int in_view = 0;
+      for (const auto& v : views) in_view += v.sees(mean) ? 1 : 0;
+      in_view = std::max(in_view, int(drives.size()));
+      if (int(drives.size()) < s.decision.added_min_traversals || 2 * int(drives.size()) <= in_view)
+        continue;
+      std::size_t rep = members.front();
+      for (std::size_t i : members)
+        if ((centres[i] - mean).norm() < (centres[rep] - mean).norm()) rep = i;
+      const Observation& o = a.set.items[idx[rep]];
+      MapChange ch;
+      ch.kind = ChangeKind::kAdded;
+      ch.cls = cls;
+      MapInstance after;
+      after.id = ++next_id;
+      after.cls = cls;
+      after.attributes = o.attributes;
+      after.points = o.points;
+      after.height = o.height;
+      after.support = {int(drives.size()), int(members.size())};
+      after.note = "added by update";
+      ch.after = after;
+      ch.confidence = double(drives.size()) / double(in_view);
+      for (int d : drives) ch.supporting_traversals.push_back(lsms[d].drive_id);
+      out->changes.changes.push_back(ch);
+    }
+  }
+}
+
+}  // namespace
+
+UpdateResult detectChanges(const VectorMap& map, const std::vector<Lsm>& lsms,
+                           const std::vector<std::string>& sources,
+                           const UpdateSettings& settings) {
+  for (std::size_t d = 0; d < lsms.size(); ++d)
+    if (lsms[d].frame != LsmFrame::kEnu)
+      throw InputError(sources[d] +
+                       ": LSM is in frame 'odom'; update needs the new drives in the "
+                       "map's ENU frame (georef --origin of the map, then align)");
+  UpdateResult out;
+  out.changes.origin = map.origin;
+  out.changes.source = "update";
+  const Assignment a =
+      assignObservations(map, lsms, sources, settings.evidence, &out.stats.drive_offsets);
+  for (const auto& o : a.set.items)
+    out.stats.observations_used += o.confidence >= settings.evidence.min_confidence ? 1 : 0;
+  std::vector<DriveView> views;
+  for (const Lsm& lsm : lsms) views.emplace_back(lsm, settings.view);
+  out.stats.traversals = int(lsms.size());
+  detectElementChanges(map, lsms, views, a, settings, &out);
+  detectAdditions(map, lsms, views, a, settings, &out);
+  return out;
+}
+
+}  // namespace mapfuse::update

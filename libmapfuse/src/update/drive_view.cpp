@@ -1,0 +1,42 @@
+#include "drive_view.hpp"
+
+#include <cmath>
+
+namespace mapfuse::update {
+
+int64_t DriveView::key(double x, double y) const {
+  const auto ix = static_cast<int64_t>(std::floor(x / cell_));
+  const auto iy = static_cast<int64_t>(std::floor(y / cell_));
+  return int64_t((uint64_t(ix) << 32) ^ (uint64_t(iy) & 0xffffffffULL));
+}
+
+DriveView::DriveView(const Lsm& lsm, const ViewSettings& settings) : s_(settings) {
+  for (std::size_t k = 0; k < lsm.keyframes.size(); ++k) {
+    const Pose3& T = lsm.keyframes[k].T_frame_body;
+    body_from_enu_.push_back(T.inverse());
+    grid_[key(T.translation().x(), T.translation().y())].push_back(int(k));
+  }
+}
+
+bool DriveView::sees(const Eigen::Vector3d& p) const {
+  const double reach = s_.camera_x + s_.max_range;  // farthest keyframe that can see p
+  const int n = int(std::ceil(reach / cell_));
+  const double lo = s_.min_range + s_.view_margin, hi = s_.max_range - s_.view_margin;
+  const double lateral = s_.lateral_range - s_.view_margin;
+  for (int dx = -n; dx <= n; ++dx)
+    for (int dy = -n; dy <= n; ++dy) {
+      const auto it = grid_.find(key(p.x() + dx * cell_, p.y() + dy * cell_));
+      if (it == grid_.end()) continue;
+      for (int k : it->second) {
+        const Eigen::Vector3d b = body_from_enu_[k] * p;
+        const double x = b.x() - s_.camera_x;
+        const double r = std::hypot(x, b.y());
+        if (r < lo || r > hi || std::abs(b.y()) > lateral || x <= 0) continue;
+        // the field of view shrunk by the margin at this range
+        if (std::abs(std::atan2(b.y(), x)) <= s_.half_fov - s_.view_margin / r) return true;
+      }
+    }
+  return false;
+}
+
+}  // namespace mapfuse::update

@@ -1,0 +1,28 @@
+#pragma once
+/// @file The expected observation area of one drive (docs/update.md): the union over its
+/// keyframes of the camera footprint, a range band and a field of view in the body frame.
+#include <Eigen/Core>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "mapfuse/core/lsm.hpp"
+#include "mapfuse/update/change_detection.hpp"
+
+namespace mapfuse::update {
+
+class DriveView {
+ public:
+  DriveView(const Lsm& lsm, const ViewSettings& settings);
+  /// @brief True when some keyframe had the ENU point inside its shrunk camera footprint.
+  bool sees(const Eigen::Vector3d& p) const;
+
+ private:
+  std::vector<Pose3> body_from_enu_;  ///< inverse keyframe poses
+  std::unordered_map<int64_t, std::vector<int>> grid_;
+  ViewSettings s_;
+  double cell_ = 20.0;
+  int64_t key(double x, double y) const;
+};
+
+}  // namespace mapfuse::update
