@@ -13,6 +13,7 @@
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
 #include "mapfuse/io/png_frames.hpp"
+#include "road_occlusion.hpp"
 
 namespace mapfuse::sim {
 
@@ -124,6 +125,7 @@ FramesStats writeFramesDrive(const std::filesystem::path& dir, const World& worl
   int next_track = 0;
   const auto& inst = world.truth.instances;
   const Pose3& T_body_cam = camera.T_body_cam();
+  const RoadOcclusion occlusion(d.truth, every);  // markings beyond a crest are not seen
   for (int f = 0; f < frame_count; ++f) {
     const std::size_t k = static_cast<std::size_t>(f) * every;
     const Pose3 T_enu_cam = d.truth[k] * T_body_cam;
@@ -150,6 +152,9 @@ FramesStats writeFramesDrive(const std::filesystem::path& dir, const World& worl
     };
     auto pixel = [&](const Eigen::Vector3d& p_enu) {
       return camera.project(T_cam_enu * p_enu, kMinDepth);
+    };
+    auto hidden = [&](const Eigen::Vector3d& p_enu) {
+      return occlusion.hidden(k, T_enu_cam.translation(), p_enu, C.max_range + 5.0);
     };
     auto inImage = [&](const Eigen::Vector2d& uv) {
       return uv.x() >= -0.5 && uv.y() >= -0.5 && uv.x() <= C.width - 0.5 &&
@@ -179,8 +184,9 @@ FramesStats writeFramesDrive(const std::filesystem::path& dir, const World& worl
         for (std::size_t i = 0; i < pts.size(); ++i) {
           const Eigen::Vector3d pc = T_cam_enu * pts[i];
           const auto uv = camera.project(pc, kMinDepth);
-          if (uv && inImage(*uv) && pc.norm() <= C.max_range) px.push_back(noisyPx(*uv));
-          if (i + 1 < pts.size()) {  // painted strip segment
+          const bool seen = uv && inImage(*uv) && pc.norm() <= C.max_range && !hidden(pts[i]);
+          if (seen) px.push_back(noisyPx(*uv));
+          if (i + 1 < pts.size() && !hidden(pts[i])) {  // painted strip segment
             const Eigen::Vector3d dir = (pts[i + 1] - pts[i]).normalized();
             const Eigen::Vector3d n(-dir.y() * half, dir.x() * half, 0.0);
             const auto a = pixel(pts[i] + n), b = pixel(pts[i + 1] + n), c = pixel(pts[i + 1] - n),
@@ -205,7 +211,7 @@ FramesStats writeFramesDrive(const std::filesystem::path& dir, const World& worl
         for (const auto& p : piece.points) {
           const Eigen::Vector3d pc = T_cam_enu * p;
           const auto uv = camera.project(pc, kMinDepth);
-          if (!uv || pc.norm() > C.max_range) {
+          if (!uv || pc.norm() > C.max_range || hidden(p)) {
             ok = false;
             break;
           }
