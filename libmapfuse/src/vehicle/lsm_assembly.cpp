@@ -188,18 +188,23 @@ std::vector<Sample> resampleLine(const Instance& inst, const std::vector<double>
     const double bin = std::floor(raw[i].s / spacing);
     Eigen::Vector3d p = Eigen::Vector3d::Zero();
     Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
-    double s = 0.0;
+    double s = 0.0, w_sum = 0.0;
     std::set<int> frames;
     std::size_t n = 0;
     for (; i < raw.size() && std::floor(raw[i].s / spacing) == bin; ++i, ++n) {
-      p += raw[i].p;
-      C += raw[i].C;
-      s += raw[i].s;
+      // Weighted by the inverse of the point's horizontal variance (eq. 1's propagation grows
+      // about as range^2: a point seen 5 m ahead outweighs one seen 20 m ahead ~16-fold, and
+      // the far one carries the road's unmodelled height ahead as a range error).
+      const double w = 1.0 / std::max(raw[i].C.topLeftCorner<2, 2>().trace(), 1e-12);
+      p += w * raw[i].p;
+      C += w * w * raw[i].C;
+      s += w * raw[i].s;
+      w_sum += w;
       frames.insert(raw[i].frame);
     }
-    // Averaging over independent frames shrinks the covariance (same-frame points are
-    // correlated through the attitude error, so they count once).
-    out.push_back({p / double(n), C / double(n) / double(frames.size()), s / double(n)});
+    // Variance of the weighted mean, Σw²C / (Σw)²; same-frame points are correlated through
+    // the attitude error, so the bin counts its frames, not its points (× n / frames).
+    out.push_back({p / w_sum, C / (w_sum * w_sum) * double(n) / double(frames.size()), s / w_sum});
   }
   return out;
 }
