@@ -18,10 +18,12 @@ using namespace mapfuse;
 namespace fs = std::filesystem;
 
 namespace {
-constexpr double kSagRadius = 1000.0;     // m, vertical radius of the analytic sag (κ = 1e-3 /m)
-constexpr double kCameraHeight = 1.5;     // m
-constexpr double kSagPathTol = 0.01;      // m, path-surface point vs the true sag point
-constexpr double kPlaneRelErrMin = 0.05;  // the plane under the camera at 20 m: δ/h = 0.13
+constexpr double kSagRadius = 1000.0;      // m, vertical radius of the analytic sag (κ = 1e-3 /m)
+constexpr double kCameraHeight = 1.5;      // m
+constexpr double kSagPathTol = 0.01;       // m, path-surface point vs the true sag point
+constexpr double kCrestPathTol = 0.05;     // m, crest: the road-ahead point vs the true one
+constexpr double kCrestPlaneErrMin = 0.3;  // m, crest: the plane under the camera misses by more
+constexpr double kPlaneRelErrMin = 0.05;   // the plane under the camera at 20 m: δ/h = 0.13
 // m RMS, lane points 15-30 m ahead on the 8 % world (measured 0.132; the plane under the camera
 // 0.454). What remains is where the path does not show the road seen: the drive's first 40 m,
 // and crossing roads at intersections, whose profile is not the driven road's.
@@ -81,6 +83,49 @@ TEST_CASE("path surface: a point 20 m ahead on a sag is ranged on the road there
     CHECK(err_path <= kSagPathTol);
     CHECK(err_flat >= kPlaneRelErrMin);
   }
+}
+
+TEST_CASE("path surface: on a crest a point ahead is ranged on the road, a ray over it not") {
+  // A short steep crest (R = 150 m: 6.7 % grade 10 m from its top, as esmini's crest-curve),
+  // frames every 0.5 m from 20 m before the top; each frame's plane is the true tangent plane.
+  const double R = 150.0;
+  auto body = [&](double x) {
+    Pose3 T = Pose3::Identity();
+    T.linear() = Eigen::AngleAxisd(std::atan(x / R), Eigen::Vector3d::UnitY()).matrix();
+    T.translation() = Eigen::Vector3d(x, 0.0, -x * x / (2.0 * R));
+    return T;
+  };
+  const Pose3 T_bc = bodyCamera();
+  std::vector<Pose3> poses;
+  for (double x = -20.0; x <= 80.0; x += 0.5) poses.push_back(body(x));
+  const std::vector<GroundPlane> planes(poses.size(),
+                                        GroundPlane{Eigen::Vector3d(0, -1, 0), kCameraHeight});
+  Eigen::Matrix3d K;
+  K << 700, 0, 640, 0, 700, 360, 0, 0, 1;
+  vehicle::RangingSettings s;
+  const vehicle::PathSurface path(poses, T_bc, planes, s);
+  // A road point 12 m ahead of frame 0 (at x = -8, before the top), 3 m aside.
+  const double x = -8.0;
+  const Eigen::Vector3d p_odom(x, 3.0, -x * x / (2.0 * R));
+  const Eigen::Vector3d p_cam = (poses[0] * T_bc).inverse() * p_odom;
+  const Eigen::Vector3d h = K * p_cam;
+  const Eigen::Vector2d px(h.x() / h.z(), h.y() / h.z());
+  bool on_path = false;
+  const auto g = path.range(0, px, K, s, &on_path);
+  REQUIRE(g);
+  CHECK(on_path);
+  const auto flat = vehicle::rangeGroundPixel(px, K, planes[0], s);
+  REQUIRE(flat);
+  const double err_path = ((poses[0] * T_bc) * g->p_cam - p_odom).norm();
+  const double err_flat = ((poses[0] * T_bc) * flat->p_cam - p_odom).norm();
+  INFO("road ahead " << err_path << " m, plane under the camera " << err_flat << " m");
+  CHECK(err_path <= kCrestPathTol);
+  CHECK(err_flat >= kCrestPlaneErrMin);
+  // A ray just below the tangent plane's horizon: the plane ranges it ~28 m ahead, but the road
+  // falls away beyond the top and the ray never meets it within reach.
+  const Eigen::Vector2d over(640.0, 360.0 + 700.0 * kCameraHeight / 28.0);
+  REQUIRE(vehicle::rangeGroundPixel(over, K, planes[0], s));
+  CHECK_FALSE(path.range(0, over, K, s));
 }
 
 TEST_CASE("path surface: without a frame abreast within reach the plane under the camera stays") {
@@ -181,4 +226,30 @@ TEST_CASE("path surface: on a flat world it changes nothing that matters") {
                 << " m RMS, road ahead " << e.path << " m RMS");
   CHECK(e.path <= kFlatLateralTol);
   CHECK(e.path <= kFlatNoWorse * e.plane);
+}
+
+TEST_CASE("path surface: sharp vertical curves are where no parabola over the reach follows") {
+  // esmini crest-curve's profile: flat, a cubic up 6 m over 70 m and down again, flat.
+  auto z = [](double s) {
+    if (s < 200.0 || s > 340.0) return 0.0;
+    const double u = s < 270.0 ? s - 200.0 : s - 270.0;
+    return s < 270.0 ? 0.00367346938776 * u * u - 0.0000349854227405 * u * u * u
+                     : 6.0 - 0.00367346938776 * u * u + 0.0000349854227405 * u * u * u;
+  };
+  std::vector<Pose3> crest, flat;
+  for (double s = 0.0; s <= 500.0; s += 1.0) {
+    Pose3 T = Pose3::Identity();
+    T.translation() = Eigen::Vector3d(s, 0.0, z(s));
+    crest.push_back(T);
+    T.translation().z() = 0.0;
+    flat.push_back(T);
+  }
+  vehicle::RangingSettings s;
+  const auto sharp = vehicle::sharpVerticalCurves(crest, s);
+  const auto none = vehicle::sharpVerticalCurves(flat, s);
+  CHECK(std::count(none.begin(), none.end(), true) == 0);
+  CHECK(sharp[270]);                            // the top
+  CHECK_FALSE(sharp[60]);                       // 140 m before the hill: flat within reach
+  CHECK_FALSE(sharp[480]);                      // and after it
+  CHECK(std::count(sharp.begin(), sharp.end(), true) >= 100);  // around the hill
 }

@@ -1,15 +1,46 @@
 #include "body_tilt.hpp"
 
+#include <Eigen/Dense>
 #include <Eigen/Geometry>
 #include <cmath>
 
 #include "mapfuse/core/error.hpp"
 
 namespace mapfuse::vehicle {
+namespace {
+/// Weight of a frame dt seconds from the window's centre.
+double windowWeight(double dt, double window, TiltWeighting weighting) {
+  if (weighting == TiltWeighting::kBox) return 1.0;
+  const double c = std::cos(M_PI * dt / window);
+  return c * c;
+}
+
+/// Value at frame i of the weighted least-squares quadratic in time through the body's up axes
+/// (odom frame) of frames [lo, hi): unbiased where the road's pitch changes quadratically in
+/// time, where the weighted mean is off by the curvature of the pitch profile over the window.
+Eigen::Vector3d localQuadratic(const std::vector<Pose3>& T_odom_body,
+                               const std::vector<double>& stamps, std::size_t i, std::size_t lo,
+                               std::size_t hi, double window, TiltWeighting weighting) {
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d B = Eigen::Matrix3d::Zero();  // rows: 1, t, t²; columns: the up axis
+  for (std::size_t j = lo; j < hi; ++j) {
+    const double t = (stamps[j] - stamps[i]) / window;  // scaled: A stays well conditioned
+    const double w = windowWeight(stamps[j] - stamps[i], window, weighting);
+    const Eigen::Vector3d row(1.0, t, t * t);
+    A += w * row * row.transpose();
+    B += w * row * T_odom_body[j].linear().col(2).transpose();
+  }
+  const Eigen::Matrix3d coef = A.ldlt().solve(B);
+  if (!coef.allFinite() || std::abs(A.determinant()) < 1e-12)
+    return T_odom_body[i].linear().col(2);  // too few frames for a quadratic
+  return coef.row(0).transpose();
+}
+}  // namespace
 
 std::vector<Eigen::Matrix3d> roadTiltInBody(const std::vector<Pose3>& T_odom_body,
                                             const std::vector<double>& stamps, double window,
-                                            TiltWeighting weighting) {
+                                            TiltWeighting weighting,
+                                            const std::vector<bool>& quadratic) {
   const std::size_t n = T_odom_body.size();
   if (stamps.size() != n)
     throw InputError("body tilt: " + std::to_string(stamps.size()) + " stamps for " +
@@ -27,7 +58,9 @@ std::vector<Eigen::Matrix3d> roadTiltInBody(const std::vector<Pose3>& T_odom_bod
     while (stamps[lo] < stamps[i] - 0.5 * window) ++lo;
     while (hi < n && stamps[hi] <= stamps[i] + 0.5 * window) ++hi;
     Eigen::Vector3d road_odom = Eigen::Vector3d::Zero();
-    if (weighting == TiltWeighting::kBox) {
+    if (i < quadratic.size() && quadratic[i]) {
+      road_odom = localQuadratic(T_odom_body, stamps, i, lo, hi, window, weighting);
+    } else if (weighting == TiltWeighting::kBox) {
       road_odom = prefix[hi] - prefix[lo];
     } else {
       for (std::size_t j = lo; j < hi; ++j) {

@@ -28,10 +28,17 @@ enum class TiltWeighting {
 /// @param T_odom_body ego-motion pose per frame
 /// @param stamps s per frame (non-decreasing, same size)
 /// @param window s; <= 0 gives identities
+/// @param quadratic per frame (or empty): take the road normal as the value at the frame of a
+/// weighted least-squares quadratic in time through the up axes, not their mean: where the road's
+/// pitch bends within the window (a short steep crest: esmini crest-curve, 6 m over 140 m) the
+/// mean is off by 0.007-0.016 rad and the quadratic by ~0.002; on an even road the quadratic
+/// lets the suspension through (flat world: 0.0018 against 0.0005 rad), so only frames that the
+/// path shows on a sharp vertical curve take it (path_surface.hpp, sharpVerticalCurves).
 /// @throws InputError when the sizes differ or the stamps go backwards.
 std::vector<Eigen::Matrix3d> roadTiltInBody(const std::vector<Pose3>& T_odom_body,
                                             const std::vector<double>& stamps, double window,
-                                            TiltWeighting weighting = TiltWeighting::kBox);
+                                            TiltWeighting weighting = TiltWeighting::kBox,
+                                            const std::vector<bool>& quadratic = {});
 
 /// @brief Camera height above the road once the body is tilted by R_tilt (body frame), the body
 /// pivoting about its origin (the origin keeps its height above the road): the camera, t_body_cam

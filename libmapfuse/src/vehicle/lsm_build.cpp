@@ -30,7 +30,9 @@ void calibrateGroundPlanes(const DriveData& d, const LsmBuildSettings& s, LsmBui
   if (s.tilt_window > 0) {
     const auto tilt =
         roadTiltInBody(d.T_odom_body, d.stamps, s.tilt_window,
-                       s.tilt_weighting == "hann" ? TiltWeighting::kHann : TiltWeighting::kBox);
+                       s.tilt_weighting == "hann" ? TiltWeighting::kHann : TiltWeighting::kBox,
+                       s.ranging.path_surface ? sharpVerticalCurves(d.T_odom_body, s.ranging)
+                                              : std::vector<bool>{});
     BodyTiltStats& st = out.tilt;
     st.source = "ego-motion";
     st.weighting = s.tilt_weighting;

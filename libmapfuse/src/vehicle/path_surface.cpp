@@ -9,6 +9,12 @@ namespace {
 /// Path searched ahead for the frame abreast, beyond the farthest ranged point: the path bends,
 /// and a point at max_range is passed after more than max_range of path.
 constexpr double kReachMargin = 1.5;
+/// m, how far the road abreast may be from the path's heights (their noise, 1-2 cm, and the
+/// tangent's pitch error, ~2e-3 rad over 20 m) when a ray's ranging is checked for conditioning.
+constexpr double kSurfaceTol = 0.05;
+/// Share of its range a point may move when the road is kSurfaceTol lower: a flat road moves a
+/// point at the band's 30 m edge by 3.6 %; a ray skimming a crest by tens of metres.
+constexpr double kMaxRangeShift = 0.1;
 /// Share of the reach the parabola also spans behind the frame (its d ∈ [-share reach, reach]):
 /// measured on the 8 % and the flat world (tests/vehicle/test_path_surface.cpp), 0.5 left the
 /// flat world's far lane points 16 % worse than the plane under the camera, 1.0 8 %, 2.0 smooths
@@ -17,11 +23,42 @@ constexpr double kFitBehindShare = 1.0;
 /// Frames the parabola needs (fewer, e.g. at a standstill or the drive's ends: no bend).
 constexpr int kFitMinFrames = 10;
 
-/// Least-squares c of z ≈ a + b d + c d² over frames [lo, hi) (d relative to frame i); 0 when
+/// m RMS: heights that a parabola fits this well are the road's profile plus the dead reckoning's
+/// own height noise (measured on the flat and the 8 % world: 0.4-1.2 cm over ±45 m); a worse fit
+/// means the road bends more than one parabola can follow over the window (a short steep crest:
+/// esmini crest-curve's 6 m over 140 m) and a shorter window is fitted.
+constexpr double kBendFitNoise = 0.05;
+/// Share of the reach over which the road's slope is fitted where no parabola follows the road.
+constexpr double kTangentWindow = 0.25;
+/// m, half-width of the moving average of the heights used as the profile there.
+constexpr double kProfileSmooth = 2.0;
+
+/// Moving average of z over the frames within ±half of each frame's path distance.
+std::vector<double> smoothAlongPath(const std::vector<double>& d, const std::vector<double>& z,
+                                    double half) {
+  const std::size_t n = d.size();
+  std::vector<double> out(n, 0.0);
+  std::size_t lo = 0, hi = 0;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    while (hi < n && d[hi] <= d[i] + half) sum += z[hi++];
+    while (d[lo] < d[i] - half) sum -= z[lo++];
+    out[i] = sum / double(hi - lo);
+  }
+  return out;
+}
+
+struct BendFit {
+  double b = 0.0;    ///< road slope at the frame, z ≈ a + b d + c d²
+  double c = 0.0;    ///< 1/m
+  double rms = 0.0;  ///< m, residual of the fit
+};
+
+/// Least-squares parabola of z against d over frames [lo, hi) (d relative to frame i); c = 0 when
 /// the frames do not span enough path for a parabola.
-double fitBend(const std::vector<double>& d, const std::vector<double>& z, std::size_t i,
-               std::size_t lo, std::size_t hi, double span_min) {
-  if (int(hi - lo) < kFitMinFrames || d[hi - 1] - d[lo] < span_min) return 0.0;
+BendFit fitBend(const std::vector<double>& d, const std::vector<double>& z, std::size_t i,
+                std::size_t lo, std::size_t hi, double span_min) {
+  if (int(hi - lo) < kFitMinFrames || d[hi - 1] - d[lo] < span_min) return {};
   Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
   Eigen::Vector3d b = Eigen::Vector3d::Zero();
   for (std::size_t k = lo; k < hi; ++k) {
@@ -31,9 +68,60 @@ double fitBend(const std::vector<double>& d, const std::vector<double>& z, std::
     b += row * (z[k] - z[i]);
   }
   const Eigen::Vector3d coef = A.ldlt().solve(b);
-  return std::isfinite(coef.z()) ? coef.z() : 0.0;
+  if (!coef.allFinite()) return {};
+  double ss = 0.0;
+  for (std::size_t k = lo; k < hi; ++k) {
+    const double x = d[k] - d[i];
+    const double r = z[k] - z[i] - coef.dot(Eigen::Vector3d(1.0, x, x * x));
+    ss += r * r;
+  }
+  return {coef.y(), coef.z(), std::sqrt(ss / double(hi - lo))};
 }
 }  // namespace
+
+namespace {
+/// The drive's height profile: path distance and height (along the drive's mean up axis) per frame.
+struct Profile {
+  std::vector<double> distance, z;
+};
+
+Profile heightProfile(const std::vector<Pose3>& T_odom_body) {
+  const std::size_t n = T_odom_body.size();
+  Profile p{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
+  Eigen::Vector3d up = Eigen::Vector3d::Zero();  // the drive's mean up axis (any odom frame)
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k > 0)
+      p.distance[k] = p.distance[k - 1] +
+                      (T_odom_body[k].translation() - T_odom_body[k - 1].translation()).norm();
+    up += T_odom_body[k].linear().col(2);
+  }
+  if (n == 0 || !(up.norm() > 0)) return p;
+  up.normalize();
+  for (std::size_t k = 0; k < n; ++k) p.z[k] = up.dot(T_odom_body[k].translation());
+  return p;
+}
+
+/// Per frame the parabola over [-behind reach, reach] of path (fitBend).
+std::vector<BendFit> fitBends(const Profile& p, double reach) {
+  const std::size_t n = p.distance.size();
+  std::vector<BendFit> out(n);
+  std::size_t lo = 0, hi = 0;  // frames [lo, hi) with d in [-behind reach, reach] around frame i
+  for (std::size_t i = 0; i < n; ++i) {
+    while (p.distance[lo] < p.distance[i] - kFitBehindShare * reach) ++lo;
+    while (hi < n && p.distance[hi] <= p.distance[i] + reach) ++hi;
+    out[i] = fitBend(p.distance, p.z, i, lo, hi, 0.5 * reach);
+  }
+  return out;
+}
+}  // namespace
+
+std::vector<bool> sharpVerticalCurves(const std::vector<Pose3>& T_odom_body,
+                                      const RangingSettings& settings) {
+  const auto fits = fitBends(heightProfile(T_odom_body), kReachMargin * settings.max_range);
+  std::vector<bool> out(fits.size());
+  for (std::size_t i = 0; i < fits.size(); ++i) out[i] = fits[i].rms > kBendFitNoise;
+  return out;
+}
 
 PathSurface::PathSurface(const std::vector<Pose3>& T_odom_body, const Pose3& T_body_cam,
                          const std::vector<GroundPlane>& planes, const RangingSettings& settings)
@@ -43,24 +131,22 @@ PathSurface::PathSurface(const std::vector<Pose3>& T_odom_body, const Pose3& T_b
       max_offset_(settings.path_max_offset),
       reach_(kReachMargin * settings.max_range) {
   const std::size_t n = T_odom_body.size();
-  distance_.assign(n, 0.0);
-  bend_.assign(n, 0.0);
-  Eigen::Vector3d up = Eigen::Vector3d::Zero();  // the drive's mean up axis (any odom frame)
-  for (std::size_t k = 0; k < n; ++k) {
-    if (k > 0)
-      distance_[k] = distance_[k - 1] +
-                     (T_odom_body[k].translation() - T_odom_body[k - 1].translation()).norm();
-    up += T_odom_body[k].linear().col(2);
-  }
-  if (n == 0 || !(up.norm() > 0)) return;
-  up.normalize();
-  std::vector<double> z(n);
-  for (std::size_t k = 0; k < n; ++k) z[k] = up.dot(T_odom_body[k].translation());
-  std::size_t lo = 0, hi = 0;  // frames [lo, hi) with d in [-share reach, reach] around frame i
+  T_body_odom_.reserve(n);
+  for (const Pose3& T : T_odom_body) T_body_odom_.push_back(T.inverse());
+  const Profile p = heightProfile(T_odom_body);
+  distance_ = p.distance;
+  const std::vector<double>& z = p.z;
+  height_ = smoothAlongPath(distance_, z, kProfileSmooth);
+  // Per frame: the parabola over the whole window where it follows the heights within
+  // kBendFitNoise; else the profile itself, against the tangent of a short parabola.
+  const auto wide = fitBends(p, reach_), narrow = fitBends(p, kTangentWindow * reach_);
+  bend_.resize(n);
+  slope_.resize(n);
+  profile_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    while (distance_[lo] < distance_[i] - kFitBehindShare * reach_) ++lo;
-    while (hi < n && distance_[hi] <= distance_[i] + reach_) ++hi;
-    bend_[i] = fitBend(distance_, z, i, lo, hi, 0.5 * reach_);
+    bend_[i] = wide[i].c;
+    profile_[i] = wide[i].rms > kBendFitNoise;
+    slope_[i] = narrow[i].b;
   }
 }
 
@@ -68,24 +154,66 @@ std::optional<std::size_t> PathSurface::frameAbreast(std::size_t i,
                                                      const Eigen::Vector3d& p_odom) const {
   for (std::size_t j = i + 1; j < T_odom_body_.size(); ++j) {
     if (distance_[j] - distance_[i] > reach_) return std::nullopt;
-    const Eigen::Vector3d q = T_odom_body_[j].inverse() * p_odom;  // body j: x ahead
+    const Eigen::Vector3d q = T_body_odom_[j] * p_odom;  // body j: x ahead
     if (q.x() > 0.0) continue;
     // Passed between j - 1 and j: the nearer of the two along x.
     std::size_t k = j;
     if (j - 1 > i) {
-      const double x_prev = (T_odom_body_[j - 1].inverse() * p_odom).x();
+      const double x_prev = (T_body_odom_[j - 1] * p_odom).x();
       if (std::abs(x_prev) < std::abs(q.x())) k = j - 1;
     }
-    const Eigen::Vector3d qk = T_odom_body_[k].inverse() * p_odom;
+    const Eigen::Vector3d qk = T_body_odom_[k] * p_odom;
     if (std::abs(qk.y()) > max_offset_) return std::nullopt;
     return k;
   }
   return std::nullopt;
 }
 
+double PathSurface::slopeAhead(std::size_t i, std::size_t j) const {
+  if (profile_[i]) return slope_[j] - slope_[i];
+  return 2.0 * bend_[i] * (distance_[j] - distance_[i]);
+}
+
 double PathSurface::riseAhead(std::size_t i, std::size_t j) const {
   const double d = distance_[j] - distance_[i];
+  if (profile_[i]) return height_[j] - height_[i] - slope_[i] * d;
   return bend_[i] * d * d;
+}
+
+std::optional<PathSurface::Crossing> PathSurface::cross(std::size_t i, const Eigen::Vector2d& pixel,
+                                                        const Eigen::Matrix3d& K_inv,
+                                                        double lowered) const {
+  // March along the path: the ray meets the road abreast of frame j where its intersection with
+  // the tangent plane raised to frame j's road is no longer ahead of frame j. (Re-ranging on the
+  // road abreast of the last estimate instead converges slowly or not at all on a crest, where a
+  // rise error of δ moves the point ~δ d / h: 1.6 m at 20 m ranged 10-12 m.)
+  const Pose3 T_odom_cam_i = T_odom_body_[i] * T_body_cam_;
+  double x_prev = 0.0, rise_prev = 0.0;  // frame j - 1's: ahead of it (x > 0), and its rise
+  bool have_prev = false;
+  for (std::size_t j = i + 1; j < T_odom_body_.size(); ++j) {
+    if (distance_[j] - distance_[i] > reach_) return Crossing{false, 0.0, 0.0};  // missed it
+    const double rise = riseAhead(i, j) - lowered;  // the road abreast of j above the tangent
+    GroundPlane ahead = planes_[i];
+    ahead.height -= rise;
+    if (!(ahead.height > 0.0)) break;  // the road ahead rises above the camera
+    const auto X = backProjectToGround(pixel, K_inv, ahead);  // eq. (1) on the road there
+    if (!X) {                                                 // the road there is above the ray
+      have_prev = false;
+      continue;
+    }
+    const Eigen::Vector3d q = T_body_odom_[j] * (T_odom_cam_i * *X);  // body j: x ahead
+    if (q.x() > 0.0) {  // the ray meets that road beyond frame j
+      x_prev = q.x(), rise_prev = rise, have_prev = true;
+      continue;
+    }
+    if (std::abs(q.y()) > max_offset_) break;
+    // Crossed between frames j - 1 and j: the rise and slope interpolated where x passes 0.
+    const double t = have_prev ? x_prev / (x_prev - q.x()) : 1.0;
+    const double slope_prev = slopeAhead(i, have_prev ? j - 1 : j);
+    return Crossing{true, (1.0 - t) * rise_prev + t * rise,
+                    (1.0 - t) * slope_prev + t * slopeAhead(i, j)};
+  }
+  return std::nullopt;
 }
 
 std::optional<GroundPoint> PathSurface::range(std::size_t i, const Eigen::Vector2d& pixel,
@@ -94,25 +222,34 @@ std::optional<GroundPoint> PathSurface::range(std::size_t i, const Eigen::Vector
   if (on_path) *on_path = false;
   const Eigen::Matrix3d K_inv = K.inverse();
   GroundPlane plane = planes_[i];
-  auto X = backProjectToGround(pixel, K_inv, plane);  // eq. (1) under the camera
-  if (!X) return std::nullopt;
-  const Pose3 T_odom_cam_i = T_odom_body_[i] * T_body_cam_;
-  std::optional<std::size_t> used;
-  for (int it = 0; it < kMaxIterations; ++it) {
-    const auto j = frameAbreast(i, T_odom_cam_i * *X);
-    if (!j || j == used) break;
-    GroundPlane ahead = planes_[i];  // the tangent plane raised to the road abreast
-    ahead.height -= riseAhead(i, *j);
-    if (!(ahead.height > 0.0)) break;
-    const auto again = backProjectToGround(pixel, K_inv, ahead);  // eq. (1) on the road ahead
-    if (!again) break;
-    X = again;
-    plane = ahead;
-    used = j;
+  if (!backProjectToGround(pixel, K_inv, plane)) return std::nullopt;  // eq. (1) under the camera
+  const auto c = cross(i, pixel, K_inv, 0.0);
+  // The path runs on beyond the reach and the ray never meets the road along it: it passes over
+  // a crest (or the point lies beyond the reach); the plane under the camera would range it
+  // short. Not ranged.
+  if (c && !c->met) return std::nullopt;
+  GroundPlane raised = planes_[i];
+  if (c) raised.height -= c->rise;
+  const auto at = c ? backProjectToGround(pixel, K_inv, raised) : std::nullopt;
+  if (at && raised.height > 0.0) {
+    // Conditioning: the same ray with the road kSurfaceTol lower. A ray that runs close along
+    // the road (over a crest) meets it somewhere else entirely: not ranged at all.
+    const auto low = cross(i, pixel, K_inv, kSurfaceTol);
+    GroundPlane lowered = planes_[i];
+    if (low) lowered.height -= low->rise;
+    const auto at_low = low ? backProjectToGround(pixel, K_inv, lowered) : std::nullopt;
+    if (!at_low || !low->met || std::abs(at_low->norm() - at->norm()) > kMaxRangeShift * at->norm())
+      return std::nullopt;
+    // The covariance on the road's own plane there, through the same point: where the road
+    // turns away from the ray the incidence is shallower than on the tangent plane.
+    const Eigen::Vector3d n = raised.normal_cam;
+    const Eigen::Vector3d ahead_dir = (Eigen::Vector3d::UnitZ() - n.z() * n).normalized();
+    plane.normal_cam = (n - c->slope * ahead_dir).normalized();  // rising road: leans back
+    plane.height = -plane.normal_cam.dot(*at);
   }
   // The band and the covariance on the plane finally used.
   auto g = rangeGroundPixel(pixel, K, plane, ranging);
-  if (g && on_path) *on_path = used.has_value();
+  if (g && on_path) *on_path = at.has_value() && raised.height > 0.0;
   return g;
 }
 

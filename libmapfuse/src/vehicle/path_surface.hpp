@@ -9,15 +9,23 @@
 /// the road's vertical profile. Per frame, a least-squares parabola z ≈ a + b d + c d² of the
 /// heights (along the drive's mean up axis) against path distance d over [-reach, reach] around
 /// the frame gives the road's bend c: the plane under the camera is the road's tangent there, and
-/// the road abreast of a point d ahead lies c d² above it. The pixel is ranged again on the plane
-/// raised by that much, with d the path distance to the frame abreast of the ranged point (the
-/// first frame ahead whose body x axis no longer points at it), until that frame stays the same.
-/// The parabola spans 90 m: the dead-reckoned pitch errors (a few 1e-3 rad, corrected by gravity
-/// within seconds) average out over it, while road design keeps vertical curves longer than that.
-/// Where no frame comes abreast within reach (the drive ends, or turns away) or the point lies
-/// farther aside than path_max_offset, the plane under the camera is kept. Cross-slope that
-/// changes along the road (superelevation runs) is not modelled: the road ahead keeps the
-/// frame's roll.
+/// the road abreast of a point d ahead lies c d² above it. The parabola spans 90 m: the
+/// dead-reckoned pitch errors (a few 1e-3 rad, corrected by gravity within seconds) average out
+/// over it. Where the heights leave that parabola by more than a few centimetres (a short steep
+/// crest or sag: esmini crest-curve climbs 6 m in 70 m and comes down in 70 m) the road abreast
+/// is the profile itself, z(d_j) − z(d_i) − z'(d_i)(d_j − d_i), smoothed over ±2 m, with the
+/// slope z' of a parabola over ±11 m (sharpVerticalCurves; body_tilt takes the same frames).
+/// The pixel's ray is marched along the path: it meets the road abreast of the first frame j
+/// ahead where its intersection with the tangent plane raised to j's road no longer lies ahead
+/// of j (the rise interpolated between j − 1 and j). (Re-ranging on the road abreast of the
+/// last estimate, the first version, did not converge on crests: a rise error δ moves a point
+/// ~δ d / h.) Two rays are not ranged at all: one the march carries past the reach while the
+/// path goes on (it passes over a crest), and one whose point moves by more than a tenth of its
+/// range when the road is taken 5 cm lower (it runs close along the road: ill-conditioned). The
+/// covariance is that of eq. (1) on the road's own plane there, through the same point.
+/// Where no frame comes abreast within reach because the drive ends, or the point lies farther
+/// aside than path_max_offset, the plane under the camera is kept. Cross-slope that changes
+/// along the road (superelevation runs) is not modelled: the road ahead keeps the frame's roll.
 #include <Eigen/Core>
 #include <cstddef>
 #include <optional>
@@ -28,6 +36,13 @@
 #include "mapfuse/vehicle/ground_ranging.hpp"
 
 namespace mapfuse::vehicle {
+
+/// @brief Per frame: the road bends vertically more than one parabola over the path's reach
+/// follows (its dead-reckoned heights leave the parabola by more than a few centimetres): a
+/// short steep crest or sag, where the profile itself is ranged on and the body tilt is taken
+/// as a local quadratic (body_tilt.hpp).
+std::vector<bool> sharpVerticalCurves(const std::vector<Pose3>& T_odom_body,
+                                      const RangingSettings& settings);
 
 /// The drive's path for ranging on the road ahead: per frame the body pose, the ground plane
 /// (camera frame), the path distance from the first frame and the road's vertical bend.
@@ -45,6 +60,9 @@ class PathSurface {
   /// (bend(i) (d_j − d_i)²).
   double riseAhead(std::size_t i, std::size_t j) const;
 
+  /// @brief Slope of the road abreast of frame j against the tangent plane of frame i.
+  double slopeAhead(std::size_t i, std::size_t j) const;
+
   /// @brief The road's vertical bend c at frame i (z ≈ a + b d + c d²), 1/m: κ/2.
   double bend(std::size_t i) const { return bend_[i]; }
 
@@ -54,17 +72,28 @@ class PathSurface {
                                    const Eigen::Matrix3d& K, const RangingSettings& ranging,
                                    bool* on_path = nullptr) const;
 
-  /// Times the pixel is ranged again at most (the frame abreast settles in 1-2 in practice).
-  static constexpr int kMaxIterations = 4;
-
  private:
+  /// Where a ray of frame i meets the road ahead: its rise and slope against frame i's tangent;
+  /// met = false when the path runs on beyond the reach and the ray never meets the road.
+  struct Crossing {
+    bool met = false;
+    double rise = 0.0, slope = 0.0;
+  };
+  /// @brief The march along the path for `pixel` of frame i, the road taken `lowered` m lower.
+  std::optional<Crossing> cross(std::size_t i, const Eigen::Vector2d& pixel,
+                                const Eigen::Matrix3d& K_inv, double lowered) const;
+
   const std::vector<Pose3>& T_odom_body_;
+  std::vector<Pose3> T_body_odom_;  ///< inverses, per frame
   Pose3 T_body_cam_;
   const std::vector<GroundPlane>& planes_;
   double max_offset_;             ///< m (RangingSettings::path_max_offset)
   double reach_;                  ///< m of path ahead searched for the frame abreast
   std::vector<double> distance_;  ///< m, path distance of each frame from the first
   std::vector<double> bend_;      ///< 1/m, per frame
+  std::vector<bool> profile_;     ///< per frame: no parabola follows the road, the profile does
+  std::vector<double> height_;    ///< m, dead-reckoned heights smoothed along the path
+  std::vector<double> slope_;     ///< the road's slope per frame (a short parabola's tangent)
 };
 
 }  // namespace mapfuse::vehicle
