@@ -10,7 +10,8 @@
 # env: WORLDS="7:0.08 11:0.05" (seed:grade of a procedural world, or seed:FILE.xodr|.osm of a
 #      map world, e.g. 3:../shared/data/maps/opendrive-esmini/xodr__crest-curve.xodr, whose
 #      routes are as long as its roads allow), TRAVERSALS=4, ROUTE_LENGTH=3000, GRID=9,
-#      INJECT_PITCH_TRAVERSAL=-1, WORK (kept when set; else a scratch folder)
+#      INJECT_PITCH_TRAVERSAL=-1, LEVEL=frames (or lsm: the same drives observed at the LSM
+#      level, the row the frames level is compared with), WORK (kept when set; else scratch)
 set -euo pipefail
 source "$(dirname "$0")/lib.sh" "$@"
 worlds=${WORLDS:-"7:0.08"}
@@ -18,6 +19,8 @@ traversals=${TRAVERSALS:-4}
 route_length=${ROUTE_LENGTH:-3000}
 grid=${GRID:-9}
 inject=${INJECT_PITCH_TRAVERSAL:--1}
+level=${LEVEL:-frames}
+case $level in frames) input=FRAMES_DIR ;; lsm) input=LSM_DIR ;; *) echo "LEVEL: frames or lsm" >&2; exit 2 ;; esac
 work=${WORK:-$tmp}
 echo "| seed | grade | km per drive | drives | keyframes vertical RMS m (per drive) | keyframes horizontal RMS m | element height RMS / mean m | lane completeness / rel. precision m | untrusted drives | seconds |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
@@ -25,15 +28,16 @@ for w in $worlds; do
   seed=${w%%:*} grade=${w#*:}
   world=(--world-grid-size "$grid" --world-hill-grade "$grade")
   case $grade in *.xodr | *.osm) world=(--map "$grade") grade=$(basename "$grade") ;; esac
-  sim="$work/sim-$seed-$grade" out="$work/crowd-$seed-$grade"
+  sim="$work/sim-$level-$seed-$grade" out="$work/crowd-$level-$seed-$grade"
   rm -rf "$sim" "$out"
   t0=$(date +%s)
-  "$bin/simulate" -q --level frames --seed "$seed" "${world[@]}" \
+  # LSMs as JSON: the height figures read align's output, which keeps its inputs' encoding
+  "$bin/simulate" -q --level "$level" --format json --seed "$seed" "${world[@]}" \
     --route-outward 1 --route-length "$route_length" --routes 1 \
     --traversals "$traversals" --vehicles "$traversals" --inject-pitch-traversal "$inject" \
     -o "$sim" > /dev/null
   # the trust check must not stop the bench: it is one of the figures
-  make -s -j2 -f "$root/scripts/crowd.mk" BIN="$bin" FRAMES_DIR="$sim/frames" WORK="$out" \
+  make -s -j2 -f "$root/scripts/crowd.mk" BIN="$bin" "$input=$sim/$level" WORK="$out" \
     TRUTH="$sim/truth/vector_map.json" TRUTH_TRAJ="$sim/truth" MAX_UNTRUSTED_SHARE=1 \
     > "$out.log" 2>&1 || { tail -20 "$out.log"; exit 1; }
   secs=$(($(date +%s) - t0))
