@@ -6,6 +6,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "kinks.hpp"
 #include "ring_index.hpp"
 
 namespace mapfuse::lanelet {
@@ -269,12 +270,15 @@ void addConnectors(LaneletPlan& plan, const std::vector<DrivePath>& drives,
   }
 }
 
-/// The lane lines long enough to bound a lanelet, with their arc lengths and segment grid.
+/// The lane lines long enough to bound a lanelet, without their kinks (kinks.hpp), with their
+/// arc lengths and segment grid.
 struct LineSet {
   std::vector<std::size_t> inst;  ///< index in VectorMap::instances
   std::vector<Poly> lines;
   std::vector<std::vector<double>> cum;
   SegmentGrid grid;
+  int kink_vertices_removed = 0;
+  double kink_max_deviation = 0.0;
 };
 
 LineSet collectLines(const VectorMap& map, const LaneletSettings& settings) {
@@ -283,8 +287,11 @@ LineSet collectLines(const VectorMap& map, const LaneletSettings& settings) {
     const auto& m = map.instances[i];
     if (m.cls != CrowdClass::kLaneLine || m.points.size() < 2) continue;
     if (polylineLength(m.points) < settings.min_length) continue;
+    detail::KinkRemoval kinks;
     set.inst.push_back(i);
-    set.lines.push_back(m.points);
+    set.lines.push_back(detail::removeKinks(m.points, settings.max_curvature, &kinks));
+    set.kink_vertices_removed += kinks.removed;
+    set.kink_max_deviation = std::max(set.kink_max_deviation, kinks.max_deviation);
   }
   set.cum.resize(set.lines.size());
   for (std::size_t i = 0; i < set.lines.size(); ++i) {
@@ -585,6 +592,8 @@ LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& dri
   auto pair_samples = pairSamples(set, settings);
   const std::vector<PairInterval> intervals = pairIntervals(pair_samples, settings);
   LaneletPlan plan = buildLanelets(set, cutLines(set, intervals), intervals);
+  plan.kink_vertices_removed = set.kink_vertices_removed;
+  plan.kink_max_deviation = set.kink_max_deviation;
   voteByDrives(plan, drives);
   voteByStopLines(plan, map, settings);
   for (auto& ll : plan.lanelets) orient(plan, ll);
