@@ -276,6 +276,7 @@ std::string vectorMapToOsm(const VectorMap& map, const LaneletExportPlan& plan,
   writeRightOfWay(e);
   writeConnectors(e);
   e.stats.unmatched_pieces = plan.lanes.unmatched_pieces;
+  e.stats.same_side_lanelets_dropped = plan.lanes.same_side_lanelets_dropped;
   e.stats.lanelets_oriented_by_neighbours = plan.lanes.lanelets_oriented_by_neighbours;
   e.stats.kink_vertices_removed = plan.lanes.kink_vertices_removed;
   e.stats.kink_max_deviation = plan.lanes.kink_max_deviation;

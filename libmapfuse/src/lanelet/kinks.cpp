@@ -67,4 +67,23 @@ std::vector<V3> removeKinks(const std::vector<V3>& line, double max_curvature, K
   return pts;
 }
 
+void removePieceKinks(LaneletPlan& plan, double max_curvature) {
+  for (auto& line : plan.lines) {
+    std::vector<V3> points = {line.points.front()};
+    std::vector<std::size_t> cuts = {0};
+    for (std::size_t c = 0; c + 1 < line.cuts.size(); ++c) {
+      const std::vector<V3> piece(line.points.begin() + static_cast<long>(line.cuts[c]),
+                                  line.points.begin() + static_cast<long>(line.cuts[c + 1]) + 1);
+      KinkRemoval stats;
+      const std::vector<V3> clean = removeKinks(piece, max_curvature, &stats);
+      plan.kink_vertices_removed += stats.removed;
+      plan.kink_max_deviation = std::max(plan.kink_max_deviation, stats.max_deviation);
+      points.insert(points.end(), clean.begin() + 1, clean.end());
+      cuts.push_back(points.size() - 1);
+    }
+    line.points = std::move(points);
+    line.cuts = std::move(cuts);
+  }
+}
+
 }  // namespace mapfuse::lanelet::detail

@@ -8,6 +8,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "mapfuse/lanelet/plan.hpp"
+
 namespace mapfuse::lanelet::detail {
 
 /// What removeKinks did to one line.
@@ -26,5 +28,11 @@ double mengerCurvature(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
 /// segments more than 90 degrees apart). The end points stay.
 std::vector<Eigen::Vector3d> removeKinks(const std::vector<Eigen::Vector3d>& line,
                                          double max_curvature, KinkRemoval* stats = nullptr);
+
+/// @brief removeKinks on every piece of every plan line, the cut points kept: a piece's first
+/// and last interior vertices see a shorter chord than on the whole line (the cut lies between
+/// them and the line's previous vertex), so their curvature can exceed the limit again. Adds to
+/// the plan's kink counters.
+void removePieceKinks(LaneletPlan& plan, double max_curvature);
 
 }  // namespace mapfuse::lanelet::detail

@@ -34,15 +34,16 @@ struct Lanelet2ExportStats {
   int lanelets_oriented_by_neighbours = 0;  ///< ... of them by a neighbour (right-hand traffic)
   int connector_lanelets = 0;               ///< across unmarked stretches, `virtual` bounds
   int crosswalk_lanelets = 0;
-  int regulatory_elements = 0;       ///< traffic_light + traffic_sign relations
-  int right_of_way_elements = 0;     ///< right_of_way relations (lanelet/right_of_way.hpp)
-  int all_way_stop_elements = 0;     ///< all_way_stop relations
-  int lanelets_with_regulatory = 0;  ///< lanelets referring to at least one
-  int unmatched_pieces = 0;          ///< piece pairs whose cuts did not line up
-  double lane_line_m = 0.0;          ///< total lane-line length
-  double bound_m = 0.0;              ///< lane-line length that bounds at least one lanelet
-  int kink_vertices_removed = 0;     ///< lane-line vertices dropped as kinks (lanelet/kinks.hpp)
-  double kink_max_deviation = 0.0;   ///< m: farthest dropped vertex from the line kept
+  int regulatory_elements = 0;         ///< traffic_light + traffic_sign relations
+  int right_of_way_elements = 0;       ///< right_of_way relations (lanelet/right_of_way.hpp)
+  int all_way_stop_elements = 0;       ///< all_way_stop relations
+  int lanelets_with_regulatory = 0;    ///< lanelets referring to at least one
+  int unmatched_pieces = 0;            ///< piece pairs whose cuts did not line up
+  int same_side_lanelets_dropped = 0;  ///< second lanelets on one side of a piece (plan.hpp)
+  double lane_line_m = 0.0;            ///< total lane-line length
+  double bound_m = 0.0;                ///< lane-line length that bounds at least one lanelet
+  int kink_vertices_removed = 0;       ///< lane-line vertices dropped as kinks (lanelet/kinks.hpp)
+  double kink_max_deviation = 0.0;     ///< m: farthest dropped vertex from the line kept
 };
 
 /// @brief The OSM XML document of `map` with the lanelets and regulatory elements of `plan`

@@ -55,7 +55,8 @@ struct LaneletPlan {
   int unmatched_pieces = 0;  ///< piece pairs skipped because their cuts did not line up
   int lanelets_oriented_by_neighbours = 0;  ///< direction from a neighbour (neighbourDirections)
   int kink_vertices_removed = 0;            ///< lane-line vertices dropped as kinks (max_curvature)
-  double kink_max_deviation = 0.0;  ///< m: farthest dropped vertex from its line's remainder
+  double kink_max_deviation = 0.0;     ///< m: farthest dropped vertex from its line's remainder
+  int same_side_lanelets_dropped = 0;  ///< a piece bounded two lanelets on one side
 };
 
 /// @brief Pairs the lane lines of `map` into lanelets; `drives` give travel directions.
