@@ -11,7 +11,8 @@ inline constexpr const char* kAggregate =
     "two-stage DBSCAN lane instantiation, Bezier vectorization, discrete element merging\n"
     "(--method grid_vote: the Qin et al. 2021 grid-vote baseline for the ground classes).\n"
     "Outputs below --out: map.cbor (compact), map.json, map.geojson (WGS84), map.osm\n"
-    "(Lanelet2-style), map.png, aggregate.config.json, aggregate.summary.json.\n"
+    "(Lanelet2) with map.osm.mapfuse.json (its map ids, pole heights), map.png,\n"
+    "aggregate.config.json, aggregate.summary.json.\n"
     "Exit codes: 0 ok, 2 usage/config, 3 bad input (malformed LSM, frame odom, origin\n"
     "mismatch), 4 I/O.";
 

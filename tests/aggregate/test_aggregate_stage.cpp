@@ -58,8 +58,8 @@ TEST_CASE("the aggregate stage writes every output and a size summary", "[aggreg
   const auto [w, files] = writeSynthLsms(dir, 6, test::SynthOptions{}.length);
   const auto out = dir / "out";
   const auto summary = stages::toJson(stages::runAggregate(files, out, stages::AggregateParams{}));
-  for (const char* f : {"map.cbor", "map.json", "map.geojson", "map.osm", "map.png",
-                        "aggregate.summary.json", "aggregate.config.json"})
+  for (const char* f : {"map.cbor", "map.json", "map.geojson", "map.osm", "map.osm.mapfuse.json",
+                        "map.png", "aggregate.summary.json", "aggregate.config.json"})
     CHECK(fs::exists(out / f));
   // the compact CBOR and the JSON hold the same instances
   const VectorMap cbor = io::readVectorMap(out / "map.cbor");

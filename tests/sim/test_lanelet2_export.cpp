@@ -7,11 +7,14 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <pugixml.hpp>
 
 #include "mapfuse/eval/lanelet_coverage.hpp"
+#include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/lanelet2_osm.hpp"
 #include "mapfuse/io/osm_export.hpp"
+#include "mapfuse/io/osm_sidecar.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
 #include "mapfuse/lanelet/regulatory.hpp"
 #include "mapfuse/sim/lanelet2_world.hpp"
@@ -103,16 +106,18 @@ std::vector<lanelet::DrivePath> lanePaths(const sim::World& world) {
   return drives;
 }
 
-/// The procedural world's true map exported as Lanelet2 and read back by the project's reader.
+/// The procedural world's true map exported as Lanelet2 (map.osm and its sidecar) and read back
+/// by the project's reader.
+io::Lanelet2Map writeAndRead(const sim::World& world, io::Lanelet2ExportStats* stats) {
+  const fs::path osm = test::tempDir("lanelet2_export") / "map.osm";
+  io::writeOsm(osm, world.truth, lanelet::planExport(world.truth, lanePaths(world)), stats);
+  return io::readLanelet2Osm(osm);
+}
 struct Exported {
   sim::World world = proceduralWorld();
   io::Lanelet2ExportStats stats;
   io::Lanelet2Map osm;
-  Exported()
-      : osm(io::parseLanelet2Osm(
-            io::vectorMapToOsm(world.truth, lanelet::planExport(world.truth, lanePaths(world)),
-                               &stats),
-            "export.osm")) {}
+  Exported() : osm(writeAndRead(world, &stats)) {}
 };
 
 std::vector<eval::TrueLane> trueLanes(const sim::World& world) {
@@ -245,6 +250,17 @@ TEST_CASE("Lanelet2 export: simulate --map loads an aggregated map.osm with its 
   }
   INFO("largest distance of an aggregated sign quad from its Lanelet2 rectangle: " << plate_loss);
   CHECK(plate_loss < 0.5);
+  // Lane lines that bound lanelets compare as the export writes them: without their kinks
+  // (lanelet/kinks.hpp, lanelet_max_curvature), the plan's points; that loss is the summary's.
+  const auto plan = lanelet::planExport(agg, {});
+  for (const auto& line : plan.lanes.lines)
+    agg_plates.instances[line.instance].points = line.points;
+  const auto summary = nlohmann::json::parse(io::readBytes(dir / "agg" / "aggregate.summary.json"));
+  const double kink_loss = summary["lanelet2"]["kink_max_deviation_m"].get<double>();
+  INFO("largest distance of a dropped lane-line kink from its line: " << kink_loss);
+  CHECK(summary["lanelet2"]["kink_vertices_removed"].get<int>() ==
+        plan.lanes.kink_vertices_removed);
+  CHECK(kink_loss < 0.5);
   const double worst = compareMaps(agg_plates, back);
   CHECK(worst < kRoundTripTolerance);
 }
@@ -354,4 +370,62 @@ TEST_CASE("Lanelet2 export: stop lines without lights give all_way_stop or right
     CHECK(yield >= unlit);
     CHECK(priority >= unlit);
   }
+}
+
+TEST_CASE(
+    "Lanelet2 export: only Lanelet2's tags in map.osm, map ids and pole heights in the "
+    "sidecar, a stale sidecar ignored",
+    "[sim][osm][export]") {
+  const Exported e;
+  const auto& [world, stats, osm] = e;
+  REQUIRE(osm.sidecar == io::Lanelet2Map::Sidecar::kApplied);
+  // lanelet2_validation's known tags (CheckTags.cpp): points ele/type/subtype; line strings add
+  // lane_change/width/height/temporary/color.
+  const fs::path dir = test::tempDir("lanelet2_sidecar");
+  io::OsmSidecar sidecar;
+  const std::string xml = io::vectorMapToOsm(
+      world.truth, lanelet::planExport(world.truth, lanePaths(world)), nullptr, &sidecar);
+  const std::size_t generator = xml.find("generator=\"mapfuse\"");
+  REQUIRE(generator != std::string::npos);
+  CHECK(xml.find("mapfuse", generator + 18) == std::string::npos);  // no mapfuse tag
+  pugi::xml_document doc;
+  REQUIRE(doc.load_string(xml.c_str()));
+  for (const pugi::xml_node n : doc.child("osm").children("node"))
+    for (const pugi::xml_node t : n.children("tag")) {
+      const std::string k = t.attribute("k").value();
+      CHECK((k == "ele" || k == "type" || k == "subtype"));
+    }
+  // Every pole of the truth comes back with its height, every element with its map id.
+  int poles = 0;
+  for (const auto& m : world.truth.instances) {
+    if (m.cls != CrowdClass::kPole) continue;
+    ++poles;
+    const auto it = std::find_if(osm.points.begin(), osm.points.end(), [&](const auto& p) {
+      return p.tags.count("mapfuse_id") && p.tags.at("mapfuse_id") == std::to_string(m.id);
+    });
+    REQUIRE(it != osm.points.end());
+    CHECK(std::stod(it->tags.at("height")) == Approx(m.height).margin(1e-9));
+  }
+  CHECK(poles > 0);
+  for (const auto& w : osm.linestrings)
+    if (w.type != "virtual") CHECK(w.tags.count("mapfuse_id") == 1);
+  int connector_entries = 0;
+  for (const auto& en : sidecar.entries) connector_entries += en.connector_drives > 0;
+  CHECK(connector_entries == stats.connector_lanelets);
+  // An edited map.osm (one coordinate moved) no longer matches the sidecar: not applied.
+  io::writeOsm(dir / "map.osm", world.truth, lanelet::planExport(world.truth, lanePaths(world)));
+  std::string edited = io::readBytes(dir / "map.osm");
+  edited.replace(edited.find("lat=\"") + 9, 1,
+                 edited[edited.find("lat=\"") + 9] == '1' ? "2" : "1");
+  io::writeBytesAtomic(dir / "map.osm", edited);
+  const io::Lanelet2Map stale = io::readLanelet2Osm(dir / "map.osm");
+  CHECK(stale.sidecar == io::Lanelet2Map::Sidecar::kStale);
+  for (const auto& p : stale.points) CHECK(p.tags.count("height") == 0);
+  // A malformed sidecar is bad input naming its file and field.
+  io::writeBytesAtomic(io::osmSidecarPath(dir / "map.osm"),
+                       R"({"format":"mapfuse.osm_sidecar","version":1,"osm_fnv1a64":"0",)"
+                       R"("elements":[{"element":"area","id":-1}]})");
+  CHECK_THROWS_WITH(
+      io::readLanelet2Osm(dir / "map.osm"),
+      Catch::Contains("map.osm.mapfuse.json") && Catch::Contains("elements[0].element"));
 }

@@ -10,6 +10,7 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/bounds.hpp"
+#include "mapfuse/io/osm_sidecar.hpp"
 #include "xml_root.hpp"
 
 namespace mapfuse::io {
@@ -268,7 +269,10 @@ Lanelet2Map parseLanelet2Osm(const std::string& xml, const std::string& file) {
 }
 
 Lanelet2Map readLanelet2Osm(const std::filesystem::path& path) {
-  return parseLanelet2Osm(readBytes(path), path.string());
+  const std::string xml = readBytes(path);
+  Lanelet2Map map = parseLanelet2Osm(xml, path.string());
+  applyOsmSidecar(path, xml, map);
+  return map;
 }
 
 }  // namespace mapfuse::io

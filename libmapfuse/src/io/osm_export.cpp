@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 
 #include "mapfuse/io/atomic_file.hpp"
 #include "osm_builder.hpp"
@@ -20,29 +21,7 @@ Tags laneLineTags(const MapInstance& m) {
             {"subtype", m.attributes.style == LineStyle::kDashed ? "dashed" : "solid"}};
   if (m.attributes.color != LineColor::kNone)
     t.push_back({"color", lineColorName(m.attributes.color)});
-  t.push_back({"mapfuse_id", std::to_string(m.id)});
   return t;
-}
-
-Tags idTag(const MapInstance& m, Tags t) {
-  t.push_back({"mapfuse_id", std::to_string(m.id)});
-  return t;
-}
-
-/// Splits a crosswalk outline into two bounds: its longest edge and the opposite chain, so that
-/// left + reversed(right) gives the outline back.
-std::pair<std::vector<V3>, std::vector<V3>> crosswalkBounds(const std::vector<V3>& ring) {
-  const std::size_t n = ring.size();
-  std::size_t p = 0;
-  for (std::size_t k = 1; k < n; ++k)
-    if ((ring[(k + 1) % n] - ring[k]).head<2>().norm() >
-        (ring[(p + 1) % n] - ring[p]).head<2>().norm())
-      p = k;
-  std::vector<V3> left = {ring[p], ring[(p + 1) % n]}, right;
-  for (std::size_t k = 2; k < n; ++k) right.push_back(ring[(p + k) % n]);
-  std::reverse(right.begin(), right.end());
-  if (right.size() == 1) right.push_back(right.front());  // a triangle: a degenerate bound
-  return {left, right};
 }
 
 /// The export being written: the builder and the ids of what was written so far.
@@ -68,6 +47,14 @@ struct Export {
   std::vector<std::vector<int64_t>> stop_lights, stop_signs;
   std::vector<std::vector<int64_t>> lanelet_regs;
   std::vector<int64_t> lanelet_id, rule_id;
+  OsmSidecar sidecar;  // what Lanelet2's tags cannot say (io/osm_sidecar.hpp)
+
+  /// Notes in the sidecar that OSM element `id` comes from map instance m; returns id.
+  int64_t link(const char* element, int64_t id, const MapInstance& m,
+               std::optional<double> height = std::nullopt) {
+    sidecar.entries.push_back({element, id, m.id, height, 0});
+    return id;
+  }
 };
 
 /// Lane lines: the planned ones piece by piece (shared cut nodes), the others whole.
@@ -86,7 +73,7 @@ void writeLaneLines(Export& e) {
     e.stats.lane_line_m += polylineLength(m.points);
     const auto pl = plan_line_of.find(i);
     if (pl == plan_line_of.end()) {
-      e.osm.way(m.points, laneLineTags(m));
+      e.link("way", e.osm.way(m.points, laneLineTags(m)), m);
       continue;
     }
     const auto& line = plan.lines[pl->second];
@@ -97,6 +84,7 @@ void writeLaneLines(Export& e) {
           e.osm.way(std::vector<int64_t>(nodes.begin() + static_cast<long>(line.cuts[c]),
                                          nodes.begin() + static_cast<long>(line.cuts[c + 1]) + 1),
                     laneLineTags(m));
+      e.link("way", w, m);
       const auto pc = piece_of.find({pl->second, c});
       if (pc == piece_of.end()) continue;
       e.piece_way[pc->second] = w;
@@ -113,23 +101,24 @@ void writeMarkings(Export& e) {
     const MapInstance& m = e.map.instances[i];
     switch (m.cls) {
       case CrowdClass::kStopLine:
-        e.stop_way[i] = e.osm.way(m.points, idTag(m, {{"type", "stop_line"}}));
+        e.stop_way[i] = e.link("way", e.osm.way(m.points, {{"type", "stop_line"}}), m);
         break;
       case CrowdClass::kGroundArrow:
-        e.osm.way(m.points, idTag(m, {{"type", "arrow"}}), true);
+        e.link("way", e.osm.way(m.points, {{"type", "arrow"}}, true), m);
         break;
       case CrowdClass::kPole:
-        e.osm.node(m.points.front(), idTag(m, {{"type", "pole"}, {"height", fixed(m.height, 3)}}));
+        e.link("node", e.osm.node(m.points.front(), {{"type", "pole"}}), m, m.height);
         break;
       case CrowdClass::kCrosswalk: {
-        const auto [left, right] = crosswalkBounds(m.points);
-        const int64_t l = e.osm.way(left, idTag(m, {{"type", "zebra_marking"}}));
-        const int64_t r = e.osm.way(right, idTag(m, {{"type", "zebra_marking"}}));
-        e.osm.relation({{"way", l, "left"}, {"way", r, "right"}},
-                       idTag(m, {{"type", "lanelet"},
-                                 {"subtype", "crosswalk"},
-                                 {"location", "urban"},
-                                 {"one_way", "no"}}));
+        const auto [left, right] = lanelet::crosswalkBounds(m.points);
+        const int64_t l = e.link("way", e.osm.way(left, {{"type", "zebra_marking"}}), m);
+        const int64_t r = e.link("way", e.osm.way(right, {{"type", "zebra_marking"}}), m);
+        e.link("relation",
+               e.osm.relation({{"way", l, "left"}, {"way", r, "right"}}, {{"type", "lanelet"},
+                                                                          {"subtype", "crosswalk"},
+                                                                          {"location", "urban"},
+                                                                          {"one_way", "no"}}),
+               m);
         ++e.stats.crosswalk_lanelets;
         break;
       }
@@ -142,8 +131,10 @@ void writeMarkings(Export& e) {
 int64_t writeLight(Export& e, const MapInstance& m, const Eigen::Vector2d& across) {
   const V3 c = m.points.front();
   const V3 half = 0.5 * kLightWidth * V3(across.x(), across.y(), 0.0);
-  return e.osm.way({c - half, c + half},
-                   idTag(m, {{"type", "traffic_light"}, {"height", fixed(m.height, 3)}}));
+  return e.link(
+      "way",
+      e.osm.way({c - half, c + half}, {{"type", "traffic_light"}, {"height", fixed(m.height, 3)}}),
+      m);
 }
 
 /// A sign: the plate's bottom edge (its two lowest corners), with the plate's height.
@@ -159,9 +150,11 @@ int64_t writeSign(Export& e, const MapInstance& m) {
   const double height = top - 0.5 * (corners[a].z() + corners[b].z());
   // Lanelet2 refuses a traffic_sign regulatory element whose sign has no subtype (the sign's
   // code, "de205"): the crowd map does not classify signs, so "unknown"
-  return e.osm.way(
-      {corners[a], corners[b]},
-      idTag(m, {{"type", "traffic_sign"}, {"subtype", "unknown"}, {"height", fixed(height, 3)}}));
+  return e.link(
+      "way",
+      e.osm.way({corners[a], corners[b]},
+                {{"type", "traffic_sign"}, {"subtype", "unknown"}, {"height", fixed(height, 3)}}),
+      m);
 }
 
 /// Lights and signs, in map order; one without a stop line gets its own regulatory element
@@ -263,11 +256,10 @@ void writeConnectors(Export& e) {
       nodes.push_back(b_last ? e.piece_nodes[pb].second : e.piece_nodes[pb].first);
       members.push_back({"way", e.osm.way(nodes, {{"type", "virtual"}}), left ? "left" : "right"});
     }
-    e.osm.relation(members, {{"type", "lanelet"},
-                             {"subtype", "road"},
-                             {"location", "urban"},
-                             {"one_way", "yes"},
-                             {"mapfuse:connector", std::to_string(c.drives) + " drives"}});
+    const int64_t id = e.osm.relation(
+        members,
+        {{"type", "lanelet"}, {"subtype", "road"}, {"location", "urban"}, {"one_way", "yes"}});
+    e.sidecar.entries.push_back({"relation", id, std::nullopt, std::nullopt, c.drives});
     ++e.stats.connector_lanelets;
   }
 }
@@ -275,7 +267,7 @@ void writeConnectors(Export& e) {
 }  // namespace
 
 std::string vectorMapToOsm(const VectorMap& map, const LaneletExportPlan& plan,
-                           Lanelet2ExportStats* stats_out) {
+                           Lanelet2ExportStats* stats_out, OsmSidecar* sidecar) {
   Export e(map, plan);
   writeLaneLines(e);
   writeMarkings(e);
@@ -284,14 +276,22 @@ std::string vectorMapToOsm(const VectorMap& map, const LaneletExportPlan& plan,
   writeRightOfWay(e);
   writeConnectors(e);
   e.stats.unmatched_pieces = plan.lanes.unmatched_pieces;
+  e.stats.same_side_lanelets_dropped = plan.lanes.same_side_lanelets_dropped;
   e.stats.lanelets_oriented_by_neighbours = plan.lanes.lanelets_oriented_by_neighbours;
+  e.stats.kink_vertices_removed = plan.lanes.kink_vertices_removed;
+  e.stats.kink_max_deviation = plan.lanes.kink_max_deviation;
   if (stats_out) *stats_out = e.stats;
-  return e.osm.xml();
+  std::string xml = e.osm.xml();
+  e.sidecar.osm_hash = fnv1a64Hex(xml);
+  if (sidecar) *sidecar = std::move(e.sidecar);
+  return xml;
 }
 
 void writeOsm(const std::filesystem::path& path, const VectorMap& map,
               const LaneletExportPlan& plan, Lanelet2ExportStats* stats) {
-  writeBytesAtomic(path, vectorMapToOsm(map, plan, stats));
+  OsmSidecar sidecar;
+  writeBytesAtomic(path, vectorMapToOsm(map, plan, stats, &sidecar));
+  writeBytesAtomic(osmSidecarPath(path), osmSidecarToJson(sidecar));
 }
 
 }  // namespace mapfuse::io

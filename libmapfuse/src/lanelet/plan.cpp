@@ -6,6 +6,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "kinks.hpp"
 #include "ring_index.hpp"
 
 namespace mapfuse::lanelet {
@@ -269,12 +270,15 @@ void addConnectors(LaneletPlan& plan, const std::vector<DrivePath>& drives,
   }
 }
 
-/// The lane lines long enough to bound a lanelet, with their arc lengths and segment grid.
+/// The lane lines long enough to bound a lanelet, without their kinks (kinks.hpp), with their
+/// arc lengths and segment grid.
 struct LineSet {
   std::vector<std::size_t> inst;  ///< index in VectorMap::instances
   std::vector<Poly> lines;
   std::vector<std::vector<double>> cum;
   SegmentGrid grid;
+  int kink_vertices_removed = 0;
+  double kink_max_deviation = 0.0;
 };
 
 LineSet collectLines(const VectorMap& map, const LaneletSettings& settings) {
@@ -283,8 +287,11 @@ LineSet collectLines(const VectorMap& map, const LaneletSettings& settings) {
     const auto& m = map.instances[i];
     if (m.cls != CrowdClass::kLaneLine || m.points.size() < 2) continue;
     if (polylineLength(m.points) < settings.min_length) continue;
+    detail::KinkRemoval kinks;
     set.inst.push_back(i);
-    set.lines.push_back(m.points);
+    set.lines.push_back(detail::removeKinks(m.points, settings.max_curvature, &kinks));
+    set.kink_vertices_removed += kinks.removed;
+    set.kink_max_deviation = std::max(set.kink_max_deviation, kinks.max_deviation);
   }
   set.cum.resize(set.lines.size());
   for (std::size_t i = 0; i < set.lines.size(); ++i) {
@@ -477,7 +484,52 @@ LaneletPlan buildLanelets(const LineSet& set, const std::vector<std::vector<doub
       plan.lanelets.push_back(ll);
     }
   }
-  // Geometry of each lanelet, bounds aligned with the left piece.
+  return plan;
+}
+
+/// Lanelet2's routing graph takes a lanelet sharing a bound with another as its neighbour on
+/// that side and requires the relation to hold back (checkValidity: "isn't the closest lanelet
+/// the other way round"), so a piece may bound one lanelet on each of its sides. Where several
+/// pairs put lanelets on one side of a piece (short pieces at junction mouths paired with two
+/// lines), the one whose other bound lies nearest stays; the others are dropped and counted.
+void dropSameSideLanelets(LaneletPlan& plan) {
+  struct Use {
+    std::size_t lanelet;
+    double distance;  // m between the piece's middle and the other bound's middle
+  };
+  std::map<std::pair<std::size_t, int>, std::vector<Use>> uses;  // (piece, side) -> lanelets
+  auto middle = [&](std::size_t piece) {
+    const Poly pts = piecePoints(plan, piece);
+    const auto c = arcLengths(pts);
+    return sampleAt(pts, c, 0.5 * c.back()).first;
+  };
+  for (std::size_t l = 0; l < plan.lanelets.size(); ++l) {
+    const auto& ll = plan.lanelets[l];
+    for (const auto& [piece, other] :
+         {std::make_pair(ll.left, ll.right), std::make_pair(ll.right, ll.left)}) {
+      const Poly pts = piecePoints(plan, piece);
+      const Eigen::Vector2d along = (pts.back() - pts.front()).head<2>();
+      const V3 a = middle(piece), b = middle(other);
+      const int side = cross2(along, (b - a).head<2>()) >= 0 ? 1 : -1;
+      uses[{piece, side}].push_back({l, (b - a).head<2>().norm()});
+    }
+  }
+  std::vector<bool> drop(plan.lanelets.size(), false);
+  for (auto& [key, list] : uses) {
+    if (list.size() < 2) continue;
+    std::sort(list.begin(), list.end(),
+              [](const Use& x, const Use& y) { return x.distance < y.distance; });
+    for (std::size_t k = 1; k < list.size(); ++k) drop[list[k].lanelet] = true;
+  }
+  std::vector<LaneletPlan::Lanelet> kept;
+  for (std::size_t l = 0; l < plan.lanelets.size(); ++l)
+    if (!drop[l]) kept.push_back(plan.lanelets[l]);
+  plan.same_side_lanelets_dropped = static_cast<int>(plan.lanelets.size() - kept.size());
+  plan.lanelets = std::move(kept);
+}
+
+/// Centre line and outline of each lanelet, bounds aligned with the left piece.
+void laneletGeometry(LaneletPlan& plan) {
   for (auto& ll : plan.lanelets) {
     const Poly left = piecePoints(plan, ll.left);
     Poly right = piecePoints(plan, ll.right);
@@ -488,7 +540,6 @@ LaneletPlan buildLanelets(const LineSet& set, const std::vector<std::vector<doub
     ll.ring = left;
     ll.ring.insert(ll.ring.end(), right.rbegin(), right.rend());
   }
-  return plan;
 }
 
 /// Travel direction: votes of drive samples inside each lanelet.
@@ -585,6 +636,11 @@ LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& dri
   auto pair_samples = pairSamples(set, settings);
   const std::vector<PairInterval> intervals = pairIntervals(pair_samples, settings);
   LaneletPlan plan = buildLanelets(set, cutLines(set, intervals), intervals);
+  plan.kink_vertices_removed = set.kink_vertices_removed;
+  plan.kink_max_deviation = set.kink_max_deviation;
+  detail::removePieceKinks(plan, settings.max_curvature);
+  dropSameSideLanelets(plan);
+  laneletGeometry(plan);
   voteByDrives(plan, drives);
   voteByStopLines(plan, map, settings);
   for (auto& ll : plan.lanelets) orient(plan, ll);

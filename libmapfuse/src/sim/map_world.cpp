@@ -7,6 +7,7 @@
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/io/lanelet2_osm.hpp"
 #include "mapfuse/io/opendrive.hpp"
+#include "mapfuse/io/osm_sidecar.hpp"
 #include "mapfuse/sim/lanelet2_world.hpp"
 #include "mapfuse/sim/opendrive_world.hpp"
 
@@ -42,6 +43,10 @@ World loadMapWorld(const std::string& path, bool map_origin, const MapWorldSetti
     }
     world = worldFromLanelet2(osm, *origin);
     untyped = osm.untyped_ways;
+    if (osm.sidecar == io::Lanelet2Map::Sidecar::kStale)
+      MAPFUSE_WARN(path << ": its sidecar " << io::osmSidecarPath(path).string()
+                        << " was written for another version of this file (edited since?): "
+                           "ignored, so poles have no height");
   }
   // One line per kind of repaired or dropped content (count and first example; the summary's
   // input_warnings holds the same).

@@ -71,6 +71,10 @@ struct Lanelet2Map {
   std::map<std::string, int> skipped_way_types;       ///< unknown way type -> count
   std::map<std::string, int> skipped_relation_types;  ///< unknown relation type -> count
   std::map<int64_t, std::size_t> way_index;           ///< way id -> index in linestrings
+  /// The sidecar `<file>.mapfuse.json` (io/osm_sidecar.hpp) of a mapfuse export: absent,
+  /// applied (its map ids and pole heights became `mapfuse_id` / `height` tags of the nodes and
+  /// ways), or stale (written for another version of the file, so ignored).
+  enum class Sidecar { kAbsent, kApplied, kStale } sidecar = Sidecar::kAbsent;
 
   /// @brief Number of line strings of a type (and subtype when not empty).
   int countWays(const std::string& type, const std::string& subtype = "") const;
@@ -82,8 +86,10 @@ struct Lanelet2Map {
 /// symbols, signs and lights); others are skipped and counted.
 bool isKnownLanelet2WayType(const std::string& type);
 
-/// @brief Parses a Lanelet2 OSM file.
-/// @throws IoError when unreadable; ParseError(file, element, problem) when malformed.
+/// @brief Parses a Lanelet2 OSM file and applies its sidecar when there is one for this very
+/// file (Lanelet2Map::sidecar says which).
+/// @throws IoError when unreadable; ParseError(file, element, problem) when it or its sidecar
+/// is malformed.
 Lanelet2Map readLanelet2Osm(const std::filesystem::path& path);
 
 /// @brief Parses OSM XML held in memory; `file` names the source in errors.

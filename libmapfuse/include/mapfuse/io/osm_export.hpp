@@ -7,7 +7,7 @@
 /// with the travel direction from the drives; stop lines are `stop_line` ways; traffic signs
 /// `traffic_sign` ways along the bottom edge of the plate and traffic lights 0.3 m
 /// `traffic_light` ways across the approach at the housing's bottom, both with `height`; poles
-/// `type=pole` nodes with `height`; ground arrows closed `arrow` ways; crosswalks
+/// `type=pole` nodes (their height in the sidecar); ground arrows closed `arrow` ways; crosswalks
 /// `subtype=crosswalk` lanelets bounded by two `zebra_marking` ways. Lights and signs near a stop
 /// line become `traffic_light` / `traffic_sign` regulatory elements (refers = the light or sign,
 /// ref_line = the stop line) referenced by the lanelets the stop line crosses; intersections
@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "mapfuse/core/vector_map.hpp"
+#include "mapfuse/io/osm_sidecar.hpp"
 #include "mapfuse/lanelet/regulatory.hpp"
 
 namespace mapfuse::io {
@@ -33,21 +34,26 @@ struct Lanelet2ExportStats {
   int lanelets_oriented_by_neighbours = 0;  ///< ... of them by a neighbour (right-hand traffic)
   int connector_lanelets = 0;               ///< across unmarked stretches, `virtual` bounds
   int crosswalk_lanelets = 0;
-  int regulatory_elements = 0;       ///< traffic_light + traffic_sign relations
-  int right_of_way_elements = 0;     ///< right_of_way relations (lanelet/right_of_way.hpp)
-  int all_way_stop_elements = 0;     ///< all_way_stop relations
-  int lanelets_with_regulatory = 0;  ///< lanelets referring to at least one
-  int unmatched_pieces = 0;          ///< piece pairs whose cuts did not line up
-  double lane_line_m = 0.0;          ///< total lane-line length
-  double bound_m = 0.0;              ///< lane-line length that bounds at least one lanelet
+  int regulatory_elements = 0;         ///< traffic_light + traffic_sign relations
+  int right_of_way_elements = 0;       ///< right_of_way relations (lanelet/right_of_way.hpp)
+  int all_way_stop_elements = 0;       ///< all_way_stop relations
+  int lanelets_with_regulatory = 0;    ///< lanelets referring to at least one
+  int unmatched_pieces = 0;            ///< piece pairs whose cuts did not line up
+  int same_side_lanelets_dropped = 0;  ///< second lanelets on one side of a piece (plan.hpp)
+  double lane_line_m = 0.0;            ///< total lane-line length
+  double bound_m = 0.0;                ///< lane-line length that bounds at least one lanelet
+  int kink_vertices_removed = 0;       ///< lane-line vertices dropped as kinks (lanelet/kinks.hpp)
+  double kink_max_deviation = 0.0;     ///< m: farthest dropped vertex from the line kept
 };
 
 /// @brief The OSM XML document of `map` with the lanelets and regulatory elements of `plan`
-/// (lanelet::planExport of the same map).
+/// (lanelet::planExport of the same map); `sidecar` receives what Lanelet2's tags cannot hold
+/// (map ids, pole heights, connector drive counts: io/osm_sidecar.hpp).
 std::string vectorMapToOsm(const VectorMap& map, const lanelet::LaneletExportPlan& plan,
-                           Lanelet2ExportStats* stats = nullptr);
+                           Lanelet2ExportStats* stats = nullptr, OsmSidecar* sidecar = nullptr);
 
-/// @brief Atomic write of vectorMapToOsm(). @throws IoError.
+/// @brief Atomic write of vectorMapToOsm() to `path` and of its sidecar to osmSidecarPath(path)
+/// (`map.osm.mapfuse.json`). @throws IoError.
 void writeOsm(const std::filesystem::path& path, const VectorMap& map,
               const lanelet::LaneletExportPlan& plan, Lanelet2ExportStats* stats = nullptr);
 

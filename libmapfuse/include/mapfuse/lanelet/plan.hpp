@@ -11,6 +11,7 @@
 /// bounds joins their bounds' end points (cubic Hermite curves along both lanelets' directions).
 #include <Eigen/Core>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "mapfuse/core/vector_map.hpp"
@@ -53,6 +54,9 @@ struct LaneletPlan {
   std::vector<Connector> connectors;
   int unmatched_pieces = 0;  ///< piece pairs skipped because their cuts did not line up
   int lanelets_oriented_by_neighbours = 0;  ///< direction from a neighbour (neighbourDirections)
+  int kink_vertices_removed = 0;            ///< lane-line vertices dropped as kinks (max_curvature)
+  double kink_max_deviation = 0.0;     ///< m: farthest dropped vertex from its line's remainder
+  int same_side_lanelets_dropped = 0;  ///< a piece bounded two lanelets on one side
 };
 
 /// @brief Pairs the lane lines of `map` into lanelets; `drives` give travel directions.
@@ -75,6 +79,12 @@ std::pair<std::size_t, bool> boundEnd(const LaneletPlan& plan, const LaneletPlan
 
 /// @brief The points of a piece (ENU, m), in its line's order.
 std::vector<Eigen::Vector3d> piecePoints(const LaneletPlan& plan, std::size_t piece);
+
+/// @brief A crosswalk outline (a ring of at least 3 points) as a lanelet's two bounds: its
+/// longest edge and the opposite chain, so that left + reversed(right) gives the outline back
+/// (lanelet/crosswalk.cpp).
+std::pair<std::vector<Eigen::Vector3d>, std::vector<Eigen::Vector3d>> crosswalkBounds(
+    const std::vector<Eigen::Vector3d>& ring);
 
 /// @brief True when p lies inside the closed ring (xy).
 bool insideRingXY(const std::vector<Eigen::Vector3d>& ring, const Eigen::Vector3d& p);

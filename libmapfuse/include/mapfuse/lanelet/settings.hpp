@@ -15,6 +15,7 @@ struct LaneletSettings {
   double intersection_reach = 40.0;  ///< m between the ends of one intersection's approaches
   double regulatory_reach = 25.0;    ///< m from a stop line's middle to its lights and signs
   double lone_reach = 15.0;          ///< m from a light or sign without stop line to its lanelet
+  double max_curvature = 0.4;        ///< 1/m; sharper lane-line vertices are kinks (kinks.hpp)
 
   template <class V>
   void visit(V& v) {
@@ -37,6 +38,10 @@ struct LaneletSettings {
       "Lanelet2 export: reach from a stop line to the lights and signs it belongs to", in(1, 200));
     v("lanelet_lone_reach", lone_reach, "m",
       "Lanelet2 export: reach from a light or sign without stop line to its lanelet", in(1, 200));
+    v("lanelet_max_curvature", max_curvature, "1/m",
+      "Lanelet2 export: lane-line vertices bending sharper than this (kinks of the aggregated "
+      "line; Lanelet2's validator warns above 0.5) are dropped from lanelet bounds",
+      in(0.01, 10));
   }
 };
 

@@ -63,8 +63,8 @@ struct AggregateRun {
 nlohmann::json toJson(const AggregateRun& run);
 
 /// @brief Runs the stage: reads `inputs` (LSM files, JSON or CBOR), aggregates and writes into
-/// `out_dir`: map.cbor (compact), map.json, map.geojson, map.osm, map.png, aggregate.config.json
-/// and aggregate.summary.json.
+/// `out_dir`: map.cbor (compact), map.json, map.geojson, map.osm (with its sidecar
+/// map.osm.mapfuse.json), map.png, aggregate.config.json and aggregate.summary.json.
 /// @throws ConfigError (parameters), IoError, ParseError, InputError (frame odom, origin
 /// mismatch, no input).
 AggregateRun runAggregate(const std::vector<std::string>& inputs,
