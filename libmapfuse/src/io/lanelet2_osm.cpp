@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <limits>
 #include <pugixml.hpp>
+#include <set>
 #include <unordered_map>
 
 #include "mapfuse/core/error.hpp"
@@ -191,14 +192,31 @@ void readWays(const pugi::xml_node& osm, const std::string& file,
   }
 }
 
+/// A member of a lanelet or regulatory element, resolved once every relation is read (a member
+/// may name a relation that comes later in the file).
+struct MemberRef {
+  std::string where;  ///< "relation <id> member <role>"
+  std::string type;   ///< "node", "way" or "relation"
+  int64_t ref = 0;
+};
+
 /// The relations: lanelets with their bounds, regulatory elements; other types are counted.
-void readRelations(const pugi::xml_node& osm, const std::string& file, Lanelet2Map& map) {
+/// @return the members of lanelets and regulatory elements, for checkMembers.
+std::vector<MemberRef> readRelations(const pugi::xml_node& osm, const std::string& file,
+                                     Lanelet2Map& map) {
+  std::vector<MemberRef> members;
   for (const pugi::xml_node r : osm.children("relation")) {
     const int64_t id = parseId(r, "id", file, "relation");
     const std::string where = elementName("relation", id);
     if (std::string(r.attribute("action").value()) == "delete") continue;
+    if (!map.relation_ids.insert(id).second) throw ParseError(file, where, "duplicate relation id");
     const auto tags = readTags(r);
     const std::string type = tagOr(tags, "type", "");
+    if (type == "lanelet" || type == "regulatory_element")
+      for (const pugi::xml_node m : r.children("member"))
+        members.push_back({where + " member " + m.attribute("role").value(),
+                           m.attribute("type").value(),
+                           parseId(m, "ref", file, where + " member")});
     if (type == "lanelet") {
       Lanelet2Lanelet ll;
       ll.id = id;
@@ -252,6 +270,33 @@ void readRelations(const pugi::xml_node& osm, const std::string& file, Lanelet2M
       ++map.skipped_relation_types[type.empty() ? "(none)" : type];
     }
   }
+  return members;
+}
+
+/// Every node, way and relation a lanelet or regulatory element names exists (a dangling
+/// reference is a map cut out of a larger one, or an edit gone wrong): ParseError naming the
+/// relation, the member's role and the missing element.
+void checkMembers(const std::vector<MemberRef>& members, const std::string& file,
+                  const std::unordered_map<int64_t, geo::LatLonAlt>& nodes,
+                  const Lanelet2Map& map) {
+  for (const MemberRef& m : members) {
+    const bool found = m.type == "node"       ? nodes.count(m.ref) > 0
+                       : m.type == "way"      ? map.way(m.ref) != nullptr
+                       : m.type == "relation" ? map.relation_ids.count(m.ref) > 0
+                                              : true;  // unknown member types are not read
+    if (!found)
+      throw ParseError(file, m.where, m.type + " ref " + std::to_string(m.ref) + " does not exist");
+  }
+}
+
+/// Lanelets whose left bound is their right bound: no lane between them (Lanelet2's bounds
+/// enclose the lanelet's area).
+void checkBounds(const std::string& file, const Lanelet2Map& map) {
+  for (const Lanelet2Lanelet& ll : map.lanelets)
+    if (ll.left == ll.right)
+      throw ParseError(file, elementName("relation", ll.id) + " member right",
+                       "the right bound is way " + std::to_string(ll.right) +
+                           ", the lanelet's left bound too (a lanelet without area)");
 }
 }  // namespace
 
@@ -263,7 +308,8 @@ Lanelet2Map parseLanelet2Osm(const std::string& xml, const std::string& file) {
   const auto nodes = readNodes(osm, file, map);
   map.node_count = nodes.size();
   readWays(osm, file, nodes, map);
-  readRelations(osm, file, map);
+  checkMembers(readRelations(osm, file, map), file, nodes, map);
+  checkBounds(file, map);
   return map;
 }
 
