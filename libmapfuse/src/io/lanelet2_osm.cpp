@@ -5,9 +5,9 @@
 #include <cstdlib>
 #include <limits>
 #include <pugixml.hpp>
-#include <set>
 #include <unordered_map>
 
+#include "lanelet2_osm_checks.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/bounds.hpp"
@@ -192,19 +192,11 @@ void readWays(const pugi::xml_node& osm, const std::string& file,
   }
 }
 
-/// A member of a lanelet or regulatory element, resolved once every relation is read (a member
-/// may name a relation that comes later in the file).
-struct MemberRef {
-  std::string where;  ///< "relation <id> member <role>"
-  std::string type;   ///< "node", "way" or "relation"
-  int64_t ref = 0;
-};
-
 /// The relations: lanelets with their bounds, regulatory elements; other types are counted.
 /// @return the members of lanelets and regulatory elements, for checkMembers.
-std::vector<MemberRef> readRelations(const pugi::xml_node& osm, const std::string& file,
-                                     Lanelet2Map& map) {
-  std::vector<MemberRef> members;
+std::vector<detail::Lanelet2MemberRef> readRelations(const pugi::xml_node& osm,
+                                                     const std::string& file, Lanelet2Map& map) {
+  std::vector<detail::Lanelet2MemberRef> members;
   for (const pugi::xml_node r : osm.children("relation")) {
     const int64_t id = parseId(r, "id", file, "relation");
     const std::string where = elementName("relation", id);
@@ -273,31 +265,6 @@ std::vector<MemberRef> readRelations(const pugi::xml_node& osm, const std::strin
   return members;
 }
 
-/// Every node, way and relation a lanelet or regulatory element names exists (a dangling
-/// reference is a map cut out of a larger one, or an edit gone wrong): ParseError naming the
-/// relation, the member's role and the missing element.
-void checkMembers(const std::vector<MemberRef>& members, const std::string& file,
-                  const std::unordered_map<int64_t, geo::LatLonAlt>& nodes,
-                  const Lanelet2Map& map) {
-  for (const MemberRef& m : members) {
-    const bool found = m.type == "node"       ? nodes.count(m.ref) > 0
-                       : m.type == "way"      ? map.way(m.ref) != nullptr
-                       : m.type == "relation" ? map.relation_ids.count(m.ref) > 0
-                                              : true;  // unknown member types are not read
-    if (!found)
-      throw ParseError(file, m.where, m.type + " ref " + std::to_string(m.ref) + " does not exist");
-  }
-}
-
-/// Lanelets whose left bound is their right bound: no lane between them (Lanelet2's bounds
-/// enclose the lanelet's area).
-void checkBounds(const std::string& file, const Lanelet2Map& map) {
-  for (const Lanelet2Lanelet& ll : map.lanelets)
-    if (ll.left == ll.right)
-      throw ParseError(file, elementName("relation", ll.id) + " member right",
-                       "the right bound is way " + std::to_string(ll.right) +
-                           ", the lanelet's left bound too (a lanelet without area)");
-}
 }  // namespace
 
 Lanelet2Map parseLanelet2Osm(const std::string& xml, const std::string& file) {
@@ -308,8 +275,8 @@ Lanelet2Map parseLanelet2Osm(const std::string& xml, const std::string& file) {
   const auto nodes = readNodes(osm, file, map);
   map.node_count = nodes.size();
   readWays(osm, file, nodes, map);
-  checkMembers(readRelations(osm, file, map), file, nodes, map);
-  checkBounds(file, map);
+  detail::checkLanelet2Members(readRelations(osm, file, map), file, nodes, map);
+  detail::checkLanelet2Bounds(file, map);
   return map;
 }
 
