@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/core/pose_at_stamp.hpp"
 #include "mapfuse/geo/origin.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
@@ -61,15 +62,9 @@ std::vector<const TruePose*> sortedByStamp(const TrueTrajectory& truth) {
 }
 
 std::optional<Pose3> truePoseAt(const std::vector<const TruePose*>& sorted, double stamp) {
-  auto after = std::lower_bound(sorted.begin(), sorted.end(), stamp,
-                                [](const TruePose* p, double s) { return p->stamp < s; });
-  if (after != sorted.end() && (*after)->stamp - stamp < kSameStamp) return (*after)->T_enu_body;
-  if (after != sorted.begin() && stamp - (*std::prev(after))->stamp < kSameStamp)
-    return (*std::prev(after))->T_enu_body;
-  if (after == sorted.begin() || after == sorted.end()) return std::nullopt;
-  const TruePose& a = **std::prev(after);
-  const TruePose& b = **after;
-  return interpolate(a.T_enu_body, b.T_enu_body, (stamp - a.stamp) / (b.stamp - a.stamp));
+  return poseAtStamp(
+      sorted.size(), stamp, [&](std::size_t i) { return sorted[i]->stamp; },
+      [&](std::size_t i) { return sorted[i]->T_enu_body; }, kSameStamp);
 }
 
 TrajectoryMetrics compareTrajectory(const Lsm& lsm, const TrueTrajectory& truth,

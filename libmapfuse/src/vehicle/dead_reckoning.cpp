@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/core/pose_at_stamp.hpp"
 
 namespace mapfuse::vehicle {
 namespace {
@@ -122,20 +123,11 @@ std::vector<Pose3> deadReckon(const std::vector<ImuSample>& imu,
   std::vector<Pose3> out;
   out.reserve(stamps.size());
   for (double t : stamps) {
-    if (t <= imu.front().stamp) {
-      out.push_back(trajectory.front());
-      continue;
-    }
-    if (t >= imu.back().stamp) {
-      out.push_back(trajectory.back());
-      continue;
-    }
-    auto it = std::upper_bound(imu.begin(), imu.end(), t,
-                               [](double v, const ImuSample& m) { return v < m.stamp; });
-    const std::size_t j = std::size_t(it - imu.begin());
-    const double dt = imu[j].stamp - imu[j - 1].stamp;
-    const double alpha = dt > 0.0 ? (t - imu[j - 1].stamp) / dt : 0.0;
-    out.push_back(interpolate(trajectory[j - 1], trajectory[j], alpha));
+    const auto T = poseAtStamp(
+        imu.size(), t, [&](std::size_t i) { return imu[i].stamp; },
+        [&](std::size_t i) { return trajectory[i]; });
+    // frames outside the IMU's time span take its first or last pose
+    out.push_back(T ? *T : (t <= imu.front().stamp ? trajectory.front() : trajectory.back()));
   }
   return out;
 }

@@ -10,6 +10,7 @@
 
 #include "aerial_tracks.hpp"
 #include "body_tilt.hpp"
+#include "mapfuse/core/pose_at_stamp.hpp"
 #include "mapfuse/geo/origin.hpp"
 #include "path_surface.hpp"
 
@@ -125,12 +126,11 @@ geo::TrackAgreement egoMotionAgainstGps(const DriveData& d) {
   if (d.gps.empty() || d.stamps.size() < 2) return {};
   const geo::EnuConverter conv(d.gps.front().position);
   for (const GpsFix& f : d.gps) {
-    const auto it = std::upper_bound(d.stamps.begin(), d.stamps.end(), f.stamp);
-    if (it == d.stamps.begin() || it == d.stamps.end()) continue;
-    const std::size_t k = std::size_t(it - d.stamps.begin());
-    const double span = d.stamps[k] - d.stamps[k - 1];
-    const double a = span > 0 ? (f.stamp - d.stamps[k - 1]) / span : 0.0;
-    odom.push_back(interpolate(d.T_odom_body[k - 1], d.T_odom_body[k], a).translation());
+    const auto T = poseAtStamp(
+        d.stamps.size(), f.stamp, [&](std::size_t i) { return d.stamps[i]; },
+        [&](std::size_t i) { return d.T_odom_body[i]; });
+    if (!T) continue;  // a fix outside the frames' time span
+    odom.push_back(T->translation());
     enu.push_back(conv.toEnu(f.position));
   }
   return geo::trackAgreement(odom, enu, geo::kScaleWindow);
