@@ -11,14 +11,14 @@ void fail(const std::string& what, const char* file, int line) {
   std::abort();
 }
 
-std::vector<std::string> splitParts(const std::string& bytes, std::size_t n) {
+std::vector<std::string> splitParts(const std::string& bytes, std::size_t n, bool binary) {
   static const std::string kSeparator = "\n====\n";
   std::vector<std::string> parts;
   std::size_t pos = 0;
   while (parts.size() + 1 < n) {
     const std::size_t at = bytes.find(kSeparator, pos);
     if (at == std::string::npos) break;
-    parts.push_back(bytes.substr(pos, at - pos + 1));  // keeps the part's last newline
+    parts.push_back(bytes.substr(pos, at - pos + (binary ? 0 : 1)));  // text: its last newline
     pos = at + kSeparator.size();
   }
   parts.push_back(bytes.substr(pos));

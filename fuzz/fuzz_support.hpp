@@ -42,8 +42,10 @@ bool accepts(F&& read, std::initializer_list<ExitCode> allowed = {ExitCode::kBad
 }
 
 /// @brief Splits an input into at most `n` parts at lines holding only "====" (multi-file
-/// targets); missing parts are absent (nullopt-like: returned vector is shorter).
-std::vector<std::string> splitParts(const std::string& bytes, std::size_t n);
+/// targets); missing parts are absent (nullopt-like: returned vector is shorter). A part keeps
+/// the newline before its separator unless `binary` (Velodyne scans, labels, CBOR maps: the
+/// newline is the separator's, not the file's).
+std::vector<std::string> splitParts(const std::string& bytes, std::size_t n, bool binary = false);
 
 /// @brief A scratch folder of this process (created once, under $TMPDIR or /tmp) for targets
 /// whose reader takes a folder.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Seed corpora of the fuzz targets, made at fuzz time from the samples and small outputs of the
-# tools (nothing binary is committed):
+# tools, plus the small committed seeds of fuzz/seeds/<target>/:
 #   fuzz/make-corpus.sh BIN_DIR SEEDS_DIR
 # BIN_DIR holds the release tools (build/bin). A small crowd batch (simulate frames -> lsm-build
 # -> georef -> tile -> align -> balance -> aggregate -> stitch, scripts/crowd.mk) gives LSMs in
@@ -70,6 +70,23 @@ m = re.search(r'kJunctionMap = R"\((.*?)\)";', open(sys.argv[1]).read(), re.S)
 sys.stdout.write(m.group(1) if m else sys.exit("make-corpus: no kJunctionMap in " + sys.argv[1]))
 PY
 
+# ---- Lanelet2 content checks: the map of tests/sim/test_lanelet2_content.cpp (lanelets, a
+# regulatory element with its members), cut out of the test as the junction map above
+python3 - "$root/tests/sim/test_lanelet2_content.cpp" <<'PY' | seed fuzz_lanelet2_osm content.osm
+import re, sys
+m = re.search(r'kMap = R"\((.*?)\)";', open(sys.argv[1]).read(), re.S)
+sys.stdout.write(m.group(1) if m else sys.exit("make-corpus: no kMap in " + sys.argv[1]))
+PY
+
+# ---- stitch: the crowd batch's tiles.json and each tile's map, in the manifest's order
+{
+  cat "$crowd/tiles/tiles.json"
+  for name in $(python3 -c 'import json, sys; print(" ".join(t["name"] for t in json.load(open(sys.argv[1]))["tiles"]))' "$crowd/tiles/tiles.json"); do
+    printf '\n====\n'
+    cat "$crowd/tiles/$name/aggregate/map.cbor"
+  done
+} | seed fuzz_stitch crowd.txt
+
 # ---- configurations: one byte chooses the stage (fuzz_config.cpp's order), then the file
 i=0
 for stage in aggregate align balance evaluate evaluate-voxels georef lidar-semantic-map \
@@ -126,6 +143,19 @@ if [ -d "$shared" ]; then
   [ -f "$odo/poses/00.txt" ] && seed fuzz_kitti_poses real.txt < "$odo/poses/00.txt"
   [ -f "$odo/sequences/00/calib.txt" ] &&
     seed fuzz_kitti_calib odometry.txt < "$odo/sequences/00/calib.txt"
+  # a KITTI odometry sequence cut to two scans of 64 points, with made-up labels (road, 40)
+  seq=$odo/sequences/00
+  if [ -f "$seq/calib.txt" ] && [ -f "$odo/poses/00.txt" ]; then
+    {
+      cat "$seq/calib.txt"; printf '\n====\n0.0\n0.103607\n\n====\n'
+      head -n 2 "$odo/poses/00.txt"; printf '\n====\n\n====\n'  # no image_2
+      for k in 000000 000001; do
+        head -c 1024 "$seq/velodyne/$k.bin"; printf '\n====\n'
+        python3 -c 'import struct, sys; sys.stdout.buffer.write(struct.pack("<64I", *[40] * 64))'
+        [ $k = 000001 ] || printf '\n====\n'
+      done
+    } | seed fuzz_kitti_sequence real.bin
+  fi
   osm=$shared/maps/lanelet2_karlsruhe_mapping_example.osm
   [ -f "$osm" ] && shrink osm "$osm" 4 | seed fuzz_lanelet2_osm karlsruhe.osm
   xodr=$shared/maps/MONAEast.xodr  # 153 KB, within fuzz_opendrive's max_len (fuzz/run.sh)
@@ -141,6 +171,14 @@ if [ -d "$shared" ]; then
       seed fuzz_opendrive "esmini-$(basename "$x")" < "$x"
   done
 fi
+
+# ---- the committed seeds (fuzz/seeds/<target>/: small hand-made inputs, and findings' inputs)
+for d in "$root"/fuzz/seeds/*/; do
+  mkdir -p "$seeds/$(basename "$d")"
+  cp "$d"* "$seeds/$(basename "$d")/"
+done
+# fuzz_opendrive_drive drives what fuzz_opendrive reads
+cp "$seeds"/fuzz_opendrive/* "$seeds/fuzz_opendrive_drive/"
 
 echo "fuzz: seeds for $(ls "$seeds" | wc -l) targets, $(find "$seeds" -type f | wc -l) files," \
   "$(du -sk "$seeds" | cut -f1) KB in $(( $(date +%s) - start )) s" >&2

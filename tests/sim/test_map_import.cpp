@@ -156,15 +156,13 @@ TEST_CASE("Map import: Lanelet2 content checks (same bounds, far nodes, /dev/zer
     geo::GeoOrigin origin{0, 0, 0};
     return sim::loadMapWorld((dir / name).string(), true, {}, &origin);
   };
-  // A lanelet whose left bound is its right bound: dropped with one warning.
+  // A lanelet whose left bound is its right bound: refused by the reader, naming the lanelet
+  // (tests/sim/test_lanelet2_content.cpp has the reader's other content checks).
   std::string same = commonRoadMap(true);
   same.replace(same.find("<member type='way' ref='-12' role='right'/>"), 43,
                "<member type='way' ref='-11' role='right'/>");
-  const sim::World w = load("same.osm", same);
-  const auto& e = w.warnings.entries().at("lanelet whose left bound is its right bound (dropped)");
-  CHECK(e.count == 1);
-  CHECK_THAT(e.first, Catch::Contains("same.osm: lanelet -21"));
-  CHECK(w.stats.at("drivable_lanelets") == 1);
+  CHECK_THROWS_WITH(load("same.osm", same),
+                    Catch::Contains("same.osm: field 'relation -21 member right'"));
   // A stop line with a node 2,000 km away: no stop line (dropped with a warning), not a truth
   // of 2,000 km.
   std::string far = commonRoadMap(true);

@@ -7,6 +7,7 @@
 #include <pugixml.hpp>
 #include <unordered_map>
 
+#include "lanelet2_osm_checks.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/bounds.hpp"
@@ -193,13 +194,22 @@ void readWays(const pugi::xml_node& osm, const std::string& file,
 }
 
 /// The relations: lanelets with their bounds, regulatory elements; other types are counted.
-void readRelations(const pugi::xml_node& osm, const std::string& file, Lanelet2Map& map) {
+/// @return the members of lanelets and regulatory elements, for checkMembers.
+std::vector<detail::Lanelet2MemberRef> readRelations(const pugi::xml_node& osm,
+                                                     const std::string& file, Lanelet2Map& map) {
+  std::vector<detail::Lanelet2MemberRef> members;
   for (const pugi::xml_node r : osm.children("relation")) {
     const int64_t id = parseId(r, "id", file, "relation");
     const std::string where = elementName("relation", id);
     if (std::string(r.attribute("action").value()) == "delete") continue;
+    if (!map.relation_ids.insert(id).second) throw ParseError(file, where, "duplicate relation id");
     const auto tags = readTags(r);
     const std::string type = tagOr(tags, "type", "");
+    if (type == "lanelet" || type == "regulatory_element")
+      for (const pugi::xml_node m : r.children("member"))
+        members.push_back({where + " member " + m.attribute("role").value(),
+                           m.attribute("type").value(),
+                           parseId(m, "ref", file, where + " member")});
     if (type == "lanelet") {
       Lanelet2Lanelet ll;
       ll.id = id;
@@ -253,7 +263,9 @@ void readRelations(const pugi::xml_node& osm, const std::string& file, Lanelet2M
       ++map.skipped_relation_types[type.empty() ? "(none)" : type];
     }
   }
+  return members;
 }
+
 }  // namespace
 
 Lanelet2Map parseLanelet2Osm(const std::string& xml, const std::string& file) {
@@ -264,7 +276,8 @@ Lanelet2Map parseLanelet2Osm(const std::string& xml, const std::string& file) {
   const auto nodes = readNodes(osm, file, map);
   map.node_count = nodes.size();
   readWays(osm, file, nodes, map);
-  readRelations(osm, file, map);
+  detail::checkLanelet2Members(readRelations(osm, file, map), file, nodes, map);
+  detail::checkLanelet2Bounds(file, map);
   return map;
 }
 

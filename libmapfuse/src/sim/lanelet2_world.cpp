@@ -71,6 +71,10 @@ struct IdAllocator {
   }
 };
 
+/// A lanelet bound or a lane / stop line shorter than this is a way whose nodes lie at one place:
+/// no direction, no marking.
+constexpr double kMinWayLength = 0.01;  // m
+
 /// A point, sign, light or arrow way longer than this is no such element (a node on the other
 /// side of the Earth made a stop line of 12,700 km): dropped with a warning.
 constexpr double kMaxSmallElement = 100.0;  // m
@@ -177,18 +181,23 @@ struct L2Builder {
     }
   }
 
-  /// Lanes and crosswalks from lanelets; a lanelet whose bounds are one way (zero width) is
-  /// dropped with a warning.
+  /// Lanes and crosswalks from lanelets (the reader refuses a lanelet whose left bound is its
+  /// right bound); a lanelet with a bound of no length (its nodes at one place) has no direction
+  /// to drive or to orient its bounds by: dropped with a warning.
   void addLanelets() {
     checkDrivableLength();
     for (const auto& ll : map.lanelets) {
-      if (ll.left == ll.right) {
-        world.warnings.add("lanelet whose left bound is its right bound (dropped)",
-                           map.file + ": lanelet " + std::to_string(ll.id) + " (way " +
-                               std::to_string(ll.left) + ")");
+      Polyline left = wayLine(ll.left), right = wayLine(ll.right);
+      const double shorter = std::min(polylineLength(left), polylineLength(right));
+      if (!(shorter >= kMinWayLength)) {
+        world.warnings.add(
+            "lanelet with a bound shorter than " + io::bounds::numberText(kMinWayLength) +
+                " m (dropped)",
+            map.file + ": lanelet " + std::to_string(ll.id) + " (way " +
+                std::to_string(polylineLength(left) < shorter + 1e-12 ? ll.left : ll.right) + ", " +
+                io::bounds::numberText(shorter) + " m)");
         continue;
       }
-      Polyline left = wayLine(ll.left), right = wayLine(ll.right);
       if ((left.front() - right.front()).norm() + (left.back() - right.back()).norm() >
           (left.front() - right.back()).norm() + (left.back() - right.front()).norm())
         right = reversed(right);
@@ -269,6 +278,13 @@ struct L2Builder {
                                io::bounds::numberText(kMaxSmallElement) + " m (dropped)",
                            map.file + ": way " + std::to_string(w.id) + " (" + w.type + ", " +
                                io::bounds::numberText(std::round(polylineLength(pts))) + " m)");
+        continue;
+      }
+      const bool line = w.type == "line_thin" || w.type == "line_thick" || w.type == "stop_line";
+      if (line && pts.size() >= 2 && !(polylineLength(pts) >= kMinWayLength)) {
+        world.warnings.add("lane or stop line way shorter than " +
+                               io::bounds::numberText(kMinWayLength) + " m (dropped)",
+                           map.file + ": way " + std::to_string(w.id) + " (" + w.type + ")");
         continue;
       }
       if ((w.type == "line_thin" || w.type == "line_thick") && pts.size() >= 2) {

@@ -5,13 +5,17 @@
 /// Negative ids and missing optional tags are normal; a way without a `type` tag (CommonRoad
 /// conversions write them) is read as `virtual` and counted in `untyped_ways`; way types outside
 /// the Lanelet2 tagging spec and unknown relation types are kept as geometry but counted as
-/// skipped. Structural faults (XML syntax, truncation, a reference to a missing node or way, a
-/// bad coordinate, an id beyond +-(2^63 - 2^32), a lanelet without a bound) are ParseErrors naming
-/// the file and the element.
+/// skipped. Structural faults (XML syntax, truncation, a duplicate node, way or relation id, a
+/// reference to a missing node, way or relation (way nodes, every member of a lanelet or
+/// regulatory element), a coordinate outside docs/formats.md "Value bounds", an id beyond
+/// +-(2^63 - 2^32), a lanelet without a bound or whose left bound is its right bound) are
+/// ParseErrors naming the file, the element and the field (docs/formats.md "Map content
+/// checks").
 #include <cstdint>
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -71,6 +75,7 @@ struct Lanelet2Map {
   std::map<std::string, int> skipped_way_types;       ///< unknown way type -> count
   std::map<std::string, int> skipped_relation_types;  ///< unknown relation type -> count
   std::map<int64_t, std::size_t> way_index;           ///< way id -> index in linestrings
+  std::set<int64_t> relation_ids;                     ///< every relation read, of any type
   /// The sidecar `<file>.mapfuse.json` (io/osm_sidecar.hpp) of a mapfuse export: absent,
   /// applied (its map ids and pole heights became `mapfuse_id` / `height` tags of the nodes and
   /// ways), or stale (written for another version of the file, so ignored).
