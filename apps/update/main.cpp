@@ -12,7 +12,7 @@ int main(int argc, char** argv) {
   const auto& lsms = tool.inputs("lsms", cli::kLsmListHelp);
   const auto& out = tool.out("Output folder");
   return tool.run(argc, argv, [&](const stages::UpdateParams& params) {
-    const auto j = stages::toJson(stages::runUpdate(map, lsms, out, params));
+    const auto j = stages::toJson(stages::runUpdate(map, lsms, out, params), lsms);
     return nlohmann::json{{"changes_by_kind", j["changes_by_kind"]},
                           {"not_verified", j["not_verified"]}}
         .dump();

@@ -13,7 +13,27 @@
 
 namespace mapfuse::stages {
 
-nlohmann::json toJson(const update::UpdateResult& result) {
+namespace {
+
+// Per stretch of a new drive its registration to the map (docs/update.md).
+nlohmann::json stretchesToJson(const std::vector<update::StretchOffset>& stretches,
+                               const std::vector<std::string>& inputs) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const auto& o : stretches)
+    j.push_back({{"drive", inputs.empty() ? std::string() : inputs[o.drive]},
+                 {"from_m", o.from},
+                 {"to_m", o.to},
+                 {"registered", o.registered},
+                 {"offset_enu_m", {o.t.x(), o.t.y(), o.t.z()}},
+                 {"yaw_rad", o.yaw},
+                 {"inliers", o.inliers},
+                 {"rmse_m", o.rmse}});
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json toJson(const update::UpdateResult& result, const std::vector<std::string>& inputs) {
   std::map<std::string, int> by_kind;
   for (int k = 0; k < kNumChangeKinds; ++k) by_kind[changeKindName(ChangeKind(k))] = 0;
   for (const auto& c : result.changes.changes) ++by_kind[changeKindName(c.kind)];
@@ -27,11 +47,7 @@ nlohmann::json toJson(const update::UpdateResult& result) {
           {"undecided", s.undecided},
           {"not_verified", s.not_verified.size()},
           {"not_verified_ids", s.not_verified},
-          {"drive_offsets_m", [&] {
-             nlohmann::json j = nlohmann::json::array();
-             for (const auto& o : s.drive_offsets) j.push_back({o.x(), o.y()});
-             return j;
-           }()}};
+          {"stretch_offsets", stretchesToJson(s.stretches, inputs)}};
 }
 
 update::UpdateResult runUpdate(const std::filesystem::path& map_path,
@@ -49,7 +65,7 @@ update::UpdateResult runUpdate(const std::filesystem::path& map_path,
   io::writeMapChanges(out_dir / "changes.json", result.changes);
   io::writeMapChangesGeoJson(out_dir / "changes.geojson", result.changes);
   io::writeResolvedConfig(out_dir, "update", paramsToJson(params));
-  io::writeSummary(out_dir, "update", toJson(result));
+  io::writeSummary(out_dir, "update", toJson(result, inputs));
   outputs.commit();
   return result;
 }

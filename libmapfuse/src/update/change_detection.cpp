@@ -22,9 +22,6 @@ double medianOf(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-// Fewer assigned observations than this leave a drive's offset at zero.
-constexpr std::size_t kMinOffsetObservations = 10;
-
 double logit(double p) {
   return std::log(p / (1 - p));
 }
@@ -63,45 +60,14 @@ void assign(const VectorMap& map, std::size_t drives, const EvidenceSettings& s,
   }
 }
 
-// Per drive the median horizontal offset of its assigned discrete observations from their
-// elements (changed elements are a minority), removed from all its observations: what is left
-// of the georeferencing error against the map (a stand-in for map-relative registration).
-std::vector<Eigen::Vector2d> removeDriveOffsets(const VectorMap& map, std::size_t drives,
-                                                Assignment& a) {
-  std::vector<std::vector<double>> dx(drives), dy(drives);
-  for (std::size_t i = 0; i < a.set.items.size(); ++i) {
-    if (a.element[i] < 0) continue;
-    const Observation& o = a.set.items[i];
-    MapInstance tmp;
-    tmp.cls = o.cls;
-    tmp.points = o.points;
-    const MapInstance& m = map.instances[a.element[i]];
-    Eigen::Vector3d foot = instanceCentre(m);
-    if (m.cls == CrowdClass::kStopLine)
-      aggregate::distanceToPolyline2d(instanceCentre(tmp), m.points, &foot);
-    const Eigen::Vector2d d = (instanceCentre(tmp) - foot).head<2>();
-    dx[o.drive].push_back(d.x());
-    dy[o.drive].push_back(d.y());
-  }
-  std::vector<Eigen::Vector2d> offsets(drives, Eigen::Vector2d::Zero());
-  for (std::size_t d = 0; d < drives; ++d)
-    if (dx[d].size() >= kMinOffsetObservations) offsets[d] = {medianOf(dx[d]), medianOf(dy[d])};
-  for (auto& o : a.set.items)
-    for (auto& p : o.points) p.head<2>() -= offsets[o.drive];
-  return offsets;
-}
-
 Assignment assignObservations(const VectorMap& map, const std::vector<Lsm>& lsms,
-                              const std::vector<std::string>& sources, const EvidenceSettings& s,
-                              std::vector<Eigen::Vector2d>* offsets) {
+                              const std::vector<std::string>& sources, const EvidenceSettings& s) {
   Assignment a;
   a.set = aggregate::collectObservations(lsms, sources);
   if (!geo::sameOrigin(a.set.origin, map.origin))
     throw InputError(sources[0] +
                      ": origin differs from the map's; the new drives must be in "
-                     "the map's ENU frame (georef --origin of the map, then align)");
-  assign(map, lsms.size(), s, a);
-  *offsets = removeDriveOffsets(map, lsms.size(), a);
+                     "the map's ENU frame (georef --origin of the map)");
   assign(map, lsms.size(), s, a);
   return a;
 }
@@ -341,19 +307,25 @@ void detectAdditions(const VectorMap& map, const std::vector<Lsm>& lsms,
 
 }  // namespace
 
-UpdateResult detectChanges(const VectorMap& map, const std::vector<Lsm>& lsms,
+UpdateResult detectChanges(const VectorMap& map, const std::vector<Lsm>& new_drives,
                            const std::vector<std::string>& sources,
                            const UpdateSettings& settings) {
-  for (std::size_t d = 0; d < lsms.size(); ++d)
-    if (lsms[d].frame != LsmFrame::kEnu)
+  for (std::size_t d = 0; d < new_drives.size(); ++d)
+    if (new_drives[d].frame != LsmFrame::kEnu)
       throw InputError(sources[d] +
                        ": LSM is in frame 'odom'; update needs the new drives in the "
-                       "map's ENU frame (georef --origin of the map, then align)");
+                       "map's ENU frame (georef --origin of the map)");
+  for (std::size_t d = 0; d < new_drives.size(); ++d)
+    if (!new_drives[d].origin || !geo::sameOrigin(*new_drives[d].origin, map.origin))
+      throw InputError(sources[d] +
+                       ": origin differs from the map's; the new drives must be in the map's "
+                       "ENU frame (georef --origin of the map)");
   UpdateResult out;
+  std::vector<Lsm> lsms = new_drives;
+  out.stats.stretches = registerToMap(map, lsms, settings.registration);
   out.changes.origin = map.origin;
   out.changes.source = "update";
-  const Assignment a =
-      assignObservations(map, lsms, sources, settings.evidence, &out.stats.drive_offsets);
+  const Assignment a = assignObservations(map, lsms, sources, settings.evidence);
   for (const auto& o : a.set.items)
     out.stats.observations_used += o.confidence >= settings.evidence.min_confidence ? 1 : 0;
   std::vector<DriveView> views;

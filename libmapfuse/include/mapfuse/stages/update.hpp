@@ -23,8 +23,9 @@ struct UpdateParams {
 };
 
 /// @brief The summary: counts per change kind, elements in view, confirmed, undecided, not
-/// verified (count and ids), traversals, observations used.
-nlohmann::json toJson(const update::UpdateResult& result);
+/// verified (count and ids), traversals, observations used, the registration per stretch of
+/// each new drive (`inputs` name the drives).
+nlohmann::json toJson(const update::UpdateResult& result, const std::vector<std::string>& inputs);
 
 /// @brief Reads `map` and the LSMs, detects the changes and writes changes.json,
 /// changes.geojson, update.config.json and update.summary.json into `out_dir` (all or none).

@@ -13,6 +13,7 @@
 #include "mapfuse/core/map_changes.hpp"
 #include "mapfuse/core/param.hpp"
 #include "mapfuse/core/vector_map.hpp"
+#include "mapfuse/update/map_registration.hpp"
 
 namespace mapfuse::update {
 
@@ -103,12 +104,14 @@ struct DecisionSettings {
 };
 
 struct UpdateSettings {
+  RegistrationSettings registration;
   ViewSettings view;
   EvidenceSettings evidence;
   DecisionSettings decision;
 
   template <class V>
   void visit(V& v) {
+    registration.visit(v);
     view.visit(v);
     evidence.visit(v);
     decision.visit(v);
@@ -122,11 +125,8 @@ struct UpdateStats {
   int elements_in_view = 0;           ///< map elements some traversal had in view
   std::vector<int64_t> not_verified;  ///< ids of map elements no traversal had in view
   int confirmed = 0;                  ///< elements in view and found unchanged
-  int undecided = 0;
-  /// per traversal, the median offset (E, N; m) of its observations from their map elements,
-  /// removed before the evidence is taken
-  std::vector<Eigen::Vector2d>
-      drive_offsets;  ///< in view, evidence too weak for a change or a confirmation
+  int undecided = 0;                  ///< in view, evidence too weak for a change or a confirmation
+  std::vector<StretchOffset> stretches;  ///< map-relative registration of the new drives
 };
 
 struct UpdateResult {
@@ -135,7 +135,8 @@ struct UpdateResult {
 };
 
 /// @brief Detects the changes between `map` and the new drives.
-/// @param lsms new drives in frame enu with the map's origin; `drive_ids[i]` names lsms[i].
+/// The new drives are first registered to the map (registerToMap, unless disabled).
+/// @param lsms new drives in frame enu with the map's origin; `sources[i]` names lsms[i].
 /// @throws InputError when an LSM is not in frame enu or its origin differs from the map's.
 UpdateResult detectChanges(const VectorMap& map, const std::vector<Lsm>& lsms,
                            const std::vector<std::string>& sources, const UpdateSettings& settings);
