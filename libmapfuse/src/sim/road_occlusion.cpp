@@ -5,7 +5,7 @@
 namespace mapfuse::sim {
 
 RoadOcclusion::RoadOcclusion(const std::vector<Pose3>& T_enu_body, std::size_t step)
-    : T_enu_body_(T_enu_body), step_(std::max<std::size_t>(1, step)) {
+    : step_(std::max<std::size_t>(1, step)) {
   const std::size_t n = T_enu_body.size();
   T_body_enu_.resize(n);
   distance_.assign(n, 0.0);
@@ -20,7 +20,7 @@ RoadOcclusion::RoadOcclusion(const std::vector<Pose3>& T_enu_body, std::size_t s
 bool RoadOcclusion::hidden(std::size_t k, const Eigen::Vector3d& cam_enu,
                            const Eigen::Vector3d& p_enu, double max_distance) const {
   const Eigen::Vector3d ray = p_enu - cam_enu;
-  for (std::size_t j = k + step_; j < T_enu_body_.size(); j += step_) {
+  for (std::size_t j = k + step_; j < T_body_enu_.size(); j += step_) {
     if (distance_[j] - distance_[k] > max_distance) break;
     // The sight line cam + λ ray in body j: where it passes abreast of the pose (x = 0).
     const Eigen::Vector3d a = T_body_enu_[j] * cam_enu;

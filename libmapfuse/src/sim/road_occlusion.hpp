@@ -32,8 +32,7 @@ class RoadOcclusion {
               double max_distance) const;
 
  private:
-  const std::vector<Pose3>& T_enu_body_;
-  std::vector<Pose3> T_body_enu_;  ///< inverses of the examined poses (every step-th)
+  std::vector<Pose3> T_body_enu_;  ///< inverses of the poses
   std::vector<double> distance_;   ///< m, path distance of each pose from the first
   std::size_t step_;
 };

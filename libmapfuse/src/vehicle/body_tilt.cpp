@@ -63,10 +63,9 @@ std::vector<Eigen::Matrix3d> roadTiltInBody(const std::vector<Pose3>& T_odom_bod
     } else if (weighting == TiltWeighting::kBox) {
       road_odom = prefix[hi] - prefix[lo];
     } else {
-      for (std::size_t j = lo; j < hi; ++j) {
-        const double c = std::cos(M_PI * (stamps[j] - stamps[i]) / window);
-        road_odom += c * c * T_odom_body[j].linear().col(2);
-      }
+      for (std::size_t j = lo; j < hi; ++j)
+        road_odom +=
+            windowWeight(stamps[j] - stamps[i], window, weighting) * T_odom_body[j].linear().col(2);
     }
     road_odom.normalize();
     const Eigen::Vector3d road_body = T_odom_body[i].linear().transpose() * road_odom;

@@ -87,7 +87,8 @@ void calibrateGroundPlanes(const DriveData& d, const LsmBuildSettings& s, LsmBui
 std::vector<RangedMarking> rangeMarkings(const DriveData& d, const std::vector<GroundPlane>& planes,
                                          const RangingSettings& s, int* points, int* on_path_out) {
   const std::size_t n = d.frames.size();
-  const PathSurface path(d.T_odom_body, d.calib.T_body_cam, planes, s);
+  std::optional<PathSurface> path;  // the road ahead, only when ranged on (path_surface)
+  if (s.path_surface) path.emplace(d.T_odom_body, d.calib.T_body_cam, planes, s);
   std::vector<std::vector<RangedMarking>> per_frame(n);
   std::vector<int> ranged(n, 0), on_path(n, 0);
 #pragma omp parallel for schedule(dynamic)
@@ -103,8 +104,8 @@ std::vector<RangedMarking> rangeMarkings(const DriveData& d, const std::vector<G
       for (const auto& px : g.pixels) {
         bool ahead = false;
         // eq. (1): on the road ahead (path_surface.hpp), or on the plane under the camera
-        const auto gp = s.path_surface ? path.range(i, px, d.calib.K, s, &ahead)
-                                       : rangeGroundPixel(px, d.calib.K, planes[i], s);
+        const auto gp = path ? path->range(i, px, d.calib.K, s, &ahead)
+                             : rangeGroundPixel(px, d.calib.K, planes[i], s);
         if (!gp) continue;
         ++ranged[i];
         on_path[i] += ahead ? 1 : 0;

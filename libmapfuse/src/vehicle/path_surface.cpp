@@ -150,25 +150,6 @@ PathSurface::PathSurface(const std::vector<Pose3>& T_odom_body, const Pose3& T_b
   }
 }
 
-std::optional<std::size_t> PathSurface::frameAbreast(std::size_t i,
-                                                     const Eigen::Vector3d& p_odom) const {
-  for (std::size_t j = i + 1; j < T_odom_body_.size(); ++j) {
-    if (distance_[j] - distance_[i] > reach_) return std::nullopt;
-    const Eigen::Vector3d q = T_body_odom_[j] * p_odom;  // body j: x ahead
-    if (q.x() > 0.0) continue;
-    // Passed between j - 1 and j: the nearer of the two along x.
-    std::size_t k = j;
-    if (j - 1 > i) {
-      const double x_prev = (T_body_odom_[j - 1] * p_odom).x();
-      if (std::abs(x_prev) < std::abs(q.x())) k = j - 1;
-    }
-    const Eigen::Vector3d qk = T_body_odom_[k] * p_odom;
-    if (std::abs(qk.y()) > max_offset_) return std::nullopt;
-    return k;
-  }
-  return std::nullopt;
-}
-
 double PathSurface::slopeAhead(std::size_t i, std::size_t j) const {
   if (profile_[i]) return slope_[j] - slope_[i];
   return 2.0 * bend_[i] * (distance_[j] - distance_[i]);

@@ -52,10 +52,6 @@ class PathSurface {
   PathSurface(const std::vector<Pose3>& T_odom_body, const Pose3& T_body_cam,
               const std::vector<GroundPlane>& planes, const RangingSettings& settings);
 
-  /// @brief The first frame after `i` (within the path reach) whose body x axis no longer points at
-  /// `p_odom`; nullopt when none within reach, or when the point is more than max_offset aside.
-  std::optional<std::size_t> frameAbreast(std::size_t i, const Eigen::Vector3d& p_odom) const;
-
   /// @brief Height of the road abreast of frame j above the tangent plane of frame i, m
   /// (bend(i) (d_j − d_i)²).
   double riseAhead(std::size_t i, std::size_t j) const;
