@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include "mapfuse/io/drive_frames.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
@@ -34,12 +35,16 @@ constexpr double kFlatLateralTol = 0.07;   // m RMS, the same on a flat world (m
 // is not exactly 0)
 constexpr double kFlatNoWorse = 1.15;
 
-/// Body pose on a sag z = x²/(2R), body x along the road's tangent, y to the left.
-Pose3 bodyOnSag(double x) {
+/// Body pose on a vertical curve z = x²/(2R) (R > 0 a sag, R < 0 a crest), body x along the
+/// road's tangent, y to the left.
+Pose3 bodyOnCurve(double x, double R) {
   Pose3 T = Pose3::Identity();
-  T.linear() = Eigen::AngleAxisd(-std::atan(x / kSagRadius), Eigen::Vector3d::UnitY()).matrix();
-  T.translation() = Eigen::Vector3d(x, 0.0, x * x / (2.0 * kSagRadius));
+  T.linear() = Eigen::AngleAxisd(-std::atan(x / R), Eigen::Vector3d::UnitY()).matrix();
+  T.translation() = Eigen::Vector3d(x, 0.0, x * x / (2.0 * R));
   return T;
+}
+Pose3 bodyOnSag(double x) {
+  return bodyOnCurve(x, kSagRadius);
 }
 
 /// Camera looking along body x (x right, y down, z forward), kCameraHeight above the body origin.
@@ -48,6 +53,22 @@ Pose3 bodyCamera() {
   T.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
   T.translation() = Eigen::Vector3d(0.0, 0.0, kCameraHeight);
   return T;
+}
+/// The road point p_odom imaged by frame 0's camera, ranged on the road ahead and on frame 0's
+/// plane under the camera, both back in the odom frame.
+struct RangedBothWays {
+  std::optional<Eigen::Vector3d> ahead, plane;
+  bool on_path = false;
+};
+RangedBothWays rangeRoadPoint(const vehicle::PathSurface& path, const Pose3& T_odom_cam,
+                              const Eigen::Matrix3d& K, const GroundPlane& plane,
+                              const vehicle::RangingSettings& s, const Eigen::Vector3d& p_odom) {
+  const Eigen::Vector3d h = K * (T_odom_cam.inverse() * p_odom);
+  const Eigen::Vector2d px(h.x() / h.z(), h.y() / h.z());
+  RangedBothWays r;
+  if (const auto g = path.range(0, px, K, s, &r.on_path)) r.ahead = T_odom_cam * g->p_cam;
+  if (const auto f = vehicle::rangeGroundPixel(px, K, plane, s)) r.plane = T_odom_cam * f->p_cam;
+  return r;
 }
 }  // namespace
 
@@ -67,17 +88,12 @@ TEST_CASE("path surface: a point 20 m ahead on a sag is ranged on the road there
     // The true road point 20 m ahead of frame 0's camera (x = 25, on the sag), y aside.
     const double x = 20.0;
     const Eigen::Vector3d p_odom(x, y, x * x / (2.0 * kSagRadius));
-    const Eigen::Vector3d p_cam = T_bc.inverse() * p_odom;  // frame 0 is at the origin
-    const Eigen::Vector3d h = K * p_cam;
-    const Eigen::Vector2d px(h.x() / h.z(), h.y() / h.z());
-    bool on_path = false;
-    const auto g = path.range(0, px, K, s, &on_path);
-    REQUIRE(g);
-    CHECK(on_path);
-    const auto flat = vehicle::rangeGroundPixel(px, K, planes[0], s);
-    REQUIRE(flat);
-    const double err_path = (T_bc * g->p_cam - p_odom).norm();
-    const double err_flat = (T_bc * flat->p_cam - p_odom).norm() / p_cam.norm();
+    const auto r = rangeRoadPoint(path, T_bc, K, planes[0], s, p_odom);  // frame 0 at the origin
+    REQUIRE(r.ahead);
+    CHECK(r.on_path);
+    REQUIRE(r.plane);
+    const double err_path = (*r.ahead - p_odom).norm();
+    const double err_flat = (*r.plane - p_odom).norm() / (p_odom - T_bc.translation()).norm();
     INFO("y " << y << ": path surface " << err_path << " m, plane under the camera "
               << err_flat * 100 << " % of range");
     CHECK(err_path <= kSagPathTol);
@@ -89,15 +105,9 @@ TEST_CASE("path surface: on a crest a point ahead is ranged on the road, a ray o
   // A short steep crest (R = 150 m: 6.7 % grade 10 m from its top, as esmini's crest-curve),
   // frames every 0.5 m from 20 m before the top; each frame's plane is the true tangent plane.
   const double R = 150.0;
-  auto body = [&](double x) {
-    Pose3 T = Pose3::Identity();
-    T.linear() = Eigen::AngleAxisd(std::atan(x / R), Eigen::Vector3d::UnitY()).matrix();
-    T.translation() = Eigen::Vector3d(x, 0.0, -x * x / (2.0 * R));
-    return T;
-  };
   const Pose3 T_bc = bodyCamera();
   std::vector<Pose3> poses;
-  for (double x = -20.0; x <= 80.0; x += 0.5) poses.push_back(body(x));
+  for (double x = -20.0; x <= 80.0; x += 0.5) poses.push_back(bodyOnCurve(x, -R));
   const std::vector<GroundPlane> planes(poses.size(),
                                         GroundPlane{Eigen::Vector3d(0, -1, 0), kCameraHeight});
   Eigen::Matrix3d K;
@@ -107,17 +117,12 @@ TEST_CASE("path surface: on a crest a point ahead is ranged on the road, a ray o
   // A road point 12 m ahead of frame 0 (at x = -8, before the top), 3 m aside.
   const double x = -8.0;
   const Eigen::Vector3d p_odom(x, 3.0, -x * x / (2.0 * R));
-  const Eigen::Vector3d p_cam = (poses[0] * T_bc).inverse() * p_odom;
-  const Eigen::Vector3d h = K * p_cam;
-  const Eigen::Vector2d px(h.x() / h.z(), h.y() / h.z());
-  bool on_path = false;
-  const auto g = path.range(0, px, K, s, &on_path);
-  REQUIRE(g);
-  CHECK(on_path);
-  const auto flat = vehicle::rangeGroundPixel(px, K, planes[0], s);
-  REQUIRE(flat);
-  const double err_path = ((poses[0] * T_bc) * g->p_cam - p_odom).norm();
-  const double err_flat = ((poses[0] * T_bc) * flat->p_cam - p_odom).norm();
+  const auto r = rangeRoadPoint(path, poses[0] * T_bc, K, planes[0], s, p_odom);
+  REQUIRE(r.ahead);
+  CHECK(r.on_path);
+  REQUIRE(r.plane);
+  const double err_path = (*r.ahead - p_odom).norm();
+  const double err_flat = (*r.plane - p_odom).norm();
   INFO("road ahead " << err_path << " m, plane under the camera " << err_flat << " m");
   CHECK(err_path <= kCrestPathTol);
   CHECK(err_flat >= kCrestPlaneErrMin);
@@ -134,7 +139,6 @@ TEST_CASE("path surface: without a frame abreast within reach the plane under th
   const std::vector<GroundPlane> planes(2, GroundPlane{Eigen::Vector3d(0, -1, 0), kCameraHeight});
   vehicle::RangingSettings s;
   const vehicle::PathSurface path(poses, T_bc, planes, s);
-  CHECK_FALSE(path.frameAbreast(0, Eigen::Vector3d(20.0, 0.0, 0.0)));
   Eigen::Matrix3d K;
   K << 700, 0, 640, 0, 700, 360, 0, 0, 1;
   bool on_path = true;
@@ -248,8 +252,8 @@ TEST_CASE("path surface: sharp vertical curves are where no parabola over the re
   const auto sharp = vehicle::sharpVerticalCurves(crest, s);
   const auto none = vehicle::sharpVerticalCurves(flat, s);
   CHECK(std::count(none.begin(), none.end(), true) == 0);
-  CHECK(sharp[270]);                            // the top
-  CHECK_FALSE(sharp[60]);                       // 140 m before the hill: flat within reach
-  CHECK_FALSE(sharp[480]);                      // and after it
+  CHECK(sharp[270]);        // the top
+  CHECK_FALSE(sharp[60]);   // 140 m before the hill: flat within reach
+  CHECK_FALSE(sharp[480]);  // and after it
   CHECK(std::count(sharp.begin(), sharp.end(), true) >= 100);  // around the hill
 }
