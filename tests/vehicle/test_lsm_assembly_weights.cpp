@@ -4,6 +4,7 @@
 // error that grows ~d²; equal weights let them pull the line.
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "mapfuse/vehicle/lsm_assembly.hpp"
 
@@ -11,11 +12,11 @@ using namespace mapfuse;
 using namespace mapfuse::vehicle;
 
 namespace {
-constexpr double kTrueY = 2.0;        // m, the line's lateral position
-constexpr double kFarBias = 0.3;      // m, the far view's lateral error
-constexpr double kNearSigma = 0.02;   // m, ranging sigma 5 m ahead
-constexpr double kFarSigma = 0.32;    // m, ~16x the near one: 20 m ahead (σ ∝ d²)
-constexpr double kWeightedTol = 0.01; // m: the near view dominates (bias / (1 + 256) = 1 mm)
+constexpr double kTrueY = 2.0;         // m, the line's lateral position
+constexpr double kFarBias = 0.3;       // m, the far view's lateral error
+constexpr double kNearSigma = 0.02;    // m, ranging sigma 5 m ahead
+constexpr double kFarSigma = 0.32;     // m, ~16x the near one: 20 m ahead (σ ∝ d²)
+constexpr double kWeightedTol = 0.01;  // m: the near view dominates (bias / (1 + 256) = 1 mm)
 
 RangedMarking view(int frame, double bias, double sigma) {
   RangedMarking m;
@@ -50,4 +51,37 @@ TEST_CASE("lsm assembly: a line seen near and far lands where the near view puts
   for (const auto& p : e.points_body) worst = std::max(worst, std::abs((anchor * p).y() - kTrueY));
   INFO("largest lateral error " << worst << " m (equal weights: " << kFarBias / 2 << " m)");
   CHECK(worst <= kWeightedTol);
+}
+
+TEST_CASE("lsm assembly: a stretch seen only from afar is not mapped, and is counted") {
+  // A line seen near by two frames, and a second line (a ghost of the first: far views ranged
+  // 1 m aside where the road ahead was not what eq. (1) assumed) seen only from afar.
+  std::vector<Pose3> poses;
+  std::vector<double> stamps;
+  for (int k = 0; k < 30; ++k) {
+    Pose3 T = Pose3::Identity();
+    T.translation() = Eigen::Vector3d(double(k), 0.0, 0.0);
+    poses.push_back(T);
+    stamps.push_back(0.1 * k);
+  }
+  AssemblySettings s;
+  // per axis; three frames average to a sample whose horizontal σ is σ √(2/3): 1.6x the gate
+  const double far_sigma = 2.0 * s.max_line_sigma;
+  std::vector<RangedMarking> markings = {view(16, 0.0, kNearSigma), view(17, 0.0, kNearSigma)};
+  for (int f : {1, 2, 3}) {
+    RangedMarking ghost = view(f, 1.0, far_sigma);
+    ghost.track_id = 8;
+    markings.push_back(ghost);
+  }
+  AssemblyStats st;
+  const Lsm lsm = assembleLsm(poses, stamps, {0, 10, 20, 29}, markings, {}, s, &st);
+  REQUIRE(lsm.elements.size() == 1);  // the near line only
+  for (const auto& p : lsm.elements[0].points_body)
+    CHECK(std::abs((lsm.keyframes[std::size_t(lsm.elements[0].anchor)].T_frame_body * p).y() -
+                   kTrueY) <= kWeightedTol);
+  CHECK(st.line_samples_dropped >= 8);  // the ghost's 4 m at 0.5 m spacing
+  CHECK(st.line_samples_dropped < st.line_samples);
+  // With the gate opened the ghost is mapped: the gate, not the grouping, removed it.
+  s.max_line_sigma = 10.0;
+  CHECK(assembleLsm(poses, stamps, {0, 10, 20, 29}, markings, {}, s).elements.size() == 2);
 }

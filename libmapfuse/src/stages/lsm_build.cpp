@@ -71,6 +71,8 @@ nlohmann::json toJson(const vehicle::LsmBuildResult& r) {
           {"ranged_on_path", r.ranged_on_path},
           {"ground_instances", r.assembly.ground_instances},
           {"ground_instances_dropped", r.assembly.ground_dropped},
+          {"line_samples", r.assembly.line_samples},
+          {"line_samples_dropped_sigma", r.assembly.line_samples_dropped},
           {"aerial_tracks", r.aerial_tracks},
           {"aerial_triangulated", r.aerial_triangulated},
           {"aerial_rejected", r.aerial_rejected},

@@ -294,7 +294,14 @@ Lsm assembleLsm(const std::vector<Pose3>& poses, const std::vector<double>& stam
                  int(frames.size()), truth, 0.0);
       continue;
     }
-    const auto samples = resampleLine(inst, path_s, poses, s.point_spacing);
+    std::vector<Sample> samples;
+    for (const auto& smp : resampleLine(inst, path_s, poses, s.point_spacing)) {
+      ++st.line_samples;
+      if (std::sqrt(smp.cov.topLeftCorner<2, 2>().trace()) > s.max_line_sigma)
+        ++st.line_samples_dropped;  // seen only from afar: a gap in the line
+      else
+        samples.push_back(smp);
+    }
     // Split at gaps and at the maximum length.
     std::size_t begin = 0;
     for (std::size_t i = 1; i <= samples.size(); ++i) {
