@@ -25,6 +25,8 @@ constexpr double kSagPathTol = 0.01;       // m, path-surface point vs the true 
 constexpr double kCrestPathTol = 0.05;     // m, crest: the road-ahead point vs the true one
 constexpr double kCrestPlaneErrMin = 0.3;  // m, crest: the plane under the camera misses by more
 constexpr double kPlaneRelErrMin = 0.05;   // the plane under the camera at 20 m: δ/h = 0.13
+constexpr double kTwistTol = 0.05;         // m, 8 % on R = 100 m, 15 m ahead and 5 m aside
+constexpr double kTwistPlaneErrMin = 0.3;  // m, the plane under the camera there (δ = 6 cm)
 // m RMS, lane points 15-30 m ahead on the 8 % world (measured 0.132; the plane under the camera
 // 0.454). What remains is where the path does not show the road seen: the drive's first 40 m,
 // and crossing roads at intersections, whose profile is not the driven road's.
@@ -256,4 +258,55 @@ TEST_CASE("path surface: sharp vertical curves are where no parabola over the re
   CHECK_FALSE(sharp[60]);   // 140 m before the hill: flat within reach
   CHECK_FALSE(sharp[480]);  // and after it
   CHECK(std::count(sharp.begin(), sharp.end(), true) >= 100);  // around the hill
+}
+
+TEST_CASE("path surface: on a curve up a grade the road aside is ranged where it is (twist)") {
+  // A road climbing 8 % on a left curve of R = 100 m, flat across (its cross-section level at
+  // right angles to the path): in the body frame the road ahead is a twisted surface. A point
+  // 15 m ahead and 5 m towards the curve's centre lies at the path's height abreast of it but
+  // only ~d (1 - y/R) ahead, where the tangent plane is b d y / R = 6 cm lower.
+  const double R = 100.0, grade = 0.08;
+  const double cos_g = 1.0 / std::sqrt(1.0 + grade * grade);
+  auto centre = [&](double s) {  // s: horizontal arc length
+    return Eigen::Vector3d(R * std::sin(s / R), R * (1.0 - std::cos(s / R)), grade * s);
+  };
+  auto left = [&](double s) { return Eigen::Vector3d(-std::sin(s / R), std::cos(s / R), 0.0); };
+  const Pose3 T_bc = bodyCamera();
+  std::vector<Pose3> poses;
+  for (double s = 0.0; s <= 120.0; s += 0.5) {
+    Pose3 T = Pose3::Identity();
+    T.linear() = (Eigen::AngleAxisd(s / R, Eigen::Vector3d::UnitZ()) *
+                  Eigen::AngleAxisd(-std::atan(grade), Eigen::Vector3d::UnitY()))
+                     .matrix();
+    T.translation() = centre(s);
+    poses.push_back(T);
+  }
+  const std::vector<GroundPlane> planes(poses.size(),
+                                        GroundPlane{Eigen::Vector3d(0, -1, 0), kCameraHeight});
+  Eigen::Matrix3d K;
+  K << 700, 0, 640, 0, 700, 360, 0, 0, 1;
+  vehicle::RangingSettings s;
+  const vehicle::PathSurface path(poses, T_bc, planes, s);
+  const std::size_t i = 80;  // 40 m in: the path's fits have frames on both sides
+  const double s_i = 40.0;
+  for (const double y : {5.0, -5.0}) {  // towards the centre, and away from it
+    // the road point abreast of the path 15 m of arc ahead, y aside (flat across)
+    const double s_p = s_i + 15.0 * cos_g;
+    const Eigen::Vector3d p_odom = centre(s_p) + y * left(s_p);
+    const Pose3 T_odom_cam = poses[i] * T_bc;
+    const Eigen::Vector3d h = K * (T_odom_cam.inverse() * p_odom);
+    const Eigen::Vector2d px(h.x() / h.z(), h.y() / h.z());
+    bool on_path = false;
+    const auto g = path.range(i, px, K, s, &on_path);
+    const auto f = vehicle::rangeGroundPixel(px, K, planes[i], s);
+    REQUIRE(g);
+    REQUIRE(f);
+    CHECK(on_path);
+    const double err = (T_odom_cam * g->p_cam - p_odom).norm();
+    const double err_plane = (T_odom_cam * f->p_cam - p_odom).norm();
+    // without the twist the rise is 6 cm off: the point 0.6 m along the ray (δ d / h)
+    INFO("y " << y << ": road ahead " << err << " m, plane under the camera " << err_plane << " m");
+    CHECK(err <= kTwistTol);
+    CHECK(err_plane >= kTwistPlaneErrMin);
+  }
 }

@@ -28,6 +28,9 @@ constexpr int kFitMinFrames = 10;
 /// 3.5 cm at the drive's start); a worse fit means the road bends more than one parabola can
 /// follow (esmini crest-curve: 0.1-0.45 m) and the profile itself is taken.
 constexpr double kBendFitNoise = 0.05;
+/// How much the body's left axes decide the up axis against their mean up (heightProfile): the
+/// left axes' spread where the drive turns 30° is ~0.02, their roll noise ~3e-5.
+constexpr double kLevelWeight = 1e-3;
 /// Share of the reach over which the road's slope is fitted where no parabola follows the road.
 constexpr double kTangentWindow = 0.25;
 /// m, half-width of the moving average of the heights used as the profile there.
@@ -88,15 +91,28 @@ struct Profile {
 Profile heightProfile(const std::vector<Pose3>& T_odom_body) {
   const std::size_t n = T_odom_body.size();
   Profile p{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
-  Eigen::Vector3d up = Eigen::Vector3d::Zero();  // the drive's mean up axis (any odom frame)
+  // The up axis, in any odom frame. The body's up axes lean back by the grade: their mean is
+  // tilted by the drive's mean grade, and along a tilted axis a horizontal curve reads as a bend
+  // (esmini curves_elevation: 6 cm 15 m ahead). Their left axes are level whatever the grade
+  // (roads are level across, up to crossfall): where the drive turns they span the horizontal
+  // and fix the up; where it runs straight the mean up stands (and a straight path shows no
+  // bend along it). up = (I + L / kLevelWeight)⁻¹ z̄, L the left axes' mean outer product.
+  Eigen::Vector3d mean_up = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d L = Eigen::Matrix3d::Zero();
   for (std::size_t k = 0; k < n; ++k) {
     if (k > 0)
       p.distance[k] = p.distance[k - 1] +
                       (T_odom_body[k].translation() - T_odom_body[k - 1].translation()).norm();
-    up += T_odom_body[k].linear().col(2);
+    mean_up += T_odom_body[k].linear().col(2);
+    const Eigen::Vector3d left = T_odom_body[k].linear().col(1);
+    L += left * left.transpose();
   }
-  if (n == 0 || !(up.norm() > 0)) return p;
-  up.normalize();
+  if (n == 0 || !(mean_up.norm() > 0)) return p;
+  mean_up /= double(n);
+  L /= double(n);
+  Eigen::Vector3d up =
+      (Eigen::Matrix3d::Identity() + L / kLevelWeight).ldlt().solve(mean_up).normalized();
+  if (!up.allFinite()) up = mean_up.normalized();
   for (std::size_t k = 0; k < n; ++k) p.z[k] = up.dot(T_odom_body[k].translation());
   return p;
 }
@@ -135,6 +151,13 @@ PathSurface::PathSurface(const std::vector<Pose3>& T_odom_body, const Pose3& T_b
   for (const Pose3& T : T_odom_body) T_body_odom_.push_back(T.inverse());
   const Profile p = heightProfile(T_odom_body);
   distance_ = p.distance;
+  // Per frame: its ground plane's normal (up) and the road's direction across (left), in odom.
+  up_.resize(n);
+  across_.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    up_[k] = (T_odom_body[k].linear() * T_body_cam.linear() * planes[k].normal_cam).normalized();
+    across_[k] = up_[k].cross(T_odom_body[k].linear().col(0)).normalized();
+  }
   const std::vector<double>& z = p.z;
   height_ = smoothAlongPath(distance_, z, kProfileSmooth);
   // Per frame: the parabola over the whole window where it follows the heights within
@@ -173,12 +196,25 @@ std::optional<PathSurface::Crossing> PathSurface::cross(std::size_t i, const Eig
   bool have_prev = false;
   for (std::size_t j = i + 1; j < T_odom_body_.size(); ++j) {
     if (distance_[j] - distance_[i] > reach_) return Crossing{false, 0.0, 0.0};  // missed it
-    const double rise = riseAhead(i, j) - lowered;  // the road abreast of j above the tangent
+    double rise = riseAhead(i, j) - lowered;  // the road abreast of j above the tangent
     GroundPlane ahead = planes_[i];
     ahead.height -= rise;
-    if (!(ahead.height > 0.0)) break;  // the road ahead rises above the camera
-    const auto X = backProjectToGround(pixel, K_inv, ahead);  // eq. (1) on the road there
-    if (!X) {                                                 // the road there is above the ray
+    if (!(ahead.height > 0.0)) break;                   // the road ahead rises above the camera
+    auto X = backProjectToGround(pixel, K_inv, ahead);  // eq. (1) on the road there
+    if (X) {
+      // Twist. riseAhead is the path's own height abreast of j. The road there is flat along
+      // frame j's ground plane across the path, not along frame i's: a point `aside` of the
+      // path abreast of j lies n_i · across_j · aside higher (n_i frame i's plane normal).
+      // On a curve up a grade b this is b sin(ψ_j − ψ_i) aside (esmini curves_elevation, 8 % on
+      // R ≈ 100 m: 6 cm 15 m ahead and 5 m aside; lane points 0.15-0.18 m off across the road
+      // without it); where the cross-slope changes ahead (superelevation runs) it is that change.
+      const double aside = (T_body_odom_[j] * (T_odom_cam_i * *X)).y();  // stable before the
+      const double twist = aside * up_[i].dot(across_[j]);                // crossing too
+      rise += twist;
+      ahead.height -= twist;
+      X = ahead.height > 0.0 ? backProjectToGround(pixel, K_inv, ahead) : std::nullopt;
+    }
+    if (!X) {  // the road there is above the ray
       have_prev = false;
       continue;
     }

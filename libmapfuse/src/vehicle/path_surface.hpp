@@ -23,9 +23,13 @@
 /// path goes on (it passes over a crest), and one whose point moves by more than a tenth of its
 /// range when the road is taken 5 cm lower (it runs close along the road: ill-conditioned). The
 /// covariance is that of eq. (1) on the road's own plane there, through the same point.
+/// Across the path the road abreast of frame j lies along frame j's own ground plane: a point y
+/// aside is n_i · across_j · y above the path there. On a curve up a grade this is the twist of
+/// the road ahead seen from frame i (a point towards the curve's centre is less far ahead than
+/// the path abreast, where frame i's tangent plane is lower); where the crossfall changes ahead
+/// (superelevation runs) it is that change, as frame j's plane shows it.
 /// Where no frame comes abreast within reach because the drive ends, or the point lies farther
-/// aside than path_max_offset, the plane under the camera is kept. Cross-slope that changes
-/// along the road (superelevation runs) is not modelled: the road ahead keeps the frame's roll.
+/// aside than path_max_offset, the plane under the camera is kept.
 #include <Eigen/Core>
 #include <cstddef>
 #include <optional>
@@ -90,6 +94,8 @@ class PathSurface {
   std::vector<bool> profile_;     ///< per frame: no parabola follows the road, the profile does
   std::vector<double> height_;    ///< m, dead-reckoned heights smoothed along the path
   std::vector<double> slope_;     ///< the road's slope per frame (a short parabola's tangent)
+  std::vector<Eigen::Vector3d> up_;      ///< per frame, its ground plane's normal in odom
+  std::vector<Eigen::Vector3d> across_;  ///< per frame, the road's left across the path in odom
 };
 
 }  // namespace mapfuse::vehicle
