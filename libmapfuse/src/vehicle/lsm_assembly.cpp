@@ -214,6 +214,55 @@ std::vector<Sample> resampleLine(const Instance& inst, const std::vector<double>
   return out;
 }
 
+double horizontalSigma(const Sample& smp) {
+  return std::sqrt(smp.cov.topLeftCorner<2, 2>().trace());
+}
+
+/// Line samples at most max_line_sigma, hashed by class and cell of kGhostRadius.
+class SoundSamples {
+ public:
+  void add(CrowdClass cls, const Eigen::Vector3d& p) {
+    cells_[key(cls, p, 0, 0)].push_back(p.head<2>());
+  }
+  /// True when a sound sample of `cls` lies within kGhostRadius of p.
+  bool beside(CrowdClass cls, const Eigen::Vector3d& p) const {
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy) {
+        const auto it = cells_.find(key(cls, p, dx, dy));
+        if (it == cells_.end()) continue;
+        for (const auto& q : it->second)
+          if ((q - p.head<2>()).squaredNorm() <= kGhostRadius * kGhostRadius) return true;
+      }
+    return false;
+  }
+
+ private:
+  static int64_t key(CrowdClass cls, const Eigen::Vector3d& p, int dx, int dy) {
+    const int64_t cx = int64_t(std::floor(p.x() / kGhostRadius)) + dx,
+                  cy = int64_t(std::floor(p.y() / kGhostRadius)) + dy;
+    return (int64_t(cls) << 56) ^ ((cx & 0xfffffff) << 28) ^ (cy & 0xfffffff);
+  }
+  std::unordered_map<int64_t, std::vector<Eigen::Vector2d>> cells_;
+};
+
+/// Every line instance resampled (planar ones left empty), its sound samples added to `sound`:
+/// a sample above max_line_sigma (no near view reached it) is a ghost where a sound sample of
+/// its class lies within kGhostRadius (far views ranged beside the near views' line), and
+/// elsewhere all there is of that stretch (a side road seen from afar).
+std::vector<std::vector<Sample>> resampleLines(const std::vector<Instance>& instances,
+                                               const std::vector<double>& path_s,
+                                               const std::vector<Pose3>& poses,
+                                               const AssemblySettings& s, SoundSamples& sound) {
+  std::vector<std::vector<Sample>> out(instances.size());
+  for (std::size_t k = 0; k < instances.size(); ++k) {
+    if (geometryKind(instances[k].cls) == GeometryKind::kPlanar) continue;
+    out[k] = resampleLine(instances[k], path_s, poses, s.point_spacing);
+    for (const auto& smp : out[k])
+      if (horizontalSigma(smp) <= s.max_line_sigma) sound.add(instances[k].cls, smp.p);
+  }
+  return out;
+}
+
 }  // namespace
 
 Lsm assembleLsm(const std::vector<Pose3>& poses, const std::vector<double>& stamps,
@@ -270,34 +319,8 @@ Lsm assembleLsm(const std::vector<Pose3>& poses, const std::vector<double>& stam
   };
 
   const std::vector<Instance> instances = groupInstances(markings, s.association_radius);
-  // Lines resampled first: a sample above max_line_sigma (no near view reached it) is a ghost
-  // where a sound sample of its class lies within kGhostRadius (far views ranged beside the
-  // near views' line) and dropped; elsewhere it is all there is of that stretch (a side road
-  // seen from afar) and kept.
-  std::vector<std::vector<Sample>> line_samples(instances.size());
-  std::unordered_map<int64_t, std::vector<Eigen::Vector2d>> sound;  // by class and cell
-  auto cellKey = [](CrowdClass cls, const Eigen::Vector3d& p, int dx, int dy) {
-    const int64_t cx = int64_t(std::floor(p.x() / kGhostRadius)) + dx,
-                  cy = int64_t(std::floor(p.y() / kGhostRadius)) + dy;
-    return (int64_t(cls) << 56) ^ ((cx & 0xfffffff) << 28) ^ (cy & 0xfffffff);
-  };
-  for (std::size_t k = 0; k < instances.size(); ++k) {
-    if (geometryKind(instances[k].cls) == GeometryKind::kPlanar) continue;
-    line_samples[k] = resampleLine(instances[k], path_s, poses, s.point_spacing);
-    for (const auto& smp : line_samples[k])
-      if (std::sqrt(smp.cov.topLeftCorner<2, 2>().trace()) <= s.max_line_sigma)
-        sound[cellKey(instances[k].cls, smp.p, 0, 0)].push_back(smp.p.head<2>());
-  }
-  auto besideSound = [&](CrowdClass cls, const Eigen::Vector3d& p) {
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy) {
-        const auto it = sound.find(cellKey(cls, p, dx, dy));
-        if (it == sound.end()) continue;
-        for (const auto& q : it->second)
-          if ((q - p.head<2>()).squaredNorm() <= kGhostRadius * kGhostRadius) return true;
-      }
-    return false;
-  };
+  SoundSamples sound;
+  const auto line_samples = resampleLines(instances, path_s, poses, s, sound);
 
   for (std::size_t k = 0; k < instances.size(); ++k) {
     const Instance& inst = instances[k];
@@ -333,8 +356,7 @@ Lsm assembleLsm(const std::vector<Pose3>& poses, const std::vector<double>& stam
     std::vector<Sample> samples;
     for (const auto& smp : line_samples[k]) {
       ++st.line_samples;
-      if (std::sqrt(smp.cov.topLeftCorner<2, 2>().trace()) > s.max_line_sigma &&
-          besideSound(inst.cls, smp.p))
+      if (horizontalSigma(smp) > s.max_line_sigma && sound.beside(inst.cls, smp.p))
         ++st.line_samples_dropped;  // a ghost: a gap in this line
       else
         samples.push_back(smp);
