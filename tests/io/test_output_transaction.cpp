@@ -121,3 +121,49 @@ TEST_CASE("temporary files of dead runs are removed, a live run's are kept", "[i
   CHECK(fs::exists(live));
   CHECK(fs::exists(not_temp));
 }
+
+TEST_CASE("a run that fails leaves no folder or lock behind that it created", "[io][output]") {
+  const auto base = test::tempDir("tx-refused");
+  const fs::path fresh = base / "new" / "deeper/";  // two levels that did not exist
+  try {
+    io::OutputTransaction tx(fresh);
+    CHECK(fs::exists(fresh / ".mapfuse.lock"));
+    throw InputError("refused: the map has no roads");
+  } catch (const InputError&) {
+  }
+  CHECK_FALSE(fs::exists(base / "new"));  // absent stays absent
+  CHECK(fs::exists(base));                // what was there stays
+
+  // An existing folder with a previous run's outputs and lock: all kept.
+  io::writeBytesAtomic(base / "kept" / "a.json", "previous a");
+  {
+    io::OutputTransaction tx(base / "kept");
+    tx.commit();
+  }
+  REQUIRE(fs::exists(base / "kept" / ".mapfuse.lock"));
+  try {
+    io::OutputTransaction tx(base / "kept");
+    throw InputError("refused");
+  } catch (const InputError&) {
+  }
+  CHECK(fs::exists(base / "kept" / ".mapfuse.lock"));
+  CHECK(io::readBytes(base / "kept" / "a.json") == "previous a");
+
+  // An existing empty folder: the lock this run created goes, the folder stays.
+  fs::create_directories(base / "empty");
+  try {
+    io::OutputTransaction tx(base / "empty");
+    throw InputError("refused");
+  } catch (const InputError&) {
+  }
+  CHECK(fs::exists(base / "empty"));
+  CHECK(fs::is_empty(base / "empty"));
+
+  // A committed run keeps its folder and lock.
+  {
+    io::OutputTransaction tx(base / "done");
+    io::writeBytesAtomic(base / "done" / "x", "x");
+    tx.commit();
+  }
+  CHECK(fs::exists(base / "done" / "x"));
+}

@@ -49,6 +49,14 @@ bool processRuns(long pid) {
 }
 }  // namespace
 
+/// Absolute, normal, without a trailing separator (so that parent_path() goes up).
+fs::path normalFolder(const fs::path& folder) {
+  std::error_code ec;
+  fs::path p = fs::absolute(folder, ec).lexically_normal();
+  if (p.filename().empty() && p.has_parent_path()) p = p.parent_path();
+  return p;
+}
+
 std::size_t removeStaleTemporaries(const fs::path& folder) {
   std::size_t removed = 0;
   std::error_code ec;
@@ -69,21 +77,30 @@ OutputTransaction::OutputTransaction(const fs::path& folder) : folder_(folder) {
   if (g_active.load() != nullptr)
     throw std::logic_error("an output transaction is already open in this process");
   std::error_code ec;
+  for (fs::path p = normalFolder(folder_); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+    created_root_ = p;
+    if (p == p.parent_path()) break;
+  }
   fs::create_directories(folder_, ec);
   if (ec || !fs::is_directory(folder_))
     throw IoError(folder_.string(),
                   "cannot create the output folder: " +
                       (ec ? ec.message() : std::string("a file of that name is in the way")));
   const fs::path lock = folder_ / kLockName;
+  lock_created_ = !fs::exists(lock, ec);
   lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (lock_fd_ < 0)
-    throw IoError(folder_.string(),
-                  std::string("output folder is not writable: ") + std::strerror(errno));
+  if (lock_fd_ < 0) {
+    const std::string why = std::strerror(errno);
+    lock_created_ = false;
+    removeWhatWasCreated();
+    throw IoError(folder_.string(), "output folder is not writable: " + why);
+  }
   if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
     char owner[32] = {0};
     const ssize_t n = ::pread(lock_fd_, owner, sizeof owner - 1, 0);
     ::close(lock_fd_);
     lock_fd_ = -1;
+    lock_created_ = false;  // the other run's
     throw IoError(folder_.string(),
                   "another mapfuse run is writing this output folder" +
                       (n > 0 ? " (pid " + std::string(owner, static_cast<std::size_t>(n)) + ")"
@@ -92,9 +109,11 @@ OutputTransaction::OutputTransaction(const fs::path& folder) : folder_(folder) {
   }
   const std::string pid = std::to_string(::getpid());
   if (::ftruncate(lock_fd_, 0) != 0 || ::pwrite(lock_fd_, pid.data(), pid.size(), 0) < 0) {
+    const std::string why = std::strerror(errno);
     ::close(lock_fd_);
     lock_fd_ = -1;
-    throw IoError(lock.string(), std::string("cannot write: ") + std::strerror(errno));
+    removeWhatWasCreated();
+    throw IoError(lock.string(), "cannot write: " + why);
   }
   removeStaleTemporaries(folder_);
   g_active.store(this);
@@ -103,7 +122,20 @@ OutputTransaction::OutputTransaction(const fs::path& folder) : folder_(folder) {
 OutputTransaction::~OutputTransaction() {
   if (!done_) rollback();
   if (g_active.load() == this) g_active.store(nullptr);
-  if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the lock
+  if (!committed_) removeWhatWasCreated();  // while still holding the lock
+  if (lock_fd_ >= 0) ::close(lock_fd_);     // releases the lock
+}
+
+void OutputTransaction::removeWhatWasCreated() noexcept {
+  std::error_code ec;
+  if (lock_created_) fs::remove(folder_ / kLockName, ec);
+  lock_created_ = false;
+  if (created_root_.empty()) return;
+  // fs::remove only removes empty folders: from the output folder up to the outermost created
+  for (fs::path p = normalFolder(folder_);; p = p.parent_path()) {
+    if (!fs::remove(p, ec) || p == created_root_ || p == p.parent_path()) break;
+  }
+  created_root_.clear();
 }
 
 OutputTransaction* OutputTransaction::active() {
@@ -165,6 +197,7 @@ void OutputTransaction::commit() {
   files_.clear();
   index_.clear();
   done_ = true;
+  committed_ = true;
   g_active.store(nullptr);
 }
 

@@ -49,9 +49,15 @@ class OutputTransaction {
 
  private:
   void rollback() noexcept;
+  void removeWhatWasCreated() noexcept;
   std::filesystem::path folder_;
   int lock_fd_ = -1;
   bool done_ = false;
+  bool committed_ = false;
+  /// A run that ends without committing leaves the disk as it found it: the lock file it
+  /// created, and the folders it created (outermost first), are removed again if empty.
+  bool lock_created_ = false;
+  std::filesystem::path created_root_;
   std::mutex mutex_;
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;  // tmp, target
   std::unordered_map<std::string, std::size_t> index_;  // target -> its entry in files_
