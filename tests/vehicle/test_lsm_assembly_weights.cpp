@@ -53,9 +53,10 @@ TEST_CASE("lsm assembly: a line seen near and far lands where the near view puts
   CHECK(worst <= kWeightedTol);
 }
 
-TEST_CASE("lsm assembly: a stretch seen only from afar is not mapped, and is counted") {
-  // A line seen near by two frames, and a second line (a ghost of the first: far views ranged
-  // 1 m aside where the road ahead was not what eq. (1) assumed) seen only from afar.
+TEST_CASE("lsm assembly: a ghost seen only from afar beside a line is not mapped, and is counted") {
+  // A line seen near by two frames; a ghost of it (far views ranged 1 m aside where the road
+  // ahead was not what eq. (1) assumed) seen only from afar; and another line 6 m aside, also
+  // seen only from afar, with nothing sound near it: all there is of that line.
   std::vector<Pose3> poses;
   std::vector<double> stamps;
   for (int k = 0; k < 30; ++k) {
@@ -72,16 +73,25 @@ TEST_CASE("lsm assembly: a stretch seen only from afar is not mapped, and is cou
     RangedMarking ghost = view(f, 1.0, far_sigma);
     ghost.track_id = 8;
     markings.push_back(ghost);
+    RangedMarking other = view(f, 6.0, far_sigma);
+    other.track_id = 9;
+    markings.push_back(other);
   }
   AssemblyStats st;
   const Lsm lsm = assembleLsm(poses, stamps, {0, 10, 20, 29}, markings, {}, s, &st);
-  REQUIRE(lsm.elements.size() == 1);  // the near line only
-  for (const auto& p : lsm.elements[0].points_body)
-    CHECK(std::abs((lsm.keyframes[std::size_t(lsm.elements[0].anchor)].T_frame_body * p).y() -
-                   kTrueY) <= kWeightedTol);
+  REQUIRE(lsm.elements.size() == 2);  // the near line and the lone far one
+  int near = 0, lone = 0;
+  for (const auto& e : lsm.elements) {
+    const Pose3& anchor = lsm.keyframes[std::size_t(e.anchor)].T_frame_body;
+    const double y = (anchor * e.points_body.front()).y();
+    near += std::abs(y - kTrueY) <= kWeightedTol;
+    lone += std::abs(y - kTrueY - 6.0) <= kWeightedTol;
+  }
+  CHECK(near == 1);
+  CHECK(lone == 1);
   CHECK(st.line_samples_dropped >= 8);  // the ghost's 4 m at 0.5 m spacing
   CHECK(st.line_samples_dropped < st.line_samples);
   // With the gate opened the ghost is mapped: the gate, not the grouping, removed it.
   s.max_line_sigma = 10.0;
-  CHECK(assembleLsm(poses, stamps, {0, 10, 20, 29}, markings, {}, s).elements.size() == 2);
+  CHECK(assembleLsm(poses, stamps, {0, 10, 20, 29}, markings, {}, s).elements.size() == 3);
 }

@@ -133,6 +133,11 @@ int64_t majorityTruth(const Instance& inst) {
   return best;
 }
 
+/// m: a sample above max_line_sigma this close to a sound sample of its class is a ghost of it
+/// (far views ranged 1-2 m beside the near views' line on esmini curves_elevation); lines of one
+/// class lie a lane width apart, 2.5 m or more.
+constexpr double kGhostRadius = 2.0;
+
 /// A resampled point with its covariance and supporting frames.
 struct Sample {
   Eigen::Vector3d p;
@@ -264,7 +269,38 @@ Lsm assembleLsm(const std::vector<Pose3>& poses, const std::vector<double>& stam
     lsm.elements.push_back(std::move(e));
   };
 
-  for (const auto& inst : groupInstances(markings, s.association_radius)) {
+  const std::vector<Instance> instances = groupInstances(markings, s.association_radius);
+  // Lines resampled first: a sample above max_line_sigma (no near view reached it) is a ghost
+  // where a sound sample of its class lies within kGhostRadius (far views ranged beside the
+  // near views' line) and dropped; elsewhere it is all there is of that stretch (a side road
+  // seen from afar) and kept.
+  std::vector<std::vector<Sample>> line_samples(instances.size());
+  std::unordered_map<int64_t, std::vector<Eigen::Vector2d>> sound;  // by class and cell
+  auto cellKey = [](CrowdClass cls, const Eigen::Vector3d& p, int dx, int dy) {
+    const int64_t cx = int64_t(std::floor(p.x() / kGhostRadius)) + dx,
+                  cy = int64_t(std::floor(p.y() / kGhostRadius)) + dy;
+    return (int64_t(cls) << 56) ^ ((cx & 0xfffffff) << 28) ^ (cy & 0xfffffff);
+  };
+  for (std::size_t k = 0; k < instances.size(); ++k) {
+    if (geometryKind(instances[k].cls) == GeometryKind::kPlanar) continue;
+    line_samples[k] = resampleLine(instances[k], path_s, poses, s.point_spacing);
+    for (const auto& smp : line_samples[k])
+      if (std::sqrt(smp.cov.topLeftCorner<2, 2>().trace()) <= s.max_line_sigma)
+        sound[cellKey(instances[k].cls, smp.p, 0, 0)].push_back(smp.p.head<2>());
+  }
+  auto besideSound = [&](CrowdClass cls, const Eigen::Vector3d& p) {
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy) {
+        const auto it = sound.find(cellKey(cls, p, dx, dy));
+        if (it == sound.end()) continue;
+        for (const auto& q : it->second)
+          if ((q - p.head<2>()).squaredNorm() <= kGhostRadius * kGhostRadius) return true;
+      }
+    return false;
+  };
+
+  for (std::size_t k = 0; k < instances.size(); ++k) {
+    const Instance& inst = instances[k];
     ++st.ground_instances;
     std::set<int> frames;
     for (const auto* m : inst.parts) frames.insert(m->frame);
@@ -295,10 +331,11 @@ Lsm assembleLsm(const std::vector<Pose3>& poses, const std::vector<double>& stam
       continue;
     }
     std::vector<Sample> samples;
-    for (const auto& smp : resampleLine(inst, path_s, poses, s.point_spacing)) {
+    for (const auto& smp : line_samples[k]) {
       ++st.line_samples;
-      if (std::sqrt(smp.cov.topLeftCorner<2, 2>().trace()) > s.max_line_sigma)
-        ++st.line_samples_dropped;  // seen only from afar: a gap in the line
+      if (std::sqrt(smp.cov.topLeftCorner<2, 2>().trace()) > s.max_line_sigma &&
+          besideSound(inst.cls, smp.p))
+        ++st.line_samples_dropped;  // a ghost: a gap in this line
       else
         samples.push_back(smp);
     }

@@ -35,12 +35,12 @@ struct AerialElement {
 
 /// Settings of the assembly; the parameters declared once, in visit().
 struct AssemblySettings {
-  double association_radius = 0.6;           ///< m, spatial association of id-less markings
-  double point_spacing = 0.5;                ///< m, resampling step along merged lines
-  double max_element_length = 30.0;          ///< m, longer lines are split into anchored pieces
-  double gap_split = 2.0;                    ///< m, a gap this long along a line starts a new piece
-  int min_observations = 2;                  ///< frames needed to keep a ground instance
-  double max_line_sigma = 0.5;               ///< m, line samples less certain are not mapped
+  double association_radius = 0.6;   ///< m, spatial association of id-less markings
+  double point_spacing = 0.5;        ///< m, resampling step along merged lines
+  double max_element_length = 30.0;  ///< m, longer lines are split into anchored pieces
+  double gap_split = 2.0;            ///< m, a gap this long along a line starts a new piece
+  int min_observations = 2;          ///< frames needed to keep a ground instance
+  double max_line_sigma = 0.5;  ///< m, less certain line samples beside a sounder line are ghosts
   double keyframe_sigma_translation = 0.05;  ///< m, keyframe pose 1-sigma written to the LSM
   double keyframe_sigma_rotation = 0.002;    ///< rad
 
@@ -63,7 +63,8 @@ struct AssemblySettings {
     // lines, ghost lines beside the near views' one; below 0.5 m, 0.02-0.10 m.
     v("max_line_sigma", max_line_sigma, "m",
       "line samples whose horizontal 1-sigma (after covariance-weighted averaging) exceeds this "
-      "are not mapped (stretches seen only from afar)",
+      "and that lie within 2 m of a sounder sample of their class (a ghost beside the line seen "
+      "near) are not mapped",
       gt(0) & le(1000));
     v("keyframe_sigma_translation", keyframe_sigma_translation, "m", "keyframe pose sigma",
       gt(0) & le(100));
@@ -77,7 +78,7 @@ struct AssemblyStats {
   int ground_dropped = 0;        ///< instances seen in too few frames
   int elements = 0;              ///< elements written
   int line_samples = 0;          ///< resampled line points before the sigma gate
-  int line_samples_dropped = 0;  ///< of those, above max_line_sigma
+  int line_samples_dropped = 0;  ///< of those, ghosts (above max_line_sigma, beside sound ones)
 };
 
 /// @brief Builds the LSM. `frame_poses` are T_odom_body per frame, `keyframes` indices into
