@@ -3,8 +3,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "mapfuse/core/error.hpp"
-#include "mapfuse/vehicle/centerline.hpp"
 #include "mapfuse/vehicle/dead_reckoning.hpp"
+#include "vehicle/centerline.hpp"
 
 using namespace mapfuse;
 using namespace mapfuse::vehicle;

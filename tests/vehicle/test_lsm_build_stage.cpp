@@ -9,8 +9,8 @@
 #include "mapfuse/io/drive_frames.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/stages/lsm_build.hpp"
-#include "mapfuse/vehicle/centerline.hpp"
 #include "sim_fixture.hpp"
+#include "vehicle/centerline.hpp"
 
 using namespace mapfuse;
 namespace fs = std::filesystem;

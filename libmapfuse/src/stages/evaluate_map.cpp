@@ -6,11 +6,10 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/eval/input_problems.hpp"
-#include "mapfuse/geo/origin.hpp"
+#include "mapfuse/eval/scored_truth.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_view.hpp"
-#include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/map_png.hpp"
 #include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
@@ -26,32 +25,6 @@ void checkInputs(const EvaluateMapInputs& in) {
                      " maps, " + std::to_string(in.traversals.size()) + " values)");
   if (!in.lsms.empty() && in.truth_trajectories.empty())
     throw InputError("--lsm needs --truth-trajectories (folder of <drive>.trajectory.json)");
-}
-
-// The poses of the true trajectories (every <drive>.trajectory.json of --truth-trajectories, in
-// name order), which must share the truth map's origin; `files` receives their number.
-std::vector<Pose3> readTruePoses(const EvaluateMapInputs& in, const geo::GeoOrigin& truth_origin,
-                                 std::size_t* files) {
-  const auto trajectories = eval::readTrueTrajectories(in.truth_trajectories);
-  std::vector<Pose3> poses;
-  for (const auto& [file, t] : trajectories) {
-    if (!geo::sameOrigin(t.origin, truth_origin))
-      throw InputError(file.string() + ": origin differs from the truth map " + in.truth);
-    for (const auto& p : t.poses) poses.push_back(p.T_enu_body);
-  }
-  *files = trajectories.size();
-  return poses;
-}
-
-// The trajectory of an aligned LSM against its drive's true trajectory.
-eval::TrajectoryMetrics compareLsm(const std::string& file, const EvaluateMapInputs& in,
-                                   const eval::TrajectoryEvalSettings& s) {
-  const Lsm lsm = io::readLsm(file);
-  const auto truth_file =
-      std::filesystem::path(in.truth_trajectories) / (lsm.drive_id + ".trajectory.json");
-  if (!std::filesystem::exists(truth_file))
-    throw IoError(truth_file.string(), "true trajectory of drive '" + lsm.drive_id + "' not found");
-  return eval::compareTrajectory(lsm, eval::readTrueTrajectory(truth_file), s.rpe_distance, file);
 }
 
 // evaluate.md and the plots: error per class of the last map, the last map in colour over the
@@ -96,8 +69,7 @@ nlohmann::json toJson(const EvaluateMapRun& run) {
 int traversalsOf(const std::filesystem::path& map_file, const VectorMap& map) {
   const auto summary = map_file.parent_path() / "aggregate.summary.json";
   if (std::filesystem::exists(summary)) {
-    // Checked like every reader: a summary that has inputs.drives must hold a count there (it
-    // was narrowed to int unchecked: 4294967301 drives read as 5).
+    // checked like every reader (unchecked, 4294967301 drives were read as 5)
     const io::Json j = io::readDocument(summary);
     const io::JsonView doc(j, summary.string());
     if (const auto inputs = doc.find("inputs"))
@@ -114,32 +86,26 @@ EvaluateMapRun runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
   validateParams(params);
   checkInputs(in);
   io::OutputTransaction outputs(out_dir);  // locked and writable before the work
-  EvaluateMapRun run;
-  run.truth = in.truth;
-  VectorMap truth = io::readVectorMap(in.truth);
-  VectorMap unscored;  // truth outside the drives' view: map elements there are not scored
-  unscored.origin = truth.origin;
-  if (!in.truth_trajectories.empty() && params.coverage.lateral > 0) {
-    // score only what the drives could see: truth near the true trajectories
-    const auto poses = readTruePoses(in, truth.origin, &run.coverage_trajectories);
-    truth = eval::clipToCoverage(truth, poses, params.coverage, &unscored);
-  }
+  eval::ScoredTruth scored = eval::scoredTruth(io::readVectorMap(in.truth), in.truth,
+                                               in.truth_trajectories, params.coverage);
+  EvaluateMapRun run{in.truth, scored.coverage_trajectories, {}, {}, {}};
+  const VectorMap& truth = scored.scored;
   VectorMap last_map;
   for (std::size_t i = 0; i < in.maps.size(); ++i) {
-    // in the truth's ENU once, for the metrics and the picture
-    const VectorMap map = eval::inOrigin(io::readVectorMap(in.maps[i]), truth.origin);
+    const VectorMap map = eval::inOrigin(io::readVectorMap(in.maps[i]), truth.origin);  // once
     last_map = map;
     eval::MapReportEntry e;
-    e.name = std::filesystem::path(in.maps[i]).filename().string();
-    if (in.maps.size() > 1) e.name = in.maps[i];
+    e.name =
+        in.maps.size() > 1 ? in.maps[i] : std::filesystem::path(in.maps[i]).filename().string();
     e.traversals = in.traversals.empty() ? traversalsOf(in.maps[i], map) : in.traversals[i];
     eval::warnOrRefuse(eval::mapEvaluationProblems(map, in.maps[i], truth, in.truth), params.strict,
                        "evaluate map", run.problems);
-    e.metrics = eval::evaluateMap(map, truth, params.metrics, &unscored);
+    e.metrics = eval::evaluateMap(map, truth, params.metrics, &scored.unscored);
     run.maps.push_back(std::move(e));
   }
-  for (const auto& f : in.lsms) run.trajectories.push_back(compareLsm(f, in, params.trajectories));
-
+  for (const auto& f : in.lsms)
+    run.trajectories.push_back(
+        eval::compareLsmToTruth(f, in.truth_trajectories, params.trajectories));
   std::filesystem::create_directories(out_dir);
   writeReport(out_dir, run, last_map, truth);
   io::writeResolvedConfig(out_dir, "evaluate", paramsToJson(params));

@@ -1,7 +1,6 @@
 #include "mapfuse/stages/localize.hpp"
 
 #include <map>
-#include <memory>
 
 #include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
@@ -9,7 +8,6 @@
 #include "mapfuse/core/parallel_for.hpp"
 #include "mapfuse/core/progress.hpp"
 #include "mapfuse/eval/map_metrics.hpp"
-#include "mapfuse/geo/origin.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/lsm_io.hpp"
@@ -17,6 +15,7 @@
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
 #include "mapfuse/localize/lost_causes.hpp"
+#include "mapfuse/localize/maps_by_origin.hpp"
 #include "mapfuse/localize/report.hpp"
 
 namespace mapfuse::stages {
@@ -36,11 +35,11 @@ LocalizeRun runLocalize(const LocalizeInputs& in, const std::filesystem::path& o
   const std::vector<Lsm> lsms = io::readLsmInputs(in.lsms);  // duplicates refused (exit 2)
   const std::size_t n = lsms.size();
   std::vector<localize::DriveObservations> obs;
-  std::vector<std::shared_ptr<const localize::MapIndex>> index(n);  // the map in each drive's ENU
+  std::vector<localize::MapInDriveFrame> map_of(n);  // the map in each drive's ENU
   std::vector<const eval::TrueTrajectory*> true_of(n, nullptr);
   std::optional<VectorMap> truth_map;
   if (!in.truth_map.empty()) truth_map = io::readVectorMap(in.truth_map);
-  std::vector<std::optional<localize::MapToTruth>> map_to_truth(n);
+  localize::MapsByOrigin maps(file_map, truth_map, params.localize);
   for (std::size_t i = 0; i < n; ++i) {  // every input checked before the work
     if (lsms[i].keyframes.empty())
       throw InputError(in.lsms[i] + ": field 'keyframes': no keyframes: nothing to localise");
@@ -49,21 +48,7 @@ LocalizeRun runLocalize(const LocalizeInputs& in, const std::filesystem::path& o
           localize::observationsOf(lsms[i], params.localize.match_attributes, in.lsms[i]));
     else
       obs.push_back(frameLevelObservations(in, lsms[i], params));
-    for (std::size_t j = 0; j < i && !index[i]; ++j)
-      if (geo::sameOrigin(*lsms[j].origin, *lsms[i].origin)) {
-        index[i] = index[j];
-        map_to_truth[i] = map_to_truth[j];
-      }
-    if (!index[i]) {
-      const VectorMap map = eval::inOrigin(file_map, *lsms[i].origin);
-      index[i] = std::make_shared<localize::MapIndex>(map, params.localize.match_attributes);
-      if (truth_map)
-        map_to_truth[i] = localize::estimateMapToTruth(
-            map,
-            localize::MapIndex(eval::inOrigin(*truth_map, *lsms[i].origin),
-                               params.localize.match_attributes),
-            params.localize);
-    }
+    map_of[i] = maps.at(*lsms[i].origin);
     if (in.truth_trajectories.empty()) continue;
     const auto t = truth.find(lsms[i].drive_id);
     if (t == truth.end())
@@ -82,14 +67,14 @@ LocalizeRun runLocalize(const LocalizeInputs& in, const std::filesystem::path& o
     LocalizedDrive& d = run.drives[i];
     d.file = in.lsms[i];
     d.drive_id = lsms[i].drive_id;
-    d.result = localize::localizeDrive(*index[i], obs[i], settings);
+    d.result = localize::localizeDrive(*map_of[i].index, obs[i], settings);
     if (params.smoother.solve == "full_drive")
-      localize::smoothDrive(*index[i], obs[i], settings, params.smoother, d.result);
-    d.map_to_truth = map_to_truth[i];
+      localize::smoothDrive(*map_of[i].index, obs[i], settings, params.smoother, d.result);
+    d.map_to_truth = map_of[i].map_to_truth;
     if (true_of[i])
       d.errors = localize::localizeErrors(
           d.result, *true_of[i], *lsms[i].origin, d.file,
-          map_to_truth[i] ? map_to_truth[i]->T_truth_map : Pose3::Identity());
+          map_of[i].map_to_truth ? map_of[i].map_to_truth->T_truth_map : Pose3::Identity());
     progress.advance();
   });
   for (std::size_t i = 0; i < n; ++i) {

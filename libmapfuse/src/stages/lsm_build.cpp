@@ -10,6 +10,7 @@
 #include "mapfuse/io/picture_key.hpp"
 #include "mapfuse/io/png_frames.hpp"
 #include "mapfuse/io/stage_report.hpp"
+#include "mapfuse/vehicle/lsm_build_summary.hpp"
 #include "mapfuse/vehicle/render_topdown.hpp"
 
 namespace mapfuse::stages {
@@ -30,65 +31,8 @@ cv::Mat renderLsm(const LoadedDrive& drive, const Lsm& lsm) {
 
 }  // namespace
 
-nlohmann::json toJson(const vehicle::LsmBuildResult& r) {
-  return {{"frames", r.frames},
-          {"keyframes", r.keyframes},
-          {"vp_frames", r.vp_frames},
-          {"mean_pitch_correction_rad", r.mean_pitch_correction},
-          {"vp_calibration",
-           {{"pitch_rad", r.vp.fallback ? 0.0 : r.vp.median},
-            {"estimated_pitch_rad", r.vp.median},
-            {"spread_rad", r.vp.spread},
-            {"standard_error_rad", r.vp.standard_error},
-            {"supporting_frames", r.vp.accepted},
-            {"frames_with_vp", r.vp.estimates},
-            {"rejected_curve", r.vp.rejected_curve},
-            {"rejected_azimuth", r.vp.rejected_azimuth},
-            {"rejected_no_look_ahead", r.vp.rejected_no_look_ahead},
-            {"azimuth_offset_rad", r.vp.azimuth_offset},
-            {"fallback", r.vp.fallback},
-            {"fallback_reason", r.vp.fallback_reason}}},
-          {"body_tilt",
-           {{"source", r.tilt.source},
-            {"weighting", r.tilt.weighting},
-            {"window_s", r.tilt.window},
-            {"moves_height", r.tilt.moves_height},
-            {"frames", r.tilt.frames},
-            {"pitch_rms_rad", r.tilt.pitch_rms},
-            {"roll_rms_rad", r.tilt.roll_rms},
-            {"pitch_max_rad", r.tilt.pitch_max},
-            {"roll_max_rad", r.tilt.roll_max},
-            {"height_change_rms_m", r.tilt.height_change_rms}}},
-          {"ego_motion_vs_gps",
-           {{"fixes", r.gps_agreement.samples},
-            {"length_m", r.gps_agreement.length},
-            {"horizontal_rms_m", r.gps_agreement.horizontal_rms},
-            {"vertical_rms_m", r.gps_agreement.vertical_rms},
-            {"vertical_slope", r.gps_agreement.vertical_slope},
-            {"scale_error", r.gps_agreement.scale_error}}},
-          {"ranged_markings", r.ranged_markings},
-          {"ranged_points", r.ranged_points},
-          {"ranged_on_path", r.ranged_on_path},
-          {"ground_instances", r.assembly.ground_instances},
-          {"ground_instances_dropped", r.assembly.ground_dropped},
-          {"line_samples", r.assembly.line_samples},
-          {"line_samples_dropped_sigma", r.assembly.line_samples_dropped},
-          {"aerial_tracks", r.aerial_tracks},
-          {"aerial_triangulated", r.aerial_triangulated},
-          {"aerial_rejected", r.aerial_rejected},
-          {"aerial_unassociated_observations", r.aerial_unassociated_observations},
-          {"elements", r.lsm.elements.size()},
-          {"gps_fixes", r.lsm.gps.size()},
-          {"seconds",
-           {{"calibration", r.seconds_calibration},
-            {"ranging", r.seconds_ranging},
-            {"triangulation", r.seconds_triangulation},
-            {"assembly", r.seconds_assembly},
-            {"total", r.seconds_total}}}};
-}
-
 nlohmann::json toJson(const LsmBuildRun& run) {
-  nlohmann::json summary = toJson(run.build);
+  nlohmann::json summary = vehicle::toJson(run.build);
   summary["drive_id"] = run.drive_id;
   summary["input_kind"] = run.input_kind;
   summary["semantics"] = run.semantics;

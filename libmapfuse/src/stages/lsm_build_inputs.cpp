@@ -1,53 +1,15 @@
 // lsm-build's input half: reads a drive into a LoadedDrive (calibration, stamps, ego-motion,
 // semantics), whatever the layout; the KITTI raw layout is in lsm_build_kitti.cpp.
-#include <atomic>
-#include <exception>
-
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
-#include "mapfuse/core/progress.hpp"
 #include "mapfuse/io/drive_frames.hpp"
 #include "mapfuse/stages/lsm_build.hpp"
-#include "mapfuse/vehicle/centerline.hpp"
 #include "mapfuse/vehicle/ego_motion.hpp"
 #include "mapfuse/vehicle/flow_association.hpp"
+#include "mapfuse/vehicle/mask_observations.hpp"
 
 namespace mapfuse::stages {
 namespace fs = std::filesystem;
-namespace {
-
-/// Ground observations from the mask PNGs, frame-parallel; the first bad mask stops the work.
-void readMasks(const LsmBuildInputs& in, const LsmBuildParams& p, const io::DriveFrames& df,
-               LoadedDrive& d) {
-  d.frames.resize(df.frames.size());
-  std::vector<std::exception_ptr> errors(df.frames.size());
-  Progress progress("masks", df.frames.size());
-  std::atomic<bool> failed{false};
-#pragma omp parallel for schedule(dynamic)
-  for (int i = 0; i < int(df.frames.size()); ++i) {
-    if (failed) continue;
-    try {
-      if (df.frames[i].mask.empty())
-        throw ParseError((in.drive / "frames.csv").string(), "frame " + std::to_string(i),
-                         "no mask file named");
-      const cv::Mat mask = io::readMask(df.frames[i].mask, d.calib.width, d.calib.height);
-      d.frames[i].index = df.frames[i].index;
-      d.frames[i].stamp = df.frames[i].stamp;
-      d.frames[i].ground = vehicle::observationsFromMask(mask, p.perception.mask_min_area);
-      // Aerial boxes come only from observations.jsonl.
-      if (!df.observations.empty()) d.frames[i].aerial = df.observations[i].aerial;
-    } catch (...) {
-      errors[i] = std::current_exception();
-      failed = true;
-    }
-    progress.advance();
-  }
-  for (const auto& e : errors)  // the first failure, with its original type
-    if (e) std::rethrow_exception(e);
-}
-
-}  // namespace
-
 void loadPosesFile(const LsmBuildInputs& in, const LsmBuildParams& p, LoadedDrive& d) {
   if (in.poses.empty()) throw InputError("egomotion = poses needs a poses file (--poses)");
   const bool velo = p.poses_frame == "velo";
@@ -82,7 +44,8 @@ void loadFramesDrive(const LsmBuildInputs& in, const LsmBuildParams& p, LoadedDr
       throw InputError(in.drive.string() + ": semantics = observations but no observations file");
     d.frames = std::move(df.observations);
   } else if (d.semantics == "masks") {
-    readMasks(in, p, df, d);
+    d.frames = vehicle::observationsFromMaskFiles(df, in.drive, d.calib.width, d.calib.height,
+                                                  p.perception.mask_min_area);
   } else {
     refuseLsmBuildParam("semantics", d.semantics, "a frames folder supports observations or masks");
   }

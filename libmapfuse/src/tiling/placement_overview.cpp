@@ -29,4 +29,45 @@ PlacementOverview overviewOfShifts(const std::map<GroupKey, Eigen::Vector3d>& sh
   return o;
 }
 
+namespace {
+
+nlohmann::json toJson(const Eigen::Vector3d& v) {
+  return {v.x(), v.y(), v.z()};
+}
+
+nlohmann::json toJson(const std::vector<GroupShift>& groups) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& g : groups)
+    out.push_back({{"tile", g.group.tile.name()},
+                   {"group", g.group.group},
+                   {"pieces", g.pieces},
+                   {"shift_m", toJson(g.shift)}});
+  return out;
+}
+
+nlohmann::json toJson(const std::vector<TileShift>& tiles) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& t : tiles)
+    out[t.tile] = {{"groups", t.groups},
+                   {"largest_group_pieces", t.largest.pieces},
+                   {"largest_group_shift_m", toJson(t.largest.shift)}};
+  return out;
+}
+
+}  // namespace
+
+nlohmann::json placementSummary(const PlacementReport& report, const PlacementOverview& overview) {
+  return {{"tiles", report.tiles},
+          {"groups", report.groups},
+          {"single_piece_groups", overview.single_piece_groups},
+          {"pieces", report.pieces},
+          {"drives", report.drives},
+          {"keyframes", report.keyframes},
+          {"downweighted_pieces", report.downweighted},
+          {"rms_residual_m", report.rms_residual},
+          {"max_shift_m", report.max_shift},
+          {"largest_shifts", toJson(overview.largest_shifts)},
+          {"per_tile", toJson(overview.per_tile)}};
+}
+
 }  // namespace mapfuse::tiling

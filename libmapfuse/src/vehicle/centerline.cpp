@@ -1,4 +1,4 @@
-#include "mapfuse/vehicle/centerline.hpp"
+#include "centerline.hpp"
 
 #include <opencv2/imgproc.hpp>
 

@@ -7,11 +7,11 @@
 #include <opencv2/imgproc.hpp>
 #include <optional>
 
+#include "centerline.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/progress.hpp"
 #include "mapfuse/io/atomic_file.hpp"
 #include "mapfuse/io/png_decode.hpp"
-#include "mapfuse/vehicle/centerline.hpp"
 #include "segmentation_cache.hpp"
 
 namespace mapfuse::vehicle {

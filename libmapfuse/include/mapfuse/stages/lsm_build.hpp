@@ -113,10 +113,8 @@ struct LsmBuildRun {
   vehicle::LaneStyleCounts lane_styles;          ///< segmenter only (LoadedDrive's)
 };
 
-/// @brief The counts and timings of buildLsm, as lsm-build.summary.json holds them.
-nlohmann::json toJson(const vehicle::LsmBuildResult& result);
-
-/// @brief lsm-build.summary.json without the wall time: the drive, its sources and the counts.
+/// @brief lsm-build.summary.json without the wall time: the drive, its sources and the counts
+/// (vehicle::toJson of the build).
 nlohmann::json toJson(const LsmBuildRun& run);
 
 /// @brief Runs the stage: writes <out>/<drive_id>.lsm.<format>, lsm-build.config.json,

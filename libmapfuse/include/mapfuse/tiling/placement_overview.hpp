@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "mapfuse/tiling/placement.hpp"
 
 namespace mapfuse::tiling {
@@ -14,7 +16,7 @@ namespace mapfuse::tiling {
 /// One group of pieces and its move.
 struct GroupShift {
   GroupKey group;
-  int pieces = 0;                                 ///< drive pieces in the group
+  int pieces = 0;                                   ///< drive pieces in the group
   Eigen::Vector3d shift = Eigen::Vector3d::Zero();  ///< m, ENU
 };
 
@@ -35,5 +37,9 @@ struct PlacementOverview {
 /// pieces; `count` largest moves are listed.
 PlacementOverview overviewOfShifts(const std::map<GroupKey, Eigen::Vector3d>& shifts,
                                    const std::map<GroupKey, int>& group_size, std::size_t count);
+
+/// @brief balance.summary.json's account of the placement (docs/tiling.md): the report's counts
+/// and residual, the largest group moves and the per-tile overview.
+nlohmann::json placementSummary(const PlacementReport& report, const PlacementOverview& overview);
 
 }  // namespace mapfuse::tiling

@@ -1,0 +1,42 @@
+#include "mapfuse/eval/scored_truth.hpp"
+
+#include "mapfuse/core/error.hpp"
+#include "mapfuse/geo/origin.hpp"
+#include "mapfuse/io/lsm_io.hpp"
+
+namespace mapfuse::eval {
+
+ScoredTruth scoredTruth(VectorMap truth, const std::string& truth_name,
+                        const std::filesystem::path& truth_trajectories,
+                        const CoverageWedge& coverage) {
+  ScoredTruth out;
+  out.unscored.origin = truth.origin;
+  if (truth_trajectories.empty() || coverage.lateral <= 0) {
+    out.scored = std::move(truth);
+    return out;
+  }
+  // score only what the drives could see: truth near the true trajectories, which must share
+  // the truth map's origin
+  const auto trajectories = readTrueTrajectories(truth_trajectories.string());
+  std::vector<Pose3> poses;
+  for (const auto& [file, t] : trajectories) {
+    if (!geo::sameOrigin(t.origin, truth.origin))
+      throw InputError(file.string() + ": origin differs from the truth map " + truth_name);
+    for (const auto& p : t.poses) poses.push_back(p.T_enu_body);
+  }
+  out.coverage_trajectories = trajectories.size();
+  out.scored = clipToCoverage(truth, poses, coverage, &out.unscored);
+  return out;
+}
+
+TrajectoryMetrics compareLsmToTruth(const std::string& lsm_file,
+                                    const std::filesystem::path& truth_trajectories,
+                                    const TrajectoryEvalSettings& settings) {
+  const Lsm lsm = io::readLsm(lsm_file);
+  const auto truth_file = truth_trajectories / (lsm.drive_id + ".trajectory.json");
+  if (!std::filesystem::exists(truth_file))
+    throw IoError(truth_file.string(), "true trajectory of drive '" + lsm.drive_id + "' not found");
+  return compareTrajectory(lsm, readTrueTrajectory(truth_file), settings.rpe_distance, lsm_file);
+}
+
+}  // namespace mapfuse::eval
