@@ -29,17 +29,21 @@ RangedMarking view(int frame, double bias, double sigma) {
   }
   return m;
 }
-}  // namespace
-
-TEST_CASE("lsm assembly: a line seen near and far lands where the near view puts it") {
-  std::vector<Pose3> poses;
-  std::vector<double> stamps;
+/// 30 frames 1 m apart along x, 0.1 s apart.
+void straightDrive(std::vector<Pose3>& poses, std::vector<double>& stamps) {
   for (int k = 0; k < 30; ++k) {
     Pose3 T = Pose3::Identity();
     T.translation() = Eigen::Vector3d(double(k), 0.0, 0.0);
     poses.push_back(T);
     stamps.push_back(0.1 * k);
   }
+}
+}  // namespace
+
+TEST_CASE("lsm assembly: a line seen near and far lands where the near view puts it") {
+  std::vector<Pose3> poses;
+  std::vector<double> stamps;
+  straightDrive(poses, stamps);
   // Frame 2 sees the stretch 18-22 m ahead, biased; frame 17 sees it 3-7 m ahead.
   const std::vector<RangedMarking> markings = {view(2, kFarBias, kFarSigma),
                                                view(17, 0.0, kNearSigma)};
@@ -59,12 +63,7 @@ TEST_CASE("lsm assembly: a ghost seen only from afar beside a line is not mapped
   // seen only from afar, with nothing sound near it: all there is of that line.
   std::vector<Pose3> poses;
   std::vector<double> stamps;
-  for (int k = 0; k < 30; ++k) {
-    Pose3 T = Pose3::Identity();
-    T.translation() = Eigen::Vector3d(double(k), 0.0, 0.0);
-    poses.push_back(T);
-    stamps.push_back(0.1 * k);
-  }
+  straightDrive(poses, stamps);
   AssemblySettings s;
   // per axis; three frames average to a sample whose horizontal σ is σ √(2/3): 1.6x the gate
   const double far_sigma = 2.0 * s.max_line_sigma;
