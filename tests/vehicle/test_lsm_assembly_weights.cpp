@@ -94,3 +94,59 @@ TEST_CASE("lsm assembly: a ghost seen only from afar beside a line is not mapped
   s.max_line_sigma = 10.0;
   CHECK(assembleLsm(poses, stamps, {0, 10, 20, 29}, markings, {}, s).elements.size() == 3);
 }
+
+TEST_CASE(
+    "lsm assembly: far views spilling past a dash's end are not mapped where the drive passed") {
+  // A dash from 20 to 23 m seen near by two frames; three far frames saw it 1-4 m too far
+  // (their range error runs along the view) and 0.3 m aside: beyond 23 m only they put paint,
+  // where the two near frames, which passed there, saw none. The same spill past a dash ahead of
+  // the drive's last frame is all there is of it and stays.
+  std::vector<Pose3> poses;
+  std::vector<double> stamps;
+  straightDrive(poses, stamps);  // frames at x = 0..29 m
+  const AssemblySettings s;
+  auto dash = [](int frame, double x0, double x1, double bias, double sigma, int64_t track) {
+    RangedMarking m;
+    m.cls = CrowdClass::kLaneLine;
+    m.track_id = track;
+    m.frame = frame;
+    for (double x = x0; x <= x1 + 1e-9; x += 0.25) {
+      m.points.emplace_back(x, kTrueY + bias, 0.0);
+      m.covariances.push_back(Eigen::Vector3d(sigma * sigma, sigma * sigma, 1e-4).asDiagonal());
+    }
+    return m;
+  };
+  constexpr double kSpillSigma = 0.3;  // m: 15x the near one, under max_line_sigma
+  constexpr double kSpillBias = 0.3;   // m aside
+  constexpr double kDashEnd = 23.0;    // m, where the paint ends
+  constexpr double kEndTol = 0.5;      // m: one sample spacing
+  std::vector<RangedMarking> markings = {dash(16, 20.0, kDashEnd, 0.0, kNearSigma, 7),
+                                         dash(17, 20.0, kDashEnd, 0.0, kNearSigma, 7)};
+  for (int f : {1, 2, 3}) markings.push_back(dash(f, 21.0, 27.0, kSpillBias, kSpillSigma, 7));
+  // a dash 30-33 m, beyond the last frame (29 m): seen by frames 27-29, far views reach 36 m
+  for (int f : {27, 28}) markings.push_back(dash(f, 30.0, 33.0, 0.0, kNearSigma, 8));
+  for (int f : {25, 26, 27}) markings.push_back(dash(f, 31.0, 36.0, kSpillBias, kSpillSigma, 8));
+  AssemblyStats st;
+  const Lsm lsm = assembleLsm(poses, stamps, {0, 10, 20, 29}, markings, {}, s, &st);
+  double passed_end = -1e9, ahead_end = -1e9;
+  for (const auto& e : lsm.elements) {
+    const Pose3& anchor = lsm.keyframes[std::size_t(e.anchor)].T_frame_body;
+    for (const auto& pb : e.points_body) {
+      const Eigen::Vector3d p = anchor * pb;
+      if (p.x() < 29.0)
+        passed_end = std::max(passed_end, p.x());
+      else
+        ahead_end = std::max(ahead_end, p.x());
+    }
+  }
+  INFO("passed dash ends at " << passed_end << " m, the dash ahead at " << ahead_end << " m");
+  CHECK(std::abs(passed_end - kDashEnd) <= kEndTol);
+  CHECK(ahead_end >= 36.0 - kEndTol);  // beyond the drive: the far views are all there is
+  CHECK(st.line_samples_spill >= 6);   // 23.5-27 m at 0.5 m spacing
+  // With the ratio opened the spill is mapped: the rule, not the grouping, removed it.
+  AssemblySettings open = s;
+  open.line_end_sigma_ratio = 1000.0;
+  AssemblyStats st_open;
+  assembleLsm(poses, stamps, {0, 10, 20, 29}, markings, {}, open, &st_open);
+  CHECK(st_open.line_samples_spill == 0);
+}

@@ -263,6 +263,60 @@ std::vector<std::vector<Sample>> resampleLines(const std::vector<Instance>& inst
   return out;
 }
 
+/// Index of the frame nearest to p (horizontally).
+std::size_t nearestFrame(const std::vector<Pose3>& poses, const Eigen::Vector3d& p) {
+  std::size_t best = 0;
+  double bd = 1e300;
+  for (std::size_t j = 0; j < poses.size(); ++j) {
+    const double d = (poses[j].translation() - p).head<2>().squaredNorm();
+    if (d < bd) bd = d, best = j;
+  }
+  return best;
+}
+
+/// Far views put a line's end a few metres beyond the paint (their range error grows ~d² and
+/// runs along the view ray); the near views that passed there saw none. At each end of a run of
+/// samples (split at gap_split) whose lower quartile is sound, samples less certain than
+/// line_end_sigma_ratio × that quartile are dropped while the drive passed them: their nearest
+/// frame is neither the first nor the last (beyond the drive's ends the far view is all there
+/// is). `samples` are ordered along the line.
+std::vector<Sample> trimFarSpill(const std::vector<Sample>& samples,
+                                 const std::vector<Pose3>& poses, const AssemblySettings& s,
+                                 int& dropped) {
+  std::vector<bool> keep(samples.size(), true);
+  auto passed = [&](const Sample& smp) {
+    const std::size_t j = nearestFrame(poses, smp.p);
+    return j > 0 && j + 1 < poses.size();
+  };
+  std::size_t begin = 0;
+  for (std::size_t i = 1; i <= samples.size(); ++i) {
+    if (i < samples.size() && samples[i].s - samples[i - 1].s <= s.gap_split) continue;
+    if (i - begin >= 3) {
+      std::vector<double> sig;
+      for (std::size_t j = begin; j < i; ++j) sig.push_back(horizontalSigma(samples[j]));
+      // the run's sound quarter: a spill may be longer than the dash it spills from
+      std::nth_element(sig.begin(), sig.begin() + long(sig.size() / 4), sig.end());
+      const double core = sig[sig.size() / 4];
+      const double limit = s.line_end_sigma_ratio * core;
+      if (core <= s.max_line_sigma) {
+        std::size_t b = begin, e = i;
+        while (b < e && horizontalSigma(samples[b]) > limit && passed(samples[b]))
+          keep[b++] = false;
+        while (e > b && horizontalSigma(samples[e - 1]) > limit && passed(samples[e - 1]))
+          keep[--e] = false;
+      }
+    }
+    begin = i;
+  }
+  std::vector<Sample> out;
+  for (std::size_t j = 0; j < samples.size(); ++j)
+    if (keep[j])
+      out.push_back(samples[j]);
+    else
+      ++dropped;
+  return out;
+}
+
 }  // namespace
 
 Lsm assembleLsm(const std::vector<Pose3>& poses, const std::vector<double>& stamps,
@@ -361,6 +415,7 @@ Lsm assembleLsm(const std::vector<Pose3>& poses, const std::vector<double>& stam
       else
         samples.push_back(smp);
     }
+    samples = trimFarSpill(samples, poses, s, st.line_samples_spill);
     // Split at gaps and at the maximum length.
     std::size_t begin = 0;
     for (std::size_t i = 1; i <= samples.size(); ++i) {

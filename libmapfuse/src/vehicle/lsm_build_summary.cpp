@@ -45,6 +45,7 @@ nlohmann::json toJson(const vehicle::LsmBuildResult& r) {
           {"ground_instances_dropped", r.assembly.ground_dropped},
           {"line_samples", r.assembly.line_samples},
           {"line_samples_dropped_sigma", r.assembly.line_samples_dropped},
+          {"line_samples_dropped_end_spill", r.assembly.line_samples_spill},
           {"aerial_tracks", r.aerial_tracks},
           {"aerial_triangulated", r.aerial_triangulated},
           {"aerial_rejected", r.aerial_rejected},

@@ -41,6 +41,7 @@ struct AssemblySettings {
   double gap_split = 2.0;            ///< m, a gap this long along a line starts a new piece
   int min_observations = 2;          ///< frames needed to keep a ground instance
   double max_line_sigma = 0.5;  ///< m, less certain line samples beside a sounder line are ghosts
+  double line_end_sigma_ratio = 2.5;  ///< far-view spill at a line's ends, × its sound quartile
   double keyframe_sigma_translation = 0.05;  ///< m, keyframe pose 1-sigma written to the LSM
   double keyframe_sigma_rotation = 0.002;    ///< rad
 
@@ -66,6 +67,16 @@ struct AssemblySettings {
       "and that lie within 2 m of a sounder sample of their class (a ghost beside the line seen "
       "near) are not mapped",
       gt(0) & le(1000));
+    // Far views put a line's end (a dash's, a line's at a junction) 1-5 m beyond the paint, with
+    // 2-8x the sigma of the near views (esmini curves_elevation: 0.15-0.5 m against 0.06 m,
+    // 0.1-0.5 m aside on its R = 100 m curves), and the map's dashed line followed them across
+    // every gap.
+    v("line_end_sigma_ratio", line_end_sigma_ratio, "",
+      "at each end of a line with a sound core, samples whose horizontal 1-sigma exceeds this "
+      "multiple of the line's lower-quartile sigma are not mapped where the drive passed them "
+      "(near views "
+      "saw no paint there); beyond the drive's first or last frame they are kept",
+      ge(1) & le(1000));
     v("keyframe_sigma_translation", keyframe_sigma_translation, "m", "keyframe pose sigma",
       gt(0) & le(100));
     v("keyframe_sigma_rotation", keyframe_sigma_rotation, "rad", "keyframe pose sigma",
@@ -79,6 +90,7 @@ struct AssemblyStats {
   int elements = 0;              ///< elements written
   int line_samples = 0;          ///< resampled line points before the sigma gate
   int line_samples_dropped = 0;  ///< of those, ghosts (above max_line_sigma, beside sound ones)
+  int line_samples_spill = 0;    ///< of those, far-view spill past a line's end
 };
 
 /// @brief Builds the LSM. `frame_poses` are T_odom_body per frame, `keyframes` indices into
