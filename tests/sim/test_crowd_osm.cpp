@@ -1,9 +1,11 @@
 // Lanelet2 OSM reader and the World built from it (tests for issue 3, simulate).
+#include <Eigen/Core>
 #include <catch2/catch.hpp>
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/lanelet2_osm.hpp"
 #include "mapfuse/sim/lanelet2_world.hpp"
+#include "sim/sign_posts.hpp"
 #include "support/test_support.hpp"
 
 using namespace mapfuse;
@@ -70,7 +72,24 @@ TEST_CASE("Lanelet2: Karlsruhe example map counts", "[sim][osm]") {
   CHECK(count[CrowdClass::kTrafficSign] == 11);
   CHECK(count[CrowdClass::kTrafficLight] == 10);
   CHECK(count[CrowdClass::kCrosswalk] == 8);
-  CHECK(count[CrowdClass::kPole] == 21);  // placed under every sign and light
+  // Placed under the signs and lights: 21 of them on 15 posts (six mounted 0.2-0.6 m beside
+  // another share its post). Every sign and light stands on one; no two posts closer than 1 m.
+  CHECK(count[CrowdClass::kPole] == 15);
+  std::vector<Eigen::Vector2d> poles;
+  for (const auto& m : world.truth.instances)
+    if (m.cls == CrowdClass::kPole) poles.push_back(m.points.front().head<2>());
+  for (std::size_t i = 0; i < poles.size(); ++i)
+    for (std::size_t j = i + 1; j < poles.size(); ++j)
+      CHECK((poles[i] - poles[j]).norm() >= sim::kSharedPostRadius);
+  for (const auto& m : world.truth.instances) {
+    if (m.cls != CrowdClass::kTrafficSign && m.cls != CrowdClass::kTrafficLight) continue;
+    Eigen::Vector2d base = Eigen::Vector2d::Zero();
+    for (const auto& p : m.points) base += p.head<2>();
+    base /= double(m.points.size());
+    double nearest = 1e9;
+    for (const auto& q : poles) nearest = std::min(nearest, (q - base).norm());
+    CHECK(nearest < sim::kSharedPostRadius);
+  }
   CHECK(count[CrowdClass::kGroundArrow] > 0);
   // The lane graph is connected: most lanes have a successor.
   int with_successor = 0;

@@ -10,6 +10,7 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/io/bounds.hpp"
+#include "sign_posts.hpp"
 #include "truth_counts.hpp"
 
 namespace mapfuse::sim {
@@ -89,7 +90,8 @@ struct L2Builder {
   IdAllocator ids;
   bool map_has_poles = false;
   int lines = 0, stops = 0, signs = 0, lights = 0, boundaries = 0, crossing_lines = 0;
-  int poles = 0, map_arrows = 0, drivable = 0;
+  int poles = 0, map_arrows = 0, drivable = 0, placed_poles = 0;
+  SignPosts posts;  ///< signs and lights mounted together share one placed pole
   std::map<int64_t, std::pair<int64_t, int64_t>> line_ends;  // lane-line instance -> end nodes
 
   L2Builder(const io::Lanelet2Map& m, const geo::GeoOrigin& origin, const Lanelet2Assumptions& a,
@@ -247,9 +249,11 @@ struct L2Builder {
     add(w.id, CrowdClass::kTrafficSign,
         {a + bottom * up, b + bottom * up, b + (bottom + size) * up, a + (bottom + size) * up},
         h ? "" : "mounting height assumed by simulator");
-    if (!map_has_poles)
+    if (!map_has_poles && posts.claim(0.5 * (a + b))) {
       add(ids.fresh(), CrowdClass::kPole, {0.5 * (a + b)}, "placed by simulator under a sign")
           .height = bottom + size;
+      ++placed_poles;
+    }
     ++signs;
   }
 
@@ -260,9 +264,11 @@ struct L2Builder {
     add(w.id, CrowdClass::kTrafficLight, {c + Eigen::Vector3d(0, 0, bottom)},
         h ? "" : "mounting height assumed by simulator")
         .height = h ? *h : A.light_height;
-    if (!map_has_poles)
+    if (!map_has_poles && posts.claim(c)) {
       add(ids.fresh(), CrowdClass::kPole, {c}, "placed by simulator under a traffic light").height =
           A.light_bottom;
+      ++placed_poles;
+    }
     ++lights;
   }
 
@@ -405,9 +411,8 @@ World worldFromLanelet2(const io::Lanelet2Map& map, const geo::GeoOrigin& origin
   world.stats["arrows_mapped"] = B.map_arrows;
   world.stats["untyped_ways_as_virtual"] = map.untyped_ways;
   world.stats["skipped_ways"] = detail::totalOf(map.skipped_way_types);
-  detail::TruthCounts{
-      B.lines, B.stops, B.signs, B.lights, B.poles, B.map_has_poles ? 0 : B.signs + B.lights, joins}
-      .writeTo(world.stats);
+  detail::TruthCounts{B.lines, B.stops, B.signs, B.lights, B.poles, B.placed_poles, joins}.writeTo(
+      world.stats);
   world.stats["skipped_relations"] = detail::totalOf(map.skipped_relation_types);
   return world;
 }

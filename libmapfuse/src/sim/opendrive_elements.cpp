@@ -7,6 +7,7 @@
 
 #include "line_chains.hpp"
 #include "opendrive_internal.hpp"
+#include "sign_posts.hpp"
 #include "truth_counts.hpp"
 
 namespace mapfuse::sim::detail {
@@ -198,8 +199,10 @@ void addOpenDriveElements(const OdrContext& ctx, World& world) {
   }
   // Poles under signs and lights when the map has none of its own.
   int placed_poles = 0;
+  SignPosts posts;  // signs and lights mounted together share one pole
   if (!map_has_poles)
     for (const auto& [base, height] : B.pole_requests) {
+      if (!posts.claim(ctx.toEnu(base))) continue;
       B.add(CrowdClass::kPole, {ctx.toEnu(base)}, "placed by simulator under a sign or light")
           .height = height;
       ++placed_poles;
