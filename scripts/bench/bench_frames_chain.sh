@@ -43,11 +43,13 @@ PY
     echo "bench_frames_chain: $level $n done" >&2
   done
 done
-# the section bench_vp_calibration.sh writes into the same page survives this rewrite
+# the sections bench_vp_calibration.sh and bench_frames_worlds.sh write into the same page
+# survive this rewrite
 doc="$root/docs/performance-frames-chain.md"
 keep="$work/vp-section.md"
 if [[ -f $doc ]]; then
-  sed -n '/<!-- vp-calibration begin/,/<!-- vp-calibration end -->/p' "$doc" > "$keep"
+  sed -n -e '/<!-- vp-calibration begin/,/<!-- vp-calibration end -->/p' \
+    -e '/<!-- frames-worlds begin/,/<!-- frames-worlds end -->/p' "$doc" > "$keep"
 else
   : > "$keep"
 fi
