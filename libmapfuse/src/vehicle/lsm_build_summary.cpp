@@ -15,6 +15,7 @@ nlohmann::json toJson(const vehicle::LsmBuildResult& r) {
             {"supporting_frames", r.vp.accepted},
             {"frames_with_vp", r.vp.estimates},
             {"rejected_curve", r.vp.rejected_curve},
+            {"rejected_vertical_curve", r.vp.rejected_vertical_curve},
             {"rejected_azimuth", r.vp.rejected_azimuth},
             {"rejected_no_look_ahead", r.vp.rejected_no_look_ahead},
             {"azimuth_offset_rad", r.vp.azimuth_offset},

@@ -1,5 +1,6 @@
 #include "mapfuse/vehicle/vp_gate.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 
@@ -11,6 +12,25 @@ double median(std::vector<double> v) {
   const std::size_t mid = v.size() / 2;
   std::nth_element(v.begin(), v.begin() + mid, v.end());
   return v[mid];
+}
+
+/// The road's grade change over the path from frame i to frame j: z(s) = a s² + b s + c fitted
+/// by least squares to the heights of the path (not the body's pitch, which the suspension
+/// rocks by 0.01 rad at ~0.7 Hz: the body tilt, not the road), |2 a (s_j - s_i)|.
+double gradeChange(const std::vector<Pose3>& T, const std::vector<double>& s, std::size_t i,
+                   std::size_t j) {
+  if (j < i + 3) return 0.0;
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  const double z0 = T[i].translation().z();
+  for (std::size_t k = i; k <= j; ++k) {
+    const double u = s[k] - s[i];
+    const Eigen::Vector3d row(u * u, u, 1.0);
+    A += row * row.transpose();
+    b += row * (T[k].translation().z() - z0);
+  }
+  const Eigen::Vector3d coef = A.ldlt().solve(b);
+  return std::abs(2.0 * coef(0) * (s[j] - s[i]));
 }
 
 }  // namespace
@@ -33,6 +53,7 @@ std::vector<LookAhead> lookAheadMotion(const std::vector<Pose3>& T, double dista
       const Eigen::Vector3d x = Ri_t * T[k].linear().col(0);  // body k's forward axis in body i
       a.heading_change = std::max(a.heading_change, std::abs(std::atan2(x.y(), x.x())));
     }
+    a.pitch_change = gradeChange(T, s, i, j);
     const Eigen::Vector3d chord = Ri_t * (T[j].translation() - T[i].translation());
     if (chord.norm() > 1e-9) a.direction_body = chord.normalized();
   }
@@ -52,7 +73,7 @@ VpCalibration gateVanishingPoints(const std::vector<std::optional<VanishingEstim
   const std::size_t n = est.size();
   VpCalibration out;
   out.corrections.assign(n, 0.0);
-  // 1. Straight look-ahead; the azimuth of the VP against that of the motion.
+  // 1. Straight and even look-ahead; the azimuth of the VP against that of the motion.
   std::vector<std::optional<double>> azimuth(n);
   std::vector<double> offsets;
   for (std::size_t i = 0; i < n; ++i) {
@@ -64,6 +85,10 @@ VpCalibration gateVanishingPoints(const std::vector<std::optional<VanishingEstim
     }
     if (motion[i].heading_change > s.max_heading_change) {
       ++out.rejected_curve;
+      continue;
+    }
+    if (motion[i].pitch_change > s.max_pitch_change) {
+      ++out.rejected_vertical_curve;
       continue;
     }
     const Eigen::Vector3d motion_cam = R_cam_body * motion[i].direction_body;
