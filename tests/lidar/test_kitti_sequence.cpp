@@ -7,8 +7,8 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/kitti_calib.hpp"
-#include "mapfuse/io/kitti_raw.hpp"
 #include "mapfuse/io/kitti_poses.hpp"
+#include "mapfuse/io/kitti_raw.hpp"
 #include "mapfuse/io/png_frames.hpp"
 #include "mapfuse/io/semantic_image.hpp"
 #include "mapfuse/io/semantic_kitti.hpp"
@@ -78,6 +78,10 @@ TEST_CASE("a KITTI odometry sequence folder opens like a raw drive", "[lidar][io
   CHECK_THROWS_WITH(io::openKittiRawDrive(seq, {}), Catch::Contains("times.txt") &&
                                                         Catch::Contains("line 3") &&
                                                         Catch::Contains("goes back"));
+  test::writeText(seq / "times.txt", "0.0\n0.1\n0.2\n2e10\n2.1e10\n2.2e10\n");
+  CHECK_THROWS_WITH(io::openKittiRawDrive(seq, {}), Catch::Contains("times.txt") &&
+                                                        Catch::Contains("line 4") &&
+                                                        Catch::Contains("outside"));
   test::writeText(seq / "times.txt", "0.0\n0.1\n0.2\n");
   CHECK_THROWS_WITH(io::openKittiRawDrive(seq, {}), Catch::Contains("times.txt") &&
                                                         Catch::Contains("line 4") &&

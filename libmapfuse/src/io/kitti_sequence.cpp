@@ -7,6 +7,7 @@
 
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/io/atomic_file.hpp"
+#include "mapfuse/io/bounds.hpp"
 
 namespace mapfuse::io {
 namespace fs = std::filesystem;
@@ -27,7 +28,8 @@ bool pngSize(const fs::path& path, int* w, int* h) {
   return *w > 0 && *h > 0;
 }
 
-/// times.txt: one time in seconds per line, never going back; empty when absent.
+/// times.txt: one time in seconds per line, within ±bounds::kMaxStamp, never going back; empty
+/// when absent.
 std::vector<double> readTimes(const fs::path& path) {
   std::vector<double> out;
   if (!fs::exists(path)) return out;
@@ -46,6 +48,10 @@ std::vector<double> readTimes(const fs::path& path) {
       throw ParseError(path.string(), "line " + std::to_string(n),
                        "not a time in seconds: '" + line + "'");
     }
+    if (std::abs(out.back()) > bounds::kMaxStamp)  // the stamps of every other input (bounds.hpp)
+      throw ParseError(path.string(), "line " + std::to_string(n),
+                       "time " + bounds::numberText(out.back()) + " s is outside +-" +
+                           bounds::numberText(bounds::kMaxStamp) + " s");
     if (out.size() > 1 && out.back() < out[out.size() - 2])
       throw ParseError(path.string(), "line " + std::to_string(n),
                        "time goes back (" + std::to_string(out.back()) + " s after " +
