@@ -2,6 +2,8 @@
 #include <cmath>
 
 #include "lanelet/kinks.hpp"
+#include "mapfuse/lanelet/plan.hpp"
+#include "mapfuse/lanelet/settings.hpp"
 
 using namespace mapfuse;
 using Vec3 = Eigen::Vector3d;
@@ -64,4 +66,34 @@ TEST_CASE("kinks: a fold-back like the demo map's is removed, a real curve is ke
   const auto coarse = removeKinks(arc, 0.1);
   CHECK(coarse.size() < arc.size());
   CHECK(worstBend(coarse).first <= 0.1);
+}
+
+TEST_CASE("kinks: a connector turning within metres keeps its bounds under the curvature limit",
+          "[lanelet]") {
+  // Road A runs east to x = 0 (lines at y = 0 and 3.5); road B leaves northwards from y = 6 (lines
+  // at x = 6 and 9.5); drives turn left from one to the other over the unmarked 6 m between
+  // (MONAEast at the frames level: a connector bound bent 45 degrees over 0.65 m).
+  auto line = [](int64_t id, Vec3 a, Vec3 b) {
+    MapInstance m;
+    m.id = id;
+    m.cls = CrowdClass::kLaneLine;
+    for (double t = 0.0; t <= 1.0 + 1e-9; t += 0.01) m.points.push_back(a + t * (b - a));
+    return m;
+  };
+  VectorMap map;
+  map.instances = {line(1, {-50, 0, 0}, {0, 0, 0}), line(2, {-50, 3.5, 0}, {0, 3.5, 0}),
+                   line(3, {6, 6, 0}, {6, 60, 0}), line(4, {9.5, 6, 0}, {9.5, 60, 0})};
+  lanelet::DrivePath drive;
+  for (double x = -48.0; x <= 0.0; x += 0.5) drive.push_back({x, 1.75, 0});
+  for (double a = 0.05; a < M_PI / 2; a += 0.05)  // quarter circle of radius 6 about (0, 7.75)
+    drive.push_back({6.0 * std::sin(a), 7.75 - 6.0 * std::cos(a), 0});
+  for (double y = 7.75; y <= 58.0; y += 0.5) drive.push_back({7.75, y, 0});
+  const lanelet::LaneletSettings settings;
+  const lanelet::LaneletPlan plan = lanelet::planLanelets(map, {drive, drive, drive}, settings);
+  REQUIRE(plan.connectors.size() == 1);
+  for (const auto* bound : {&plan.connectors[0].left, &plan.connectors[0].right}) {
+    INFO("connector bound of " << bound->size() << " points");
+    CHECK(worstBend(*bound).first <= settings.max_curvature);
+    CHECK_FALSE(worstBend(*bound).second);
+  }
 }

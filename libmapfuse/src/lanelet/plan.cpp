@@ -265,8 +265,14 @@ void addConnectors(LaneletPlan& plan, const std::vector<DrivePath>& drives,
     const auto& a = plan.lanelets[c.from];
     const auto& b = plan.lanelets[c.to];
     const Eigen::Vector2d ta = direction(a.centre, true), tb = direction(b.centre, false);
-    c.left = hermite(endPoint(a, true, true), ta, endPoint(b, true, false), tb);
-    c.right = hermite(endPoint(a, false, true), ta, endPoint(b, false, false), tb);
+    // a short connector between bound ends that do not face each other bends its Hermite
+    // curve within a metre (MONAEast, frames level: 45 degrees over 0.65 m, curvature > 0.5 for
+    // lanelet2_validate): interior vertices above max_curvature go as on the lane lines
+    c.left = detail::removeKinks(hermite(endPoint(a, true, true), ta, endPoint(b, true, false), tb),
+                                 settings.max_curvature);
+    c.right =
+        detail::removeKinks(hermite(endPoint(a, false, true), ta, endPoint(b, false, false), tb),
+                            settings.max_curvature);
   }
 }
 
