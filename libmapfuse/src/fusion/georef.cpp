@@ -60,18 +60,15 @@ void odometryAgreement(const std::vector<Keyframe>& kfs, GeorefResult& res) {
 
 }  // namespace
 
-GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin, const GeorefSettings& s,
-                             const std::string& source) {
-  if (lsm.keyframes.size() < 2)
-    throw InputError(source + ": georef needs at least 2 keyframes, the LSM has " +
-                     std::to_string(lsm.keyframes.size()));
-  const geo::EnuConverter enu(origin);
+namespace {
+
+/// Each fix with the keyframe interval around its (offset-corrected) stamp; fixes beyond
+/// gps_max_extrapolation of the keyframes' span are dropped (counted).
+std::vector<GpsObs> associateFixes(const Lsm& lsm, const geo::EnuConverter& enu,
+                                   const GeorefSettings& s, const std::string& source,
+                                   GeorefResult& res) {
   const auto& kfs = lsm.keyframes;
   const int nk = int(kfs.size());
-  GeorefResult res;
-  res.gps_total = int(lsm.gps.size());
-
-  // Associate each fix with the keyframe interval around its (offset-corrected) stamp.
   std::vector<GpsObs> obs;
   for (int g = 0; g < int(lsm.gps.size()); ++g) {
     const GpsFix& fix = lsm.gps[g];
@@ -104,8 +101,13 @@ GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin, const
     obs.push_back(o);
   }
   if (obs.empty()) throw InputError(source + ": no GPS fix within the keyframe time span");
+  return obs;
+}
 
-  // Initial T_enu_odom: yaw + translation fit, refitted on the inliers of the first fit.
+/// Initial T_enu_odom: yaw + translation fit of the odometry onto the fixes, refitted on the
+/// inliers of the first fit (residual within 3x the median, at least 3 sigma_h).
+Pose3 initialAlignment(const Lsm& lsm, const std::vector<GpsObs>& obs) {
+  const auto& kfs = lsm.keyframes;
   std::vector<Eigen::Vector3d> po, pg;
   for (const auto& o : obs) {
     po.push_back(
@@ -114,20 +116,27 @@ GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin, const
   }
   std::vector<char> use(obs.size(), 1);
   Pose3 T_enu_odom = geo::fitYawTranslation(po, pg, use);
-  {
-    std::vector<double> r;
-    for (std::size_t k = 0; k < po.size(); ++k) r.push_back((T_enu_odom * po[k] - pg[k]).norm());
-    std::vector<double> sorted = r;
-    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-    const double gate = std::max(3.0 * sorted[sorted.size() / 2], 3.0 * lsm.gps[0].sigma_h);
-    for (std::size_t k = 0; k < r.size(); ++k) use[k] = r[k] <= gate;
-    T_enu_odom = geo::fitYawTranslation(po, pg, use);
-  }
+  std::vector<double> r;
+  for (std::size_t k = 0; k < po.size(); ++k) r.push_back((T_enu_odom * po[k] - pg[k]).norm());
+  std::vector<double> sorted = r;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const double gate = std::max(3.0 * sorted[sorted.size() / 2], 3.0 * lsm.gps[0].sigma_h);
+  for (std::size_t k = 0; k < r.size(); ++k) use[k] = r[k] <= gate;
+  return geo::fitYawTranslation(po, pg, use);
+}
 
-  std::vector<PoseParams> poses(nk);
-  for (int i = 0; i < nk; ++i) poses[i].set(T_enu_odom * kfs[i].T_frame_body);
+/// A fix's position on the fused keyframes (interpolated between its two).
+Eigen::Vector3d fixOnPoses(const GpsObs& o, const std::vector<PoseParams>& poses) {
+  return (1 - o.alpha) * Eigen::Map<const Eigen::Vector3d>(poses[o.kf_a].t) +
+         o.alpha * Eigen::Map<const Eigen::Vector3d>(poses[o.kf_b].t);
+}
 
-  // Relative odometry measurements (eq. 5) are fixed from the input.
+/// Eq. (4): the keyframes minimising the odometry terms (eq. 5, fixed from the input) plus the
+/// GPS terms (eq. 6) and a tilt prior per keyframe; Cauchy-robust in the first round, then
+/// fixes above chi2_gate rejected and the graph re-solved (up to max_rejection_rounds).
+void solvePoseGraph(const std::vector<Keyframe>& kfs, const GeorefSettings& s,
+                    std::vector<PoseParams>& poses, std::vector<GpsObs>& obs, GeorefResult& res) {
+  const int nk = int(kfs.size());
   std::vector<Pose3> rel(nk);
   std::vector<Matrix6d> rel_L(nk);
   for (int i = 0; i + 1 < nk; ++i) {
@@ -136,11 +145,10 @@ GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin, const
         kfs[i], kfs[i + 1], s.odom_sigma_translation_per_m, s.odom_sigma_rotation_per_m,
         s.odom_min_sigma_translation, s.odom_min_sigma_rotation));
   }
-
   for (int round = 0; round < std::max(1, s.max_rejection_rounds); ++round) {
     ceres::Problem problem;
     for (auto& p : poses) detail::addPose(problem, p);
-    for (int i = 0; i + 1 < nk; ++i)
+    for (int i = 0; i + 1 < nk; ++i)  // eq. (5)
       problem.AddResidualBlock(detail::RelativePoseFactor::create(rel[i], rel_L[i]), nullptr,
                                poses[i].t, poses[i].q, poses[i + 1].t, poses[i + 1].q);
     // Tilt from the odometry (its z is up), the same assumption as the yaw-only initial fit.
@@ -178,9 +186,7 @@ GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin, const
     int newly = 0;
     for (auto& o : obs) {
       if (o.rejected) continue;
-      const Eigen::Vector3d p = (1 - o.alpha) * Eigen::Map<Eigen::Vector3d>(poses[o.kf_a].t) +
-                                o.alpha * Eigen::Map<Eigen::Vector3d>(poses[o.kf_b].t);
-      const double chi2 = (o.sqrt_info * (p - o.enu)).squaredNorm();
+      const double chi2 = (o.sqrt_info * (fixOnPoses(o, poses) - o.enu)).squaredNorm();
       if (chi2 > s.chi2_gate && active - newly > 2) {
         o.rejected = true;
         ++newly;
@@ -188,18 +194,20 @@ GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin, const
     }
     if (newly == 0 && round > 0) break;
   }
+}
 
-  // Residual statistics over accepted fixes.
+/// Residual statistics over the accepted fixes (horizontal, vertical, signed vertical mean);
+/// the rejected ones counted with their stamps.
+void residualStatistics(const Lsm& lsm, const std::vector<GpsObs>& obs,
+                        const std::vector<PoseParams>& poses, GeorefResult& res) {
   std::vector<double> r;
   double h_sq = 0, v_sq = 0, v_sum = 0;  // per axis: horizontal and vertical (signed)
   for (const auto& o : obs) {
-    const Eigen::Vector3d p = (1 - o.alpha) * Eigen::Map<Eigen::Vector3d>(poses[o.kf_a].t) +
-                              o.alpha * Eigen::Map<Eigen::Vector3d>(poses[o.kf_b].t);
     if (o.rejected) {
       ++res.gps_rejected;
       res.rejected_stamps.push_back(lsm.gps[o.index].stamp);
     } else {
-      const Eigen::Vector3d d = p - o.enu;
+      const Eigen::Vector3d d = fixOnPoses(o, poses) - o.enu;
       r.push_back(d.norm());
       h_sq += d.head<2>().squaredNorm(), v_sq += d.z() * d.z(), v_sum += d.z();
     }
@@ -213,30 +221,58 @@ GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin, const
     res.residual_h_rms = std::sqrt(h_sq / n_r), res.residual_v_rms = std::sqrt(v_sq / n_r);
     res.residual_v_mean = v_sum / n_r;
   }
+}
 
+/// The LSM in enu with the fused keyframes: GPS-level position, odometry-level attitude sigma.
+void writeFusedKeyframes(const Lsm& lsm, const geo::GeoOrigin& origin,
+                         const std::vector<PoseParams>& poses, GeorefResult& res) {
+  const int nk = int(lsm.keyframes.size());
   res.lsm = lsm;
   res.lsm.frame = LsmFrame::kEnu;
   res.lsm.origin = origin;
   for (int i = 0; i < nk; ++i) {
     Keyframe& k = res.lsm.keyframes[i];
     k.T_frame_body = poses[i].get();
-    // Absolute uncertainty after fusion: GPS-level position, odometry-level attitude.
     const double sh = lsm.gps.front().sigma_h / std::sqrt(std::max(1.0, double(res.gps_used) / nk));
     Matrix6d cov = Matrix6d::Zero();
-    cov.diagonal() << sh * sh, sh * sh, 4 * sh * sh, kfs[i].covariance.diagonal().tail<3>();
+    cov.diagonal() << sh * sh, sh * sh, 4 * sh * sh,
+        lsm.keyframes[i].covariance.diagonal().tail<3>();
     k.covariance = cov;
   }
-  odometryAgreement(kfs, res);
-  // trust (docs/fusion.md): odometry that disagrees with GPS leaves residuals above its noise,
-  // many fixes rejected, or a height slope / scale against the fused keyframes
+}
+
+/// Trust (docs/fusion.md): odometry that disagrees with GPS leaves residuals above its noise,
+/// many fixes rejected, or a height slope / scale against the fused keyframes.
+bool trusted(const Lsm& lsm, const GeorefResult& res, const GeorefSettings& s) {
   const double sigma_h = lsm.gps.front().sigma_h, sigma_v = lsm.gps.front().sigma_v;
-  const double rejected_share =
-      obs.empty() ? 0.0 : double(res.gps_rejected) / double(res.gps_rejected + res.gps_used);
-  res.trusted = res.residual_h_rms <= s.trust_sigma_ratio * sigma_h &&
-                res.residual_v_rms <= s.trust_sigma_ratio * sigma_v &&
-                rejected_share <= s.trust_max_rejected_share &&
-                std::abs(res.odom_vertical_slope) <= s.trust_max_vertical_slope &&
-                std::abs(res.odom_scale_error) <= s.trust_max_scale_error;
+  const int judged = res.gps_rejected + res.gps_used;
+  const double rejected_share = judged == 0 ? 0.0 : double(res.gps_rejected) / double(judged);
+  return res.residual_h_rms <= s.trust_sigma_ratio * sigma_h &&
+         res.residual_v_rms <= s.trust_sigma_ratio * sigma_v &&
+         rejected_share <= s.trust_max_rejected_share &&
+         std::abs(res.odom_vertical_slope) <= s.trust_max_vertical_slope &&
+         std::abs(res.odom_scale_error) <= s.trust_max_scale_error;
+}
+
+}  // namespace
+
+GeorefResult georeferenceLsm(const Lsm& lsm, const geo::GeoOrigin& origin, const GeorefSettings& s,
+                             const std::string& source) {
+  if (lsm.keyframes.size() < 2)
+    throw InputError(source + ": georef needs at least 2 keyframes, the LSM has " +
+                     std::to_string(lsm.keyframes.size()));
+  GeorefResult res;
+  res.gps_total = int(lsm.gps.size());
+  std::vector<GpsObs> obs = associateFixes(lsm, geo::EnuConverter(origin), s, source, res);
+  const Pose3 T_enu_odom = initialAlignment(lsm, obs);
+  std::vector<PoseParams> poses(lsm.keyframes.size());
+  for (std::size_t i = 0; i < poses.size(); ++i)
+    poses[i].set(T_enu_odom * lsm.keyframes[i].T_frame_body);
+  solvePoseGraph(lsm.keyframes, s, poses, obs, res);  // eq. (4)
+  residualStatistics(lsm, obs, poses, res);
+  writeFusedKeyframes(lsm, origin, poses, res);
+  odometryAgreement(lsm.keyframes, res);
+  res.trusted = trusted(lsm, res, s);
   return res;
 }
 
