@@ -165,125 +165,142 @@ std::vector<Submap> buildSubmaps(const std::vector<Lsm>& lsms, double length, in
   return out;
 }
 
-std::vector<SubmapPair> selectPairs(const std::vector<Submap>& maps, const AlignSettings& s,
-                                    long* overlaps) {
-  const int n = int(maps.size());
-  const double r = s.overlap_radius;
-  // One coarse index per submap (label folded into the key by a large z offset).
-  std::vector<VoxelIndex> index(n);
-  auto lift = [](const Eigen::Vector3d& p, int label) {
-    return Eigen::Vector3d(p.x(), p.y(), p.z() + 1000.0 * label);
-  };
-#pragma omp parallel for schedule(dynamic) num_threads(s.threads)
-  for (int i = 0; i < n; ++i) {
-    std::vector<Eigen::Vector3d> pts;
-    for (std::size_t k = 0; k < maps[i].coarse.size(); ++k)
-      pts.push_back(lift(maps[i].coarse.points[k], maps[i].coarse.labels[k]));
-    index[i] = VoxelIndex(pts, r);
+namespace {
+
+constexpr double kCell = 64.0;  // m, grid cell of the submap boxes
+constexpr int kProbes = 3;      // LSMs tried per partner slot (spread): the next when refused
+
+/// A point lifted by its label (a large z offset), so that one index keys both.
+Eigen::Vector3d lift(const Eigen::Vector3d& p, int label) {
+  return Eigen::Vector3d(p.x(), p.y(), p.z() + 1000.0 * label);
+}
+
+/// Symmetric overlap of two submaps: the smaller of the two directed shares of coarse points
+/// with a same-label neighbour within the radius, each over at most ~64 points.
+class OverlapMeter {
+ public:
+  OverlapMeter(const std::vector<Submap>& maps, double radius, int threads)
+      : maps_(maps), r_(radius), index_(maps.size()) {
+    const int n = int(maps.size());
+#pragma omp parallel for schedule(dynamic) num_threads(threads)
+    for (int i = 0; i < n; ++i) {
+      std::vector<Eigen::Vector3d> pts;
+      for (std::size_t k = 0; k < maps[i].coarse.size(); ++k)
+        pts.push_back(lift(maps[i].coarse.points[k], maps[i].coarse.labels[k]));
+      index_[i] = VoxelIndex(pts, r_);
+    }
   }
-  // Overlap, symmetric: the smaller of the two directed shares, each over at most ~64 points.
-  auto share = [&](int from, int to) {
-    const Cloud& c = maps[from].coarse;
+  double operator()(int i, int j) const {
+    return std::min(share(i, j), share(j, i));
+  }
+
+ private:
+  double share(int from, int to) const {
+    const Cloud& c = maps_[from].coarse;
     const std::size_t step = std::max<std::size_t>(1, c.size() / 64);
     int near = 0, tried = 0;
     for (std::size_t k = 0; k < c.size(); k += step, ++tried)
-      near += index[to].nearest(lift(c.points[k], c.labels[k]), r * r, nullptr) >= 0;
+      near += index_[to].nearest(lift(c.points[k], c.labels[k]), r_ * r_, nullptr) >= 0;
     return double(near) / double(std::max(1, tried));
-  };
-  long computed = 0;
-  auto overlap = [&](int i, int j, long& count) {
-    ++count;
-    return std::min(share(i, j), share(j, i));
-  };
-  // Submaps by grid cell of their boxes, to find the candidates of a submap without a scan.
-  constexpr double kCell = 64.0;  // m
-  auto cellKey = [](int64_t x, int64_t y) { return (uint64_t(uint32_t(x)) << 32) | uint32_t(y); };
-  std::unordered_map<uint64_t, std::vector<int>> grid;
-  for (int i = 0; i < n; ++i)
-    for (int64_t x = int64_t(std::floor(maps[i].lo.x() / kCell));
-         x <= int64_t(std::floor(maps[i].hi.x() / kCell)); ++x)
-      for (int64_t y = int64_t(std::floor(maps[i].lo.y() / kCell));
-           y <= int64_t(std::floor(maps[i].hi.y() / kCell)); ++y)
-        grid[cellKey(x, y)].push_back(i);
-  constexpr int kProbes = 3;  // LSMs tried per partner slot (spread): the next when refused
-  std::vector<SubmapPair> out;
-#pragma omp parallel num_threads(s.threads) reduction(+ : computed)
-  {
-    std::vector<int> seen(n, -1), cand;
-    std::vector<SubmapPair> local;
-#pragma omp for schedule(dynamic, 16)
-    for (int i = 0; i < n; ++i) {
-      // Candidates: boxes within the radius, other LSMs, by LSM.
-      cand.clear();
-      const Submap& m = maps[i];
-      for (int64_t x = int64_t(std::floor((m.lo.x() - r) / kCell));
-           x <= int64_t(std::floor((m.hi.x() + r) / kCell)); ++x)
-        for (int64_t y = int64_t(std::floor((m.lo.y() - r) / kCell));
-             y <= int64_t(std::floor((m.hi.y() + r) / kCell)); ++y) {
-          const auto it = grid.find(cellKey(x, y));
-          if (it == grid.end()) continue;
-          for (int j : it->second) {
-            if (seen[j] == i || maps[j].lsm == m.lsm) continue;
-            seen[j] = i;
-            if (((m.lo.array() - r) <= maps[j].hi.array()).all() &&
-                ((maps[j].lo.array() - r) <= m.hi.array()).all())
-              cand.push_back(j);
-          }
-        }
-      std::sort(cand.begin(), cand.end(), [&](int a, int b) {
-        return maps[a].lsm != maps[b].lsm ? maps[a].lsm < maps[b].lsm : a < b;
-      });
-      std::vector<std::pair<int, int>> groups;  // [begin, end) in cand, one per other LSM
-      for (int k = 0; k < int(cand.size()); ++k)
-        if (k == 0 || maps[cand[k]].lsm != maps[cand[k - 1]].lsm)
-          groups.emplace_back(k, k + 1);
-        else
-          groups.back().second = k + 1;
-      // The best-overlapping submap of group g, if it overlaps enough.
-      auto best = [&](int g) {
-        std::pair<double, int> b{-1.0, -1};
-        for (int k = groups[g].first; k < groups[g].second; ++k) {
-          const double ov = overlap(i, cand[k], computed);
-          if (ov > b.first) b = {ov, cand[k]};
-        }
-        return b;
-      };
-      const int mm = int(groups.size());
-      if (mm == 0) continue;
-      const int take = s.max_partners > 0 ? std::min(s.max_partners, mm) : mm;
-      if (s.spread_partners) {
-        std::vector<char> tried(mm, 0);
-        for (int t = 0; t < take; ++t) {
-          const int g0 = (i + t * mm / take) % mm;
-          for (int u = 0; u < kProbes && u < mm; ++u) {
-            const int g = (g0 + u) % mm;
-            if (tried[g]) continue;
-            tried[g] = 1;
-            const auto [ov, j] = best(g);
-            if (ov >= s.min_overlap) {
-              local.push_back({std::min(i, j), std::max(i, j), ov});
-              break;
-            }
-          }
-        }
-        continue;
-      }
-      std::vector<std::pair<double, int>> v;  // every LSM's best
-      for (int g = 0; g < mm; ++g) {
-        const auto b = best(g);
-        if (b.first >= s.min_overlap) v.push_back(b);
-      }
-      std::sort(v.begin(), v.end(), [](const auto& x, const auto& y) {
-        return x.first != y.first ? x.first > y.first : x.second < y.second;
-      });
-      for (int k = 0; k < std::min(take, int(v.size())); ++k)
-        local.push_back({std::min(i, v[k].second), std::max(i, v[k].second), v[k].first});
-    }
-#pragma omp critical
-    out.insert(out.end(), local.begin(), local.end());
   }
-  if (overlaps) *overlaps = computed;
-  // Union over submaps, LSM order within a pair, sorted.
+  const std::vector<Submap>& maps_;
+  double r_;
+  std::vector<VoxelIndex> index_;
+};
+
+/// Submaps by grid cell of their boxes, to find the candidates of a submap without a scan.
+class BoxGrid {
+ public:
+  explicit BoxGrid(const std::vector<Submap>& maps) : maps_(maps) {
+    for (int i = 0; i < int(maps.size()); ++i)
+      for (int64_t x = cell(maps[i].lo.x()); x <= cell(maps[i].hi.x()); ++x)
+        for (int64_t y = cell(maps[i].lo.y()); y <= cell(maps[i].hi.y()); ++y)
+          grid_[key(x, y)].push_back(i);
+  }
+  /// Submaps of other LSMs whose boxes come within r of submap i's, sorted by LSM then index.
+  /// `seen` (size n, reused between calls) marks what this query has visited.
+  void candidates(int i, double r, std::vector<int>& seen, std::vector<int>& cand) const {
+    cand.clear();
+    const Submap& m = maps_[i];
+    for (int64_t x = cell(m.lo.x() - r); x <= cell(m.hi.x() + r); ++x)
+      for (int64_t y = cell(m.lo.y() - r); y <= cell(m.hi.y() + r); ++y) {
+        const auto it = grid_.find(key(x, y));
+        if (it == grid_.end()) continue;
+        for (int j : it->second) {
+          if (seen[j] == i || maps_[j].lsm == m.lsm) continue;
+          seen[j] = i;
+          if (((m.lo.array() - r) <= maps_[j].hi.array()).all() &&
+              ((maps_[j].lo.array() - r) <= m.hi.array()).all())
+            cand.push_back(j);
+        }
+      }
+    std::sort(cand.begin(), cand.end(), [&](int a, int b) {
+      return maps_[a].lsm != maps_[b].lsm ? maps_[a].lsm < maps_[b].lsm : a < b;
+    });
+  }
+
+ private:
+  static int64_t cell(double v) { return int64_t(std::floor(v / kCell)); }
+  static uint64_t key(int64_t x, int64_t y) { return (uint64_t(uint32_t(x)) << 32) | uint32_t(y); }
+  const std::vector<Submap>& maps_;
+  std::unordered_map<uint64_t, std::vector<int>> grid_;
+};
+
+/// Submap i's partners among its candidates (sorted by LSM): per other LSM the best-overlapping
+/// submap if it overlaps at least min_overlap; max_partners of them, spread over the LSMs
+/// (each slot probing up to kProbes LSMs) or the best ones.
+void choosePartners(int i, const std::vector<Submap>& maps, const std::vector<int>& cand,
+                    const OverlapMeter& overlap, const AlignSettings& s, long& computed,
+                    std::vector<SubmapPair>& out) {
+  std::vector<std::pair<int, int>> groups;  // [begin, end) in cand, one per other LSM
+  for (int k = 0; k < int(cand.size()); ++k)
+    if (k == 0 || maps[cand[k]].lsm != maps[cand[k - 1]].lsm)
+      groups.emplace_back(k, k + 1);
+    else
+      groups.back().second = k + 1;
+  auto best = [&](int g) {
+    std::pair<double, int> b{-1.0, -1};
+    for (int k = groups[g].first; k < groups[g].second; ++k) {
+      ++computed;
+      const double ov = overlap(i, cand[k]);
+      if (ov > b.first) b = {ov, cand[k]};
+    }
+    return b;
+  };
+  const int mm = int(groups.size());
+  if (mm == 0) return;
+  const int take = s.max_partners > 0 ? std::min(s.max_partners, mm) : mm;
+  if (s.spread_partners) {
+    std::vector<char> tried(mm, 0);
+    for (int t = 0; t < take; ++t) {
+      const int g0 = (i + t * mm / take) % mm;
+      for (int u = 0; u < kProbes && u < mm; ++u) {
+        const int g = (g0 + u) % mm;
+        if (tried[g]) continue;
+        tried[g] = 1;
+        const auto [ov, j] = best(g);
+        if (ov >= s.min_overlap) {
+          out.push_back({std::min(i, j), std::max(i, j), ov});
+          break;
+        }
+      }
+    }
+    return;
+  }
+  std::vector<std::pair<double, int>> v;  // every LSM's best
+  for (int g = 0; g < mm; ++g) {
+    const auto b = best(g);
+    if (b.first >= s.min_overlap) v.push_back(b);
+  }
+  std::sort(v.begin(), v.end(), [](const auto& x, const auto& y) {
+    return x.first != y.first ? x.first > y.first : x.second < y.second;
+  });
+  for (int k = 0; k < std::min(take, int(v.size())); ++k)
+    out.push_back({std::min(i, v[k].second), std::max(i, v[k].second), v[k].first});
+}
+
+/// The union over submaps: LSM order within a pair, sorted, each pair once.
+void uniquePairs(const std::vector<Submap>& maps, std::vector<SubmapPair>& out) {
   for (auto& p : out)
     if (maps[p.a].lsm > maps[p.b].lsm) std::swap(p.a, p.b);
   std::sort(out.begin(), out.end(), [](const SubmapPair& x, const SubmapPair& y) {
@@ -293,6 +310,31 @@ std::vector<SubmapPair> selectPairs(const std::vector<Submap>& maps, const Align
                 out.begin(), out.end(),
                 [](const SubmapPair& x, const SubmapPair& y) { return x.a == y.a && x.b == y.b; }),
             out.end());
+}
+
+}  // namespace
+
+std::vector<SubmapPair> selectPairs(const std::vector<Submap>& maps, const AlignSettings& s,
+                                    long* overlaps) {
+  const int n = int(maps.size());
+  const OverlapMeter overlap(maps, s.overlap_radius, s.threads);
+  const BoxGrid grid(maps);
+  long computed = 0;
+  std::vector<SubmapPair> out;
+#pragma omp parallel num_threads(s.threads) reduction(+ : computed)
+  {
+    std::vector<int> seen(n, -1), cand;
+    std::vector<SubmapPair> local;
+#pragma omp for schedule(dynamic, 16)
+    for (int i = 0; i < n; ++i) {
+      grid.candidates(i, s.overlap_radius, seen, cand);
+      choosePartners(i, maps, cand, overlap, s, computed, local);
+    }
+#pragma omp critical
+    out.insert(out.end(), local.begin(), local.end());
+  }
+  if (overlaps) *overlaps = computed;
+  uniquePairs(maps, out);
   return out;
 }
 
