@@ -104,6 +104,180 @@ void liftOntoTerrain(World& world, const ProceduralParams& P, double phase_a, do
   world.stats["hill_amplitude_m"] = 2.0 * A;
 }
 
+/// Intersection centres on the grid, each shifted by a random jitter.
+std::vector<Eigen::Vector3d> intersectionCentres(Builder& B, const ProceduralParams& P) {
+  const int G = P.grid_size;
+  std::vector<Eigen::Vector3d> centre(G * G);
+  for (int i = 0; i < G; ++i)
+    for (int j = 0; j < G; ++j) {
+      // y's jitter drawn first: the order the release (gcc) build used (sim/draw_order.hpp).
+      const double jitter_y = B.uniform(-P.jitter, P.jitter);
+      const double jitter_x = B.uniform(-P.jitter, P.jitter);
+      centre[i * G + j] = Eigen::Vector3d((i - (G - 1) / 2.0) * P.block_length + jitter_x,
+                                          (j - (G - 1) / 2.0) * P.block_length + jitter_y, 0.0);
+    }
+  return centre;
+}
+
+/// One road between intersections a and b: its reference line, bulging sideways by `amp`.
+struct Road {
+  int a = 0, b = 0;
+  Polyline ref;
+  int lanes = 1;
+  double length = 0.0;
+};
+
+/// The bypass lane: forks off the outer forward lane `fwd` and merges back (a fork + a merge),
+/// with its own solid edges.
+void addBypass(Builder& B, const Polyline& fwd, double L, double w, Arm& arm_a, Arm& arm_b) {
+  const double s1 = 0.25 * L, s2 = 0.75 * L, ramp = 0.2 * L, D = 3.0 * w;
+  Polyline branch, right_edge, left_edge;
+  // Samples span [s1, s2] exactly, so the branch ends where the merge lane starts.
+  const int nb = static_cast<int>(std::ceil((s2 - s1) / kSampleStep));
+  for (int k = 0; k <= nb; ++k) {
+    const double s = s1 + (s2 - s1) * k / nb;
+    const Frame f = frameAt(fwd, s);
+    const double d = D * (smoothstep((s - s1) / ramp) * smoothstep((s2 - s) / ramp));
+    branch.push_back(f.p - d * f.n);
+    right_edge.push_back(f.p - (d + w / 2) * f.n);
+    if (d >= w) left_edge.push_back(f.p - (d - w / 2) * f.n);
+  }
+  B.addLane(subLine(fwd, 0, s1, kSampleStep), w);
+  arm_a.out_lanes.push_back(B.world.lanes.size() - 1);
+  B.addLane(subLine(fwd, s1, s2, kSampleStep), w);
+  B.addLane(branch, w);
+  B.addLane(subLine(fwd, s2, L, kSampleStep), w);
+  arm_b.in_lanes.push_back(B.world.lanes.size() - 1);
+  B.addLine(right_edge, LineStyle::kSolid);
+  if (left_edge.size() >= 2) B.addLine(left_edge, LineStyle::kSolid);
+}
+
+/// Lanes: forward (a->b) on the right, backward on the left; inner lane first. The first road
+/// long enough gets the bypass on its outer forward lane.
+void addLanes(Builder& B, const Road& r, double w, Arm& arm_a, Arm& arm_b, bool& fork_done) {
+  for (int k = 0; k < r.lanes; ++k) {
+    const Polyline fwd = offsetLine(r.ref, -(k + 0.5) * w);
+    if (!fork_done && k == r.lanes - 1 && r.length > 150.0) {
+      fork_done = true;
+      addBypass(B, fwd, r.length, w, arm_a, arm_b);
+    } else {
+      B.addLane(fwd, w);
+      arm_a.out_lanes.push_back(B.world.lanes.size() - 1);
+      arm_b.in_lanes.push_back(B.world.lanes.size() - 1);
+    }
+    B.addLane(reversed(offsetLine(r.ref, (k + 0.5) * w)), w);
+    arm_b.out_lanes.push_back(B.world.lanes.size() - 1);
+    arm_a.in_lanes.push_back(B.world.lanes.size() - 1);
+  }
+}
+
+/// Lane lines (solid centre and edges, dashed between lanes) and street lamps, alternating sides.
+void addLinesAndLamps(Builder& B, const ProceduralParams& P, const Road& r) {
+  const double w = P.lane_width;
+  B.addLine(r.ref, LineStyle::kSolid);
+  for (int k = 1; k < r.lanes; ++k) {
+    B.addLine(offsetLine(r.ref, -k * w), LineStyle::kDashed);
+    B.addLine(reversed(offsetLine(r.ref, k * w)), LineStyle::kDashed);
+  }
+  B.addLine(offsetLine(r.ref, -r.lanes * w), LineStyle::kSolid);
+  B.addLine(reversed(offsetLine(r.ref, r.lanes * w)), LineStyle::kSolid);
+  int side = 1;
+  for (double s = P.pole_spacing / 2; s < r.length - 20.0; s += P.pole_spacing, side = -side) {
+    const Frame f = frameAt(r.ref, s);
+    B.addInstance(CrowdClass::kPole, {f.p + side * (r.lanes * w + 2.0) * f.n}).height = kLampHeight;
+  }
+}
+
+/// One road end arriving at `node` along `dirline`: stop line, arrows, sign + pole, light +
+/// pole where the intersection has lights, crosswalk (always with lights, else drawn).
+void addRoadEnd(Builder& B, const ProceduralParams& P, const Road& r, const Polyline& dirline,
+                bool lights) {
+  const double w = P.lane_width, L = r.length;
+  const Frame f = frameAt(dirline, L);
+  const Eigen::Vector3d inner = f.p, outer = f.p - r.lanes * w * f.n;
+  B.addInstance(CrowdClass::kStopLine, {inner, outer});
+  if (L > 3 * kArrowBeforeStop)
+    for (int k = 0; k < r.lanes; ++k) {
+      const Frame g = frameAt(dirline, L - kArrowBeforeStop);
+      const Eigen::Vector3d c = g.p - (k + 0.5) * w * g.n;
+      B.addInstance(CrowdClass::kGroundArrow, B.local(c, g.t, g.n,
+                                                      {{-2.5, -0.15},
+                                                       {1.0, -0.15},
+                                                       {1.0, -0.6},
+                                                       {2.5, 0.0},
+                                                       {1.0, 0.6},
+                                                       {1.0, 0.15},
+                                                       {-2.5, 0.15}}));
+    }
+  const Frame g = frameAt(dirline, L - 5.0);
+  const Eigen::Vector3d sc = g.p - (r.lanes * w + 1.5) * g.n;
+  const double h = kSignSize / 2;
+  B.addInstance(CrowdClass::kTrafficSign,
+                B.local(sc, g.t, g.n, {{0, h}, {0, -h}, {0, -h}, {0, h}}, 0.0));
+  auto& sign = B.world.truth.instances.back();
+  sign.points[0].z() = sign.points[1].z() = kSignBottom;
+  sign.points[2].z() = sign.points[3].z() = kSignBottom + kSignSize;
+  B.addInstance(CrowdClass::kPole, {sc}, "pole under a sign").height = kSignBottom + kSignSize;
+  const Eigen::Vector3d cw0 = f.p + 1.0 * f.t;
+  if (lights) {
+    const Eigen::Vector3d lc = f.p + 0.5 * f.t - (r.lanes * w + 1.0) * f.n;
+    B.addInstance(CrowdClass::kTrafficLight, {lc + Eigen::Vector3d(0, 0, kLightBottom)}).height =
+        kLightHeight;
+    B.addInstance(CrowdClass::kPole, {lc}, "pole under a traffic light").height = kLightBottom;
+  }
+  if (lights || B.uniform(0, 1) < P.crosswalk_probability) {
+    const double left = r.lanes * w, depth = 4.0;
+    B.addInstance(CrowdClass::kCrosswalk,
+                  B.local(cw0, f.t, f.n, {{0, -left}, {depth, -left}, {depth, left}, {0, left}}));
+  }
+}
+
+/// The road between intersections a and b (draws: its bulge, its lanes per direction, then the
+/// crosswalks of its two ends) with everything on it.
+void addRoad(Builder& B, const ProceduralParams& P, const std::vector<Eigen::Vector3d>& centre,
+             int a, int b, const std::vector<bool>& has_lights, std::vector<std::vector<Arm>>& arms,
+             bool& fork_done) {
+  const Eigen::Vector3d u = (centre[b] - centre[a]).normalized();
+  const Eigen::Vector3d nrm(-u.y(), u.x(), 0.0);
+  const Eigen::Vector3d p0 = centre[a] + P.intersection_radius * u;
+  const Eigen::Vector3d p1 = centre[b] - P.intersection_radius * u;
+  Road r;
+  r.a = a, r.b = b;
+  const double amp = B.uniform(-P.curve_amplitude, P.curve_amplitude);
+  r.lanes = 1 + static_cast<int>(B.uniform(0, P.max_lanes_per_direction - 1e-9));
+  const int n = static_cast<int>(std::ceil((p1 - p0).norm() / kSampleStep));
+  for (int k = 0; k <= n; ++k) {
+    const double s = static_cast<double>(k) / n;
+    r.ref.push_back(p0 + s * (p1 - p0) + amp * std::pow(std::sin(kPi * s), 2) * nrm);
+  }
+  r.length = polylineLength(r.ref);
+  B.world.stats["road_km"] += r.length / 1000.0;
+  Arm& arm_a = arms[a].emplace_back();
+  Arm& arm_b = arms[b].emplace_back();
+  addLanes(B, r, P.lane_width, arm_a, arm_b, fork_done);
+  addLinesAndLamps(B, P, r);
+  addRoadEnd(B, P, r, r.ref, has_lights[b]);            // arriving at b
+  addRoadEnd(B, P, r, reversed(r.ref), has_lights[a]);  // arriving at a
+}
+
+/// Intersection connectors: every arriving lane to every leaving arm (no U-turns).
+void addConnectors(Builder& B, const std::vector<std::vector<Arm>>& arms, double w) {
+  for (const auto& node : arms)
+    for (std::size_t ai = 0; ai < node.size(); ++ai)
+      for (std::size_t bi = 0; bi < node.size(); ++bi) {
+        if (ai == bi) continue;
+        const Arm &in = node[ai], &out = node[bi];
+        for (std::size_t li = 0; li < in.in_lanes.size(); ++li) {
+          const std::size_t lo = std::min(li, out.out_lanes.size() - 1);
+          const Polyline& c_in = B.world.lanes[in.in_lanes[li]].centerline;
+          const Polyline& c_out = B.world.lanes[out.out_lanes[lo]].centerline;
+          const Eigen::Vector3d t0 = (c_in.back() - c_in[c_in.size() - 2]).normalized();
+          const Eigen::Vector3d t3 = (c_out[1] - c_out.front()).normalized();
+          B.addLane(bezier(c_in.back(), t0, c_out.front(), t3), w);
+        }
+      }
+}
+
 }  // namespace
 
 World buildProceduralWorld(const ProceduralParams& P, const geo::GeoOrigin& origin, uint64_t seed) {
@@ -116,166 +290,27 @@ World buildProceduralWorld(const ProceduralParams& P, const geo::GeoOrigin& orig
   B.world.truth.origin = origin;
   B.world.truth.source = "simulate ground truth (procedural world)";
   const int G = P.grid_size;
-  const double w = P.lane_width;
-  // Intersection centres.
-  std::vector<Eigen::Vector3d> centre(G * G);
-  for (int i = 0; i < G; ++i)
-    for (int j = 0; j < G; ++j) {
-      // y's jitter drawn first: the order the release (gcc) build used (sim/draw_order.hpp).
-      const double jitter_y = B.uniform(-P.jitter, P.jitter);
-      const double jitter_x = B.uniform(-P.jitter, P.jitter);
-      centre[i * G + j] = Eigen::Vector3d((i - (G - 1) / 2.0) * P.block_length + jitter_x,
-                                          (j - (G - 1) / 2.0) * P.block_length + jitter_y, 0.0);
-    }
+  const std::vector<Eigen::Vector3d> centre = intersectionCentres(B, P);
   std::vector<std::vector<Arm>> arms(G * G);
   std::vector<bool> has_lights(G * G);
   for (int k = 0; k < G * G; ++k) has_lights[k] = B.uniform(0, 1) < P.traffic_light_fraction;
   bool fork_done = false;
-
   // Roads between grid neighbours.
   for (int i = 0; i < G; ++i)
     for (int j = 0; j < G; ++j)
       for (int dir = 0; dir < 2; ++dir) {
         const int i2 = i + (dir == 0), j2 = j + (dir == 1);
-        if (i2 >= G || j2 >= G) continue;
-        const int a = i * G + j, b = i2 * G + j2;
-        const Eigen::Vector3d u = (centre[b] - centre[a]).normalized();
-        const Eigen::Vector3d nrm(-u.y(), u.x(), 0.0);
-        const Eigen::Vector3d p0 = centre[a] + P.intersection_radius * u;
-        const Eigen::Vector3d p1 = centre[b] - P.intersection_radius * u;
-        const double amp = B.uniform(-P.curve_amplitude, P.curve_amplitude);
-        const int lanes = 1 + static_cast<int>(B.uniform(0, P.max_lanes_per_direction - 1e-9));
-        const double len0 = (p1 - p0).norm();
-        const int n = static_cast<int>(std::ceil(len0 / kSampleStep));
-        Polyline ref;
-        for (int k = 0; k <= n; ++k) {
-          const double s = static_cast<double>(k) / n;
-          ref.push_back(p0 + s * (p1 - p0) + amp * std::pow(std::sin(kPi * s), 2) * nrm);
-        }
-        const double L = polylineLength(ref);
-        B.world.stats["road_km"] += L / 1000.0;
-        // Lanes: forward (a->b) on the right, backward on the left; inner lane first.
-        Arm& arm_a = arms[a].emplace_back();
-        Arm& arm_b = arms[b].emplace_back();
-        for (int k = 0; k < lanes; ++k) {
-          const Polyline fwd = offsetLine(ref, -(k + 0.5) * w);
-          const bool fork_here = !fork_done && k == lanes - 1 && L > 150.0;
-          if (fork_here) {
-            // Bypass lane: forks off the outer forward lane and merges back (a fork + a merge).
-            fork_done = true;
-            const double s1 = 0.25 * L, s2 = 0.75 * L, ramp = 0.2 * L, D = 3.0 * w;
-            Polyline branch, right_edge, left_edge;
-            // Samples span [s1, s2] exactly, so the branch ends where the merge lane starts.
-            const int nb = static_cast<int>(std::ceil((s2 - s1) / kSampleStep));
-            for (int k = 0; k <= nb; ++k) {
-              const double s = s1 + (s2 - s1) * k / nb;
-              const Frame f = frameAt(fwd, s);
-              const double d = D * (smoothstep((s - s1) / ramp) * smoothstep((s2 - s) / ramp));
-              branch.push_back(f.p - d * f.n);
-              right_edge.push_back(f.p - (d + w / 2) * f.n);
-              if (d >= w) left_edge.push_back(f.p - (d - w / 2) * f.n);
-            }
-            B.addLane(subLine(fwd, 0, s1, kSampleStep), w);
-            arm_a.out_lanes.push_back(B.world.lanes.size() - 1);
-            B.addLane(subLine(fwd, s1, s2, kSampleStep), w);
-            B.addLane(branch, w);
-            B.addLane(subLine(fwd, s2, L, kSampleStep), w);
-            arm_b.in_lanes.push_back(B.world.lanes.size() - 1);
-            B.addLine(right_edge, LineStyle::kSolid);
-            if (left_edge.size() >= 2) B.addLine(left_edge, LineStyle::kSolid);
-          } else {
-            B.addLane(fwd, w);
-            arm_a.out_lanes.push_back(B.world.lanes.size() - 1);
-            arm_b.in_lanes.push_back(B.world.lanes.size() - 1);
-          }
-          B.addLane(reversed(offsetLine(ref, (k + 0.5) * w)), w);
-          arm_b.out_lanes.push_back(B.world.lanes.size() - 1);
-          arm_a.in_lanes.push_back(B.world.lanes.size() - 1);
-        }
-        // Lane lines.
-        B.addLine(ref, LineStyle::kSolid);
-        for (int k = 1; k < lanes; ++k) {
-          B.addLine(offsetLine(ref, -k * w), LineStyle::kDashed);
-          B.addLine(reversed(offsetLine(ref, k * w)), LineStyle::kDashed);
-        }
-        B.addLine(offsetLine(ref, -lanes * w), LineStyle::kSolid);
-        B.addLine(reversed(offsetLine(ref, lanes * w)), LineStyle::kSolid);
-        // Street lamps, alternating sides.
-        int side = 1;
-        for (double s = P.pole_spacing / 2; s < L - 20.0; s += P.pole_spacing, side = -side) {
-          const Frame f = frameAt(ref, s);
-          B.addInstance(CrowdClass::kPole, {f.p + side * (lanes * w + 2.0) * f.n}).height =
-              kLampHeight;
-        }
-        // Per road end: stop line, arrows, sign + pole, light + pole, crosswalk.
-        for (int end = 0; end < 2; ++end) {
-          const int node = end == 0 ? b : a;
-          const Polyline dirline = end == 0 ? ref : reversed(ref);  // arriving at `node`
-          const Frame f = frameAt(dirline, L);
-          const Eigen::Vector3d inner = f.p, outer = f.p - lanes * w * f.n;
-          B.addInstance(CrowdClass::kStopLine, {inner, outer});
-          if (L > 3 * kArrowBeforeStop)
-            for (int k = 0; k < lanes; ++k) {
-              const Frame g = frameAt(dirline, L - kArrowBeforeStop);
-              const Eigen::Vector3d c = g.p - (k + 0.5) * w * g.n;
-              B.addInstance(CrowdClass::kGroundArrow, B.local(c, g.t, g.n,
-                                                              {{-2.5, -0.15},
-                                                               {1.0, -0.15},
-                                                               {1.0, -0.6},
-                                                               {2.5, 0.0},
-                                                               {1.0, 0.6},
-                                                               {1.0, 0.15},
-                                                               {-2.5, 0.15}}));
-            }
-          const Frame g = frameAt(dirline, L - 5.0);
-          const Eigen::Vector3d sc = g.p - (lanes * w + 1.5) * g.n;
-          const double h = kSignSize / 2;
-          B.addInstance(CrowdClass::kTrafficSign,
-                        B.local(sc, g.t, g.n, {{0, h}, {0, -h}, {0, -h}, {0, h}}, 0.0));
-          auto& sign = B.world.truth.instances.back();
-          sign.points[0].z() = sign.points[1].z() = kSignBottom;
-          sign.points[2].z() = sign.points[3].z() = kSignBottom + kSignSize;
-          B.addInstance(CrowdClass::kPole, {sc}, "pole under a sign").height =
-              kSignBottom + kSignSize;
-          const Eigen::Vector3d cw0 = f.p + 1.0 * f.t;
-          if (has_lights[node]) {
-            const Eigen::Vector3d lc = f.p + 0.5 * f.t - (lanes * w + 1.0) * f.n;
-            B.addInstance(CrowdClass::kTrafficLight, {lc + Eigen::Vector3d(0, 0, kLightBottom)})
-                .height = kLightHeight;
-            B.addInstance(CrowdClass::kPole, {lc}, "pole under a traffic light").height =
-                kLightBottom;
-          }
-          if (has_lights[node] || B.uniform(0, 1) < P.crosswalk_probability) {
-            const double left = lanes * w, depth = 4.0;
-            B.addInstance(
-                CrowdClass::kCrosswalk,
-                B.local(cw0, f.t, f.n, {{0, -left}, {depth, -left}, {depth, left}, {0, left}}));
-          }
-        }
+        if (i2 < G && j2 < G)
+          addRoad(B, P, centre, i * G + j, i2 * G + j2, has_lights, arms, fork_done);
       }
-  // Intersection connectors: every arriving lane to every leaving arm (no U-turns).
-  for (int k = 0; k < G * G; ++k)
-    for (std::size_t ai = 0; ai < arms[k].size(); ++ai)
-      for (std::size_t bi = 0; bi < arms[k].size(); ++bi) {
-        if (ai == bi) continue;
-        const Arm &in = arms[k][ai], &out = arms[k][bi];
-        for (std::size_t li = 0; li < in.in_lanes.size(); ++li) {
-          const std::size_t lo = std::min(li, out.out_lanes.size() - 1);
-          const Polyline& c_in = B.world.lanes[in.in_lanes[li]].centerline;
-          const Polyline& c_out = B.world.lanes[out.out_lanes[lo]].centerline;
-          const Eigen::Vector3d t0 = (c_in.back() - c_in[c_in.size() - 2]).normalized();
-          const Eigen::Vector3d t3 = (c_out[1] - c_out.front()).normalized();
-          B.addLane(bezier(c_in.back(), t0, c_out.front(), t3), w);
-        }
-      }
+  addConnectors(B, arms, P.lane_width);
   connectLanesByEndpoints(B.world, 0.05);
   if (P.hill_grade > 0.0) {  // drawn only for a hilly world: flat worlds keep their draws
     const double phase_a = B.uniform(0, 2 * kPi), phase_b = B.uniform(0, 2 * kPi);
     liftOntoTerrain(B.world, P, phase_a, phase_b);
   }
-  World& W = B.world;
-  W.stats["intersections"] = G * G;
-  W.stats["roads"] = 2.0 * G * (G - 1);
+  B.world.stats["intersections"] = G * G;
+  B.world.stats["roads"] = 2.0 * G * (G - 1);
   return std::move(B.world);
 }
 
