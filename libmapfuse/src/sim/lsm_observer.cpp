@@ -77,228 +77,298 @@ Eigen::Matrix3d pointCovariance(const Eigen::Vector3d& p_body, const Eigen::Vect
 
 }  // namespace
 
-ObservedDrive observeLsm(const World& world, const PieceIndex& index, const Drive& d,
-                         const SimCamera& camera, const ObservationParams& P, const DriveParams& DP,
-                         uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> N01(0.0, 1.0);
-  auto U = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
-  ObservedDrive out;
-  Lsm& lsm = out.lsm;
-  lsm.drive_id = d.drive_id;
-  lsm.vehicle_id = d.vehicle_id;
-  lsm.frame = LsmFrame::kOdom;
-  for (const auto& g : d.gps) lsm.gps.push_back(g.fix);
-  out.keyframe_samples = selectKeyframeSamples(d, DP.camera_rate, DP.imu_rate, P.keyframe_spacing);
-  const auto& kfs = out.keyframe_samples;
-  const Eigen::Vector3d cam = camera.T_body_cam().translation();
-  const double frame_step = d.speed / DP.camera_rate;  // m between camera frames
-  const double x_near = cam.x() + camera.params().min_range;
-  // Start of the ground window for a point at lateral offset y: x_near, or, beside the road, the
-  // distance at which the image first holds it (pinhole: |y - y_cam| / depth <= half width / fx).
-  const CameraParams& cp = camera.params();
-  const double edge_slope = (0.5 * cp.width - P.ground_edge_margin_px) / cp.fx;
-  auto groundStart = [&](double y) {
-    if (P.ground_edge_margin_px <= 0 || edge_slope <= 0) return x_near;
-    return std::max(x_near, cam.x() + std::abs(y - cam.y()) / edge_slope);
-  };
-  const auto& inst = world.truth.instances;
-  int64_t next_element = 0;
+namespace {
 
-  auto addElement = [&](Element e) {
-    e.id = next_element++;
-    lsm.elements.push_back(std::move(e));
+/// Observes one drive's LSM (observeLsm): the state shared by the steps, one random stream for
+/// the observations (drawn in keyframe, piece, run order) and one for the partly seen stop lines.
+class LsmObserver {
+ public:
+  LsmObserver(const World& world, const PieceIndex& index, const Drive& d, const SimCamera& camera,
+              const ObservationParams& P, const DriveParams& DP, uint64_t seed)
+      : world_(world),
+        index_(index),
+        d_(d),
+        camera_(camera),
+        P_(P),
+        DP_(DP),
+        seed_(seed),
+        rng_(seed),
+        cam_(camera.T_body_cam().translation()),
+        frame_step_(d.speed / DP.camera_rate),
+        x_near_(cam_.x() + camera.params().min_range),
+        edge_slope_((0.5 * camera.params().width - P.ground_edge_margin_px) / camera.params().fx) {}
+
+  ObservedDrive run() {
+    Lsm& lsm = out_.lsm;
+    lsm.drive_id = d_.drive_id;
+    lsm.vehicle_id = d_.vehicle_id;
+    lsm.frame = LsmFrame::kOdom;
+    for (const auto& g : d_.gps) lsm.gps.push_back(g.fix);
+    out_.keyframe_samples =
+        selectKeyframeSamples(d_, DP_.camera_rate, DP_.imu_rate, P_.keyframe_spacing);
+    for (std::size_t j = 0; j < out_.keyframe_samples.size(); ++j) observeKeyframe(j);
+    observePartialStopLines();
+    return std::move(out_);
+  }
+
+ private:
+  /// A keyframe's ground window [x0, x0 + win) and aerial window [a0, a0 + win), body x.
+  struct Window {
+    std::size_t j = 0;
+    double win = 0.0, x0 = 0.0, x1 = 0.0, a0 = 0.0, a1 = 0.0;
   };
-  // Noisy copy of body-frame points: a common error per element plus per-point white noise.
-  auto noisyFrom = [&](std::mt19937_64& g, Element& e, const std::vector<Eigen::Vector3d>& pts,
-                       bool aerial) {
-    std::vector<Eigen::Matrix3d> covs;
-    for (const auto& p : pts) {
-      const double r = (p - cam).head<2>().norm();
-      const double along = aerial ? P.aerial_sigma_base + P.aerial_sigma_range_quad * r * r
-                                  : P.ground_sigma_base + P.ground_sigma_range_quad * r * r;
-      const double base = aerial ? P.aerial_sigma_base : P.ground_sigma_base;
-      covs.push_back(pointCovariance(p, cam, along, base + P.ground_sigma_angular * r, base));
-    }
-    Eigen::Matrix3d mean_cov = Eigen::Matrix3d::Zero();
-    for (const auto& c : covs) mean_cov += c / static_cast<double>(covs.size());
-    const Eigen::Vector3d z0 = drawVector3(N01, g);
-    const Eigen::Vector3d common =
-        std::sqrt(P.correlated_fraction) *
-        Eigen::Vector3d(Eigen::Matrix3d(Eigen::LLT<Eigen::Matrix3d>(mean_cov).matrixL()) * z0);
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-      const Eigen::Vector3d zi = drawVector3(N01, g);
-      e.points_body.push_back(
-          pts[i] + common +
-          std::sqrt(1.0 - P.correlated_fraction) *
-              Eigen::Vector3d(Eigen::Matrix3d(Eigen::LLT<Eigen::Matrix3d>(covs[i]).matrixL()) *
-                              zi));
-      e.covariances.push_back(covs[i]);
-    }
-  };
-  auto noisy = [&](Element& e, const std::vector<Eigen::Vector3d>& pts, bool aerial) {
-    noisyFrom(rng, e, pts, aerial);
-  };
-  // Stop lines whose centre never enters this drive's view (a crossing road's stop line while
-  // the vehicle turns) are still seen in part: the longest visible run, by the solid-line rule
-  // per point, kept per piece and observed once after the drive when the whole line never was.
+  /// Stop lines whose centre never enters this drive's view (a crossing road's stop line while
+  /// the vehicle turns) are still seen in part: the longest visible run, by the solid-line rule
+  /// per point, kept per piece and observed once after the drive when the whole line never was.
   struct PartialRun {
     std::size_t keyframe = 0;
     std::vector<Eigen::Vector3d> body;
     double length = 0.0;
   };
-  std::map<int, PartialRun> partial;
-  std::set<int> whole;
 
-  for (std::size_t j = 0; j < kfs.size(); ++j) {
+  double U(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng_); }
+
+  /// Start of the ground window for a point at lateral offset y: x_near, or, beside the road,
+  /// the distance at which the image first holds it (pinhole: |y - y_cam| / depth <= half
+  /// width / fx).
+  double groundStart(double y) const {
+    if (P_.ground_edge_margin_px <= 0 || edge_slope_ <= 0) return x_near_;
+    return std::max(x_near_, cam_.x() + std::abs(y - cam_.y()) / edge_slope_);
+  }
+
+  /// In the ground window at this keyframe and in the image.
+  bool groundVisible(const Eigen::Vector3d& b, double win) const {
+    const double g0 = groundStart(b.y());
+    return b.x() >= g0 && b.x() < g0 + win && std::abs(b.y()) <= P_.lateral_range &&
+           camera_.sees(b, 1.0);
+  }
+
+  void addElement(Element e) {
+    e.id = next_element_++;
+    out_.lsm.elements.push_back(std::move(e));
+  }
+
+  /// Noisy copy of body-frame points: a common error per element plus per-point white noise.
+  void noisyFrom(std::mt19937_64& g, Element& e, const std::vector<Eigen::Vector3d>& pts,
+                 bool aerial) {
+    std::vector<Eigen::Matrix3d> covs;
+    for (const auto& p : pts) {
+      const double r = (p - cam_).head<2>().norm();
+      const double along = aerial ? P_.aerial_sigma_base + P_.aerial_sigma_range_quad * r * r
+                                  : P_.ground_sigma_base + P_.ground_sigma_range_quad * r * r;
+      const double base = aerial ? P_.aerial_sigma_base : P_.ground_sigma_base;
+      covs.push_back(pointCovariance(p, cam_, along, base + P_.ground_sigma_angular * r, base));
+    }
+    Eigen::Matrix3d mean_cov = Eigen::Matrix3d::Zero();
+    for (const auto& c : covs) mean_cov += c / static_cast<double>(covs.size());
+    const Eigen::Vector3d z0 = drawVector3(N01_, g);
+    const Eigen::Vector3d common =
+        std::sqrt(P_.correlated_fraction) *
+        Eigen::Vector3d(Eigen::Matrix3d(Eigen::LLT<Eigen::Matrix3d>(mean_cov).matrixL()) * z0);
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const Eigen::Vector3d zi = drawVector3(N01_, g);
+      e.points_body.push_back(
+          pts[i] + common +
+          std::sqrt(1.0 - P_.correlated_fraction) *
+              Eigen::Vector3d(Eigen::Matrix3d(Eigen::LLT<Eigen::Matrix3d>(covs[i]).matrixL()) *
+                              zi));
+      e.covariances.push_back(covs[i]);
+    }
+  }
+
+  int observationsAt(const Eigen::Vector3d& first, double win) const {
+    const double r = (first - cam_).head<2>().norm();
+    return std::clamp(
+        static_cast<int>((camera_.params().max_range - r + win) / std::max(0.1, frame_step_)), 1,
+        1000);
+  }
+
+  void observeKeyframe(std::size_t j) {
+    const auto& kfs = out_.keyframe_samples;
     const std::size_t k = kfs[j];
     Keyframe kf;
     kf.id = static_cast<int64_t>(j);
-    kf.stamp = d.stamps[k];
-    kf.T_frame_body = d.odom[k];
-    kf.covariance = diagonalCovariance(0.02 + DP.wheel_scale_sigma * d.distance[k],
-                                       0.001 + DP.gyro_bias_sigma * d.stamps[k]);
-    lsm.keyframes.push_back(kf);
-    const Pose3& T = d.truth[k];
+    kf.stamp = d_.stamps[k];
+    kf.T_frame_body = d_.odom[k];
+    kf.covariance = diagonalCovariance(0.02 + DP_.wheel_scale_sigma * d_.distance[k],
+                                       0.001 + DP_.gyro_bias_sigma * d_.stamps[k]);
+    out_.lsm.keyframes.push_back(kf);
+    const Pose3& T = d_.truth[k];
+    Window w;
+    w.j = j;
+    w.win = j + 1 < kfs.size() ? d_.distance[kfs[j + 1]] - d_.distance[k] : P_.keyframe_spacing;
+    w.x0 = x_near_, w.x1 = x_near_ + w.win;
+    w.a0 = x_near_ + P_.aerial_window_offset, w.a1 = w.a0 + w.win;
+    const double x_far = std::max(w.a1, groundStart(P_.lateral_range + std::abs(cam_.y())) + w.win);
+    const Eigen::Vector3d centre = T * Eigen::Vector3d(0.5 * (w.x0 + x_far), 0, 0);
+    const double radius = std::hypot(0.5 * (x_far - w.x0), P_.lateral_range) + 2.0;
     const Pose3 Tinv = T.inverse();
-    const double win =
-        j + 1 < kfs.size() ? d.distance[kfs[j + 1]] - d.distance[k] : P.keyframe_spacing;
-    const double x0 = x_near, x1 = x_near + win;
-    const double a0 = x_near + P.aerial_window_offset, a1 = a0 + win;
-    const double x_far = std::max(a1, groundStart(P.lateral_range + std::abs(cam.y())) + win);
-    const Eigen::Vector3d centre = T * Eigen::Vector3d(0.5 * (x0 + x_far), 0, 0);
-    const double radius = std::hypot(0.5 * (x_far - x0), P.lateral_range) + 2.0;
-    for (int pi : index.near(centre, radius)) {
-      const auto& piece = index.pieces()[pi];
-      const MapInstance& m = inst[piece.instance];
-      const GeometryKind kind = geometryKind(m.cls);
-      Element e;
-      e.cls = m.cls;
-      e.attributes = m.attributes;
-      e.anchor = kf.id;
-      e.truth_id = m.id;
-      e.height = m.height;
-      e.confidence = U(0.7, 1.0);
-      std::vector<std::vector<Eigen::Vector3d>> runs;
-      const bool split = m.cls == CrowdClass::kLaneLine && m.attributes.style != LineStyle::kDashed;
-      if (split) {  // solid line: the visible runs inside the window
-        std::vector<Eigen::Vector3d> run;
-        for (const auto& q : piece.points) {
-          const Eigen::Vector3d b = Tinv * q;
-          const double g0 = groundStart(b.y());
-          if (b.x() >= g0 && b.x() < g0 + win && std::abs(b.y()) <= P.lateral_range &&
-              camera.sees(b, 1.0)) {
-            run.push_back(b);
-          } else if (!run.empty()) {
-            runs.push_back(run);
-            run.clear();
-          }
-        }
-        if (!run.empty()) runs.push_back(run);
-      } else {
-        const Eigen::Vector3d c = Tinv * piece.centroid;
-        const bool aerial = kind == GeometryKind::kPoint || m.cls == CrowdClass::kTrafficSign;
-        const double lo = aerial ? a0 : groundStart(c.y()), hi = lo + win;
-        std::vector<Eigen::Vector3d> pts;
-        for (const auto& q : piece.points) pts.push_back(Tinv * q);
-        const Eigen::Vector3d key_point = kind == GeometryKind::kPoint ? pts[0] : c;
-        const bool centre_seen = c.x() >= lo && c.x() < hi && std::abs(c.y()) <= P.lateral_range &&
-                                 camera.sees(key_point, 1.0);
-        if (m.cls == CrowdClass::kStopLine && !centre_seen && P.partial_stop_line_min_length > 0) {
-          std::vector<Eigen::Vector3d> run, best;
-          double best_length = 0;
-          auto close = [&] {
-            const double l = run.size() >= 2 ? (run.back() - run.front()).head<2>().norm() : 0.0;
-            if (l > best_length) best_length = l, best = run;
-            run.clear();
-          };
-          for (const auto& b : pts) {
-            const double g0 = groundStart(b.y());
-            if (b.x() >= g0 && b.x() < g0 + win && std::abs(b.y()) <= P.lateral_range &&
-                camera.sees(b, 1.0))
-              run.push_back(b);
-            else
-              close();
-          }
-          close();
-          PartialRun& pr = partial[pi];
-          if (best_length >= P.partial_stop_line_min_length && best_length > pr.length)
-            pr = PartialRun{j, best, best_length};
-        }
-        if (!centre_seen) continue;
-        if (m.cls == CrowdClass::kStopLine) whole.insert(pi);
-        runs.push_back(pts);
-      }
-      for (const auto& run : runs) {
-        if (run.size() < 2 && kind == GeometryKind::kLine) continue;
-        if (U(0, 1) < P.miss_probability) {
-          ++out.stats.missed;
-          continue;
-        }
-        Element copy = e;
-        const bool aerial = kind == GeometryKind::kPoint || m.cls == CrowdClass::kTrafficSign;
-        noisy(copy, run, aerial);
-        const double r = (run.front() - cam).head<2>().norm();
-        copy.observations = std::clamp(
-            static_cast<int>((camera.params().max_range - r + win) / std::max(0.1, frame_step)), 1,
-            1000);
-        if (kind == GeometryKind::kPoint) copy.height = m.height * (1.0 + 0.03 * N01(rng));
-        addElement(std::move(copy));
-        ++out.stats.elements;
-      }
-    }
-    // False positives along this keyframe's stretch.
-    if (U(0, 1) < P.false_positives_per_km * win / 1000.0) {
-      Element f;
-      f.anchor = kf.id;
-      f.truth_id = -1;
-      f.confidence = U(0.3, 0.6);
-      const double x = U(x0, x1);
-      if (U(0, 1) < 0.5) {
-        f.cls = CrowdClass::kLaneLine;
-        f.attributes = {LineStyle::kDashed, LineColor::kWhite};
-        const double y = U(-P.lateral_range, P.lateral_range);
-        std::vector<Eigen::Vector3d> pts;
-        for (double s = 0; s <= 3.0; s += P.point_spacing)
-          pts.push_back(Eigen::Vector3d(x + s, y, 0.0));
-        noisy(f, pts, false);
-      } else {
-        f.cls = CrowdClass::kPole;
-        f.height = U(2.0, 6.0);
-        const double side = U(0, 1) < 0.5 ? -1 : 1;  // drawn first (draw_order.hpp)
-        noisy(f, {Eigen::Vector3d(x, side * U(5.0, P.lateral_range), 0.0)}, true);
-      }
-      addElement(std::move(f));
-      ++out.stats.false_positives;
-    }
+    for (int pi : index_.near(centre, radius)) observePiece(pi, kf.id, Tinv, w);
+    falsePositive(kf.id, w);
   }
-  // The partly seen stop lines, from their own random stream (the observations above, and so
-  // every LSM of a simulation without such stop lines, stay as they were).
-  std::mt19937_64 prng(seed ^ 0x5a17c0de5a17c0deull);
-  for (const auto& [pi, pr] : partial) {
-    if (whole.count(pi) || pr.body.empty()) continue;
-    const MapInstance& m = inst[index.pieces()[pi].instance];
-    if (std::uniform_real_distribution<double>(0, 1)(prng) < P.miss_probability) {
-      ++out.stats.missed;
-      continue;
-    }
+
+  /// One piece of a true element at one keyframe: its visible runs (a solid line's stretches in
+  /// the window; any other element whole when its centre is seen), each missed or observed.
+  void observePiece(int pi, int64_t kf_id, const Pose3& Tinv, const Window& w) {
+    const auto& piece = index_.pieces()[pi];
+    const MapInstance& m = world_.truth.instances[piece.instance];
+    const GeometryKind kind = geometryKind(m.cls);
+    const bool aerial = kind == GeometryKind::kPoint || m.cls == CrowdClass::kTrafficSign;
     Element e;
     e.cls = m.cls;
     e.attributes = m.attributes;
-    e.anchor = lsm.keyframes[pr.keyframe].id;
+    e.anchor = kf_id;
     e.truth_id = m.id;
-    e.confidence = std::uniform_real_distribution<double>(0.7, 1.0)(prng);
-    noisyFrom(prng, e, pr.body, false);
-    const double r = (pr.body.front() - cam).head<2>().norm();
-    e.observations =
-        std::clamp(static_cast<int>((camera.params().max_range - r + P.keyframe_spacing) /
-                                    std::max(0.1, frame_step)),
-                   1, 1000);
-    addElement(std::move(e));
-    ++out.stats.elements;
-    ++out.stats.partial_stop_lines;
+    e.height = m.height;
+    e.confidence = U(0.7, 1.0);
+    std::vector<std::vector<Eigen::Vector3d>> runs;
+    if (m.cls == CrowdClass::kLaneLine && m.attributes.style != LineStyle::kDashed) {
+      runs = solidRuns(piece.points, Tinv, w.win);
+    } else {
+      std::vector<Eigen::Vector3d> pts;
+      for (const auto& q : piece.points) pts.push_back(Tinv * q);
+      const Eigen::Vector3d c = Tinv * piece.centroid;
+      const double lo = aerial ? w.a0 : groundStart(c.y()), hi = lo + w.win;
+      const Eigen::Vector3d key_point = kind == GeometryKind::kPoint ? pts[0] : c;
+      const bool centre_seen = c.x() >= lo && c.x() < hi && std::abs(c.y()) <= P_.lateral_range &&
+                               camera_.sees(key_point, 1.0);
+      if (m.cls == CrowdClass::kStopLine && !centre_seen && P_.partial_stop_line_min_length > 0)
+        keepPartialRun(pi, pts, w);
+      if (!centre_seen) return;
+      if (m.cls == CrowdClass::kStopLine) whole_.insert(pi);
+      runs.push_back(pts);
+    }
+    for (const auto& run : runs) {
+      if (run.size() < 2 && kind == GeometryKind::kLine) continue;
+      if (U(0, 1) < P_.miss_probability) {
+        ++out_.stats.missed;
+        continue;
+      }
+      Element copy = e;
+      noisyFrom(rng_, copy, run, aerial);
+      copy.observations = observationsAt(run.front(), w.win);
+      if (kind == GeometryKind::kPoint) copy.height = m.height * (1.0 + 0.03 * N01_(rng_));
+      addElement(std::move(copy));
+      ++out_.stats.elements;
+    }
   }
-  return out;
+
+  /// A solid line's visible runs inside the ground window.
+  std::vector<std::vector<Eigen::Vector3d>> solidRuns(const std::vector<Eigen::Vector3d>& points,
+                                                      const Pose3& Tinv, double win) const {
+    std::vector<std::vector<Eigen::Vector3d>> runs;
+    std::vector<Eigen::Vector3d> run;
+    for (const auto& q : points) {
+      const Eigen::Vector3d b = Tinv * q;
+      if (groundVisible(b, win)) {
+        run.push_back(b);
+      } else if (!run.empty()) {
+        runs.push_back(run);
+        run.clear();
+      }
+    }
+    if (!run.empty()) runs.push_back(run);
+    return runs;
+  }
+
+  /// A stop line whose centre is not seen: its longest visible run, kept if it beats the
+  /// piece's best so far.
+  void keepPartialRun(int pi, const std::vector<Eigen::Vector3d>& pts, const Window& w) {
+    std::vector<Eigen::Vector3d> run, best;
+    double best_length = 0;
+    auto close = [&] {
+      const double l = run.size() >= 2 ? (run.back() - run.front()).head<2>().norm() : 0.0;
+      if (l > best_length) best_length = l, best = run;
+      run.clear();
+    };
+    for (const auto& b : pts) {
+      if (groundVisible(b, w.win))
+        run.push_back(b);
+      else
+        close();
+    }
+    close();
+    PartialRun& pr = partial_[pi];
+    if (best_length >= P_.partial_stop_line_min_length && best_length > pr.length)
+      pr = PartialRun{w.j, best, best_length};
+  }
+
+  /// False positives along this keyframe's stretch: a short dashed line or a pole.
+  void falsePositive(int64_t kf_id, const Window& w) {
+    if (!(U(0, 1) < P_.false_positives_per_km * w.win / 1000.0)) return;
+    Element f;
+    f.anchor = kf_id;
+    f.truth_id = -1;
+    f.confidence = U(0.3, 0.6);
+    const double x = U(w.x0, w.x1);
+    if (U(0, 1) < 0.5) {
+      f.cls = CrowdClass::kLaneLine;
+      f.attributes = {LineStyle::kDashed, LineColor::kWhite};
+      const double y = U(-P_.lateral_range, P_.lateral_range);
+      std::vector<Eigen::Vector3d> pts;
+      for (double s = 0; s <= 3.0; s += P_.point_spacing)
+        pts.push_back(Eigen::Vector3d(x + s, y, 0.0));
+      noisyFrom(rng_, f, pts, false);
+    } else {
+      f.cls = CrowdClass::kPole;
+      f.height = U(2.0, 6.0);
+      const double side = U(0, 1) < 0.5 ? -1 : 1;  // drawn first (draw_order.hpp)
+      noisyFrom(rng_, f, {Eigen::Vector3d(x, side * U(5.0, P_.lateral_range), 0.0)}, true);
+    }
+    addElement(std::move(f));
+    ++out_.stats.false_positives;
+  }
+
+  /// The partly seen stop lines, from their own random stream (the observations above, and so
+  /// every LSM of a simulation without such stop lines, stay as they were).
+  void observePartialStopLines() {
+    std::mt19937_64 prng(seed_ ^ 0x5a17c0de5a17c0deull);
+    for (const auto& [pi, pr] : partial_) {
+      if (whole_.count(pi) || pr.body.empty()) continue;
+      const MapInstance& m = world_.truth.instances[index_.pieces()[pi].instance];
+      if (std::uniform_real_distribution<double>(0, 1)(prng) < P_.miss_probability) {
+        ++out_.stats.missed;
+        continue;
+      }
+      Element e;
+      e.cls = m.cls;
+      e.attributes = m.attributes;
+      e.anchor = out_.lsm.keyframes[pr.keyframe].id;
+      e.truth_id = m.id;
+      e.confidence = std::uniform_real_distribution<double>(0.7, 1.0)(prng);
+      noisyFrom(prng, e, pr.body, false);
+      e.observations = observationsAt(pr.body.front(), P_.keyframe_spacing);
+      addElement(std::move(e));
+      ++out_.stats.elements;
+      ++out_.stats.partial_stop_lines;
+    }
+  }
+
+  const World& world_;
+  const PieceIndex& index_;
+  const Drive& d_;
+  const SimCamera& camera_;
+  const ObservationParams& P_;
+  const DriveParams& DP_;
+  const uint64_t seed_;
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> N01_{0.0, 1.0};
+  const Eigen::Vector3d cam_;
+  const double frame_step_;  ///< m between camera frames
+  const double x_near_;
+  const double edge_slope_;
+  ObservedDrive out_;
+  int64_t next_element_ = 0;
+  std::map<int, PartialRun> partial_;
+  std::set<int> whole_;
+};
+
+}  // namespace
+
+ObservedDrive observeLsm(const World& world, const PieceIndex& index, const Drive& d,
+                         const SimCamera& camera, const ObservationParams& P, const DriveParams& DP,
+                         uint64_t seed) {
+  return LsmObserver(world, index, d, camera, P, DP, seed).run();
 }
 
 }  // namespace mapfuse::sim
