@@ -4,6 +4,7 @@
 #include <map>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <random>
 #include <sstream>
 
@@ -45,19 +46,11 @@ std::string csvLine(std::initializer_list<double> values, int precision) {
   return os.str();
 }
 
-}  // namespace
-
-FramesStats writeFramesDrive(const std::filesystem::path& dir, const World& world,
-                             const PieceIndex& index, const Drive& d, const SimCamera& camera,
-                             const DriveParams& DP, const FramesParams& FP, uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> N01(0.0, 1.0);
+/// calibration.json, frames.json (the manifest) and truth/sensor_errors.json.
+void writeCalibrationAndManifest(const std::filesystem::path& dir, const World& world,
+                                 const Drive& d, const SimCamera& camera, const DriveParams& DP,
+                                 int frame_count) {
   const auto& C = camera.params();
-  FramesStats stats;
-  const std::size_t every = cameraStride(DP);
-  const int frame_count = static_cast<int>((d.stamps.size() + every - 1) / every);
-
-  // Calibration and manifest.
   nlohmann::json calib;
   calib["format"] = "mapfuse.camera_calibration";
   calib["version"] = 1;
@@ -101,8 +94,10 @@ FramesStats writeFramesDrive(const std::filesystem::path& dir, const World& worl
                            {"gyro_bias", {d.gyro_bias.x(), d.gyro_bias.y(), d.gyro_bias.z()}},
                            {"gps_initial_bias_enu", {d.gps_bias0.x(), d.gps_bias0.y()}}};
   io::writeDocument(dir / "truth" / "sensor_errors.json", errors, 2);
+}
 
-  // Streams.
+/// imu.csv, wheel.csv and gps.csv.
+void writeSensorStreams(const std::filesystem::path& dir, const Drive& d) {
   std::string imu = "stamp,gyro_x,gyro_y,gyro_z,accel_x,accel_y,accel_z\n";
   for (const auto& s : d.imu)
     imu += csvLine(
@@ -117,19 +112,195 @@ FramesStats writeFramesDrive(const std::filesystem::path& dir, const World& worl
                     g.fix.sigma_h, g.fix.sigma_v},
                    9);
   io::writeBytesAtomic(dir / "gps.csv", gps);
+}
 
-  // Frames.
+/// What the camera sees in each frame: a mask of the painted ground classes and the
+/// observations (ground pixels, aerial key points and boxes) with noisy pixels, drawn from one
+/// stream in frame, piece, point order, and track ids that persist while a piece stays in view.
+class FrameRenderer {
+ public:
+  FrameRenderer(const World& world, const PieceIndex& index, const Drive& d,
+                const SimCamera& camera, const FramesParams& FP, std::size_t every, uint64_t seed)
+      : world_(world),
+        index_(index),
+        d_(d),
+        camera_(camera),
+        C_(camera.params()),
+        FP_(FP),
+        every_(every),
+        rng_(seed),
+        occlusion_(d.truth, every) {}
+
+  /// Renders frame f into `mask` (zeroed here); its observations into ground / aerial.
+  void render(int f, cv::Mat& mask, nlohmann::json& ground, nlohmann::json& aerial) {
+    f_ = f;
+    k_ = static_cast<std::size_t>(f) * every_;
+    T_enu_cam_ = d_.truth[k_] * camera_.T_body_cam();
+    T_cam_enu_ = T_enu_cam_.inverse();
+    mask = cv::Mat::zeros(C_.height, C_.width, CV_8UC1);
+    ground = nlohmann::json::array(), aerial = nlohmann::json::array();
+    const Eigen::Vector3d centre = d_.truth[k_] * Eigen::Vector3d(C_.max_range / 2, 0, 0);
+    for (int pi : index_.near(centre, C_.max_range / 2 + 15.0)) {
+      const auto& piece = index_.pieces()[pi];
+      const MapInstance& m = world_.truth.instances[piece.instance];
+      const GeometryKind kind = geometryKind(m.cls);
+      const bool is_ground = m.cls == CrowdClass::kLaneLine || m.cls == CrowdClass::kStopLine ||
+                             m.cls == CrowdClass::kGroundArrow || m.cls == CrowdClass::kCrosswalk;
+      if (is_ground && kind == GeometryKind::kLine)
+        groundLine(pi, m, piece.points, mask, ground);
+      else if (is_ground)
+        groundPolygon(pi, m, piece.points, mask, ground);
+      else
+        aerialElement(pi, m, kind, piece.points, aerial);
+    }
+  }
+
+ private:
+  int trackOf(int piece) {
+    auto it = tracks_.find(piece);
+    if (it == tracks_.end() || it->second.second != f_ - 1)
+      it = tracks_.insert_or_assign(piece, std::make_pair(next_track_++, f_)).first;
+    it->second.second = f_;
+    return it->second.first;
+  }
+  std::optional<Eigen::Vector2d> pixel(const Eigen::Vector3d& p_enu) const {
+    return camera_.project(T_cam_enu_ * p_enu, kMinDepth);
+  }
+  bool hidden(const Eigen::Vector3d& p_enu) const {  // beyond a crest
+    return occlusion_.hidden(k_, T_enu_cam_.translation(), p_enu, C_.max_range + 5.0);
+  }
+  bool inImage(const Eigen::Vector2d& uv) const {
+    return uv.x() >= -0.5 && uv.y() >= -0.5 && uv.x() <= C_.width - 0.5 &&
+           uv.y() <= C_.height - 0.5;
+  }
+  nlohmann::json noisyPx(const Eigen::Vector2d& uv) {
+    const Eigen::Vector2d n = FP_.pixel_sigma > 0
+                                  ? Eigen::Vector2d(FP_.pixel_sigma * drawVector2(N01_, rng_))
+                                  : Eigen::Vector2d::Zero();
+    return nlohmann::json::array({roundPx(uv.x() + n.x()), roundPx(uv.y() + n.y())});
+  }
+  static cv::Point toCv(const Eigen::Vector2d& uv) {
+    return cv::Point(static_cast<int>(std::lround((uv.x()) * (1 << kShift))),
+                     static_cast<int>(std::lround((uv.y()) * (1 << kShift))));
+  }
+  void addGround(int pi, const MapInstance& m, nlohmann::json px, nlohmann::json& ground) {
+    nlohmann::json o = {{"instance", ground.size()}, {"track_id", trackOf(pi)}, {"truth_id", m.id}};
+    io::writeClassAndAttributes(o, m.cls, m.attributes);
+    o["pixels"] = std::move(px);
+    ground.push_back(o);
+  }
+
+  /// A painted line: its seen samples' pixels, its strip painted into the mask.
+  void groundLine(int pi, const MapInstance& m, const Polyline& points, cv::Mat& mask,
+                  nlohmann::json& ground) {
+    const Polyline pts = resample(points, kSampleStep);
+    const double half = (m.cls == CrowdClass::kStopLine ? kStopLineWidth : kLaneLineWidth) / 2;
+    nlohmann::json px = nlohmann::json::array();
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const Eigen::Vector3d pc = T_cam_enu_ * pts[i];
+      const auto uv = camera_.project(pc, kMinDepth);
+      const bool seen = uv && inImage(*uv) && pc.norm() <= C_.max_range && !hidden(pts[i]);
+      if (seen) px.push_back(noisyPx(*uv));
+      if (i + 1 < pts.size() && !hidden(pts[i])) {  // painted strip segment
+        const Eigen::Vector3d dir = (pts[i + 1] - pts[i]).normalized();
+        const Eigen::Vector3d n(-dir.y() * half, dir.x() * half, 0.0);
+        const auto a = pixel(pts[i] + n), b = pixel(pts[i + 1] + n), c = pixel(pts[i + 1] - n),
+                   e = pixel(pts[i] - n);
+        if (a && b && c && e && (T_cam_enu_ * pts[i]).norm() <= C_.max_range + 5.0) {
+          const cv::Point quad[4] = {toCv(*a), toCv(*b), toCv(*c), toCv(*e)};
+          cv::fillConvexPoly(mask, quad, 4, cv::Scalar(static_cast<int>(m.cls) + 1), cv::LINE_8,
+                             kShift);
+        }
+      }
+    }
+    if (px.size() >= 2) addGround(pi, m, std::move(px), ground);
+  }
+
+  /// A painted polygon: every corner in front of the camera (their pixels drawn as they come),
+  /// at least one in the image.
+  void groundPolygon(int pi, const MapInstance& m, const Polyline& points, cv::Mat& mask,
+                     nlohmann::json& ground) {
+    std::vector<cv::Point> poly;
+    nlohmann::json px = nlohmann::json::array();
+    bool any_inside = false;
+    for (const auto& p : points) {
+      const Eigen::Vector3d pc = T_cam_enu_ * p;
+      const auto uv = camera_.project(pc, kMinDepth);
+      if (!uv || pc.norm() > C_.max_range || hidden(p)) return;
+      any_inside = any_inside || inImage(*uv);
+      poly.push_back(toCv(*uv));
+      px.push_back(noisyPx(*uv));
+    }
+    if (!any_inside) return;
+    cv::fillPoly(mask, std::vector<std::vector<cv::Point>>{poly},
+                 cv::Scalar(static_cast<int>(m.cls) + 1), cv::LINE_8, kShift);
+    addGround(pi, m, std::move(px), ground);
+  }
+
+  /// A sign, light or pole: its key points (a point element's base and top) and a 2D box.
+  void aerialElement(int pi, const MapInstance& m, GeometryKind kind, const Polyline& points,
+                     nlohmann::json& aerial) {
+    Polyline keys = points;
+    double half_width = 0.0;
+    if (kind == GeometryKind::kPoint) {
+      keys.push_back(keys[0] + Eigen::Vector3d(0, 0, m.height));
+      half_width = m.cls == CrowdClass::kPole ? kPoleRadius : kLightHalfWidth;
+    }
+    std::vector<Eigen::Vector2d> uvs;
+    double umin = 1e300, vmin = 1e300, umax = -1e300, vmax = -1e300;
+    for (const auto& p : keys) {
+      const Eigen::Vector3d pc = T_cam_enu_ * p;
+      const auto uv = camera_.project(pc, kMinDepth);
+      if (!uv || pc.norm() > C_.max_range) return;
+      const double du = C_.fx * half_width / pc.z();
+      umin = std::min(umin, uv->x() - du), umax = std::max(umax, uv->x() + du);
+      vmin = std::min(vmin, uv->y()), vmax = std::max(vmax, uv->y());
+      uvs.push_back(*uv);
+    }
+    umin = std::max(umin, -0.5), vmin = std::max(vmin, -0.5);
+    umax = std::min(umax, C_.width - 0.5), vmax = std::min(vmax, C_.height - 0.5);
+    if (umax - umin < 1.0 || vmax - vmin < 1.0) return;
+    nlohmann::json o = {
+        {"track_id", trackOf(pi)}, {"truth_id", m.id}, {"class", crowdClassName(m.cls)}};
+    o["box"] = {roundPx(umin), roundPx(vmin), roundPx(umax), roundPx(vmax)};
+    nlohmann::json px = nlohmann::json::array();
+    for (const auto& uv : uvs) px.push_back(noisyPx(uv));
+    o["points"] = px;
+    aerial.push_back(o);
+  }
+
+  const World& world_;
+  const PieceIndex& index_;
+  const Drive& d_;
+  const SimCamera& camera_;
+  const CameraParams& C_;
+  const FramesParams& FP_;
+  const std::size_t every_;
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> N01_{0.0, 1.0};
+  const RoadOcclusion occlusion_;              // markings beyond a crest are not seen
+  std::map<int, std::pair<int, int>> tracks_;  // piece -> (track id, last frame)
+  int next_track_ = 0;
+  int f_ = 0;
+  std::size_t k_ = 0;
+  Pose3 T_enu_cam_, T_cam_enu_;
+};
+
+}  // namespace
+
+FramesStats writeFramesDrive(const std::filesystem::path& dir, const World& world,
+                             const PieceIndex& index, const Drive& d, const SimCamera& camera,
+                             const DriveParams& DP, const FramesParams& FP, uint64_t seed) {
+  FramesStats stats;
+  const std::size_t every = cameraStride(DP);
+  const int frame_count = static_cast<int>((d.stamps.size() + every - 1) / every);
+  writeCalibrationAndManifest(dir, world, d, camera, DP, frame_count);
+  writeSensorStreams(dir, d);
   std::string frames_csv = "index,stamp,mask\n", poses_csv = "index,stamp,tx,ty,tz,qw,qx,qy,qz\n";
   std::string jsonl;
-  std::map<int, std::pair<int, int>> tracks;  // piece -> (track id, last frame)
-  int next_track = 0;
-  const auto& inst = world.truth.instances;
-  const Pose3& T_body_cam = camera.T_body_cam();
-  const RoadOcclusion occlusion(d.truth, every);  // markings beyond a crest are not seen
+  FrameRenderer renderer(world, index, d, camera, FP, every, seed);
   for (int f = 0; f < frame_count; ++f) {
     const std::size_t k = static_cast<std::size_t>(f) * every;
-    const Pose3 T_enu_cam = d.truth[k] * T_body_cam;
-    const Pose3 T_cam_enu = T_enu_cam.inverse();
     char name[32];
     std::snprintf(name, sizeof name, "masks/%06d.png", f);
     frames_csv += std::to_string(f) + "," + csvLine({d.stamps[k]}, 4);
@@ -141,127 +312,9 @@ FramesStats writeFramesDrive(const std::filesystem::path& dir, const World& worl
     const Eigen::Vector3d t = d.truth[k].translation();
     poses_csv += std::to_string(f) + "," +
                  csvLine({d.stamps[k], t.x(), t.y(), t.z(), q.w(), q.x(), q.y(), q.z()}, 9);
-    cv::Mat mask = cv::Mat::zeros(C.height, C.width, CV_8UC1);
-    nlohmann::json ground = nlohmann::json::array(), aerial = nlohmann::json::array();
-    auto trackOf = [&](int piece) {
-      auto it = tracks.find(piece);
-      if (it == tracks.end() || it->second.second != f - 1)
-        it = tracks.insert_or_assign(piece, std::make_pair(next_track++, f)).first;
-      it->second.second = f;
-      return it->second.first;
-    };
-    auto pixel = [&](const Eigen::Vector3d& p_enu) {
-      return camera.project(T_cam_enu * p_enu, kMinDepth);
-    };
-    auto hidden = [&](const Eigen::Vector3d& p_enu) {
-      return occlusion.hidden(k, T_enu_cam.translation(), p_enu, C.max_range + 5.0);
-    };
-    auto inImage = [&](const Eigen::Vector2d& uv) {
-      return uv.x() >= -0.5 && uv.y() >= -0.5 && uv.x() <= C.width - 0.5 &&
-             uv.y() <= C.height - 0.5;
-    };
-    auto noisyPx = [&](const Eigen::Vector2d& uv) {
-      const Eigen::Vector2d n = FP.pixel_sigma > 0
-                                    ? Eigen::Vector2d(FP.pixel_sigma * drawVector2(N01, rng))
-                                    : Eigen::Vector2d::Zero();
-      return nlohmann::json::array({roundPx(uv.x() + n.x()), roundPx(uv.y() + n.y())});
-    };
-    auto toCv = [](const Eigen::Vector2d& uv) {
-      return cv::Point(static_cast<int>(std::lround((uv.x()) * (1 << kShift))),
-                       static_cast<int>(std::lround((uv.y()) * (1 << kShift))));
-    };
-    const Eigen::Vector3d centre = d.truth[k] * Eigen::Vector3d(C.max_range / 2, 0, 0);
-    for (int pi : index.near(centre, C.max_range / 2 + 15.0)) {
-      const auto& piece = index.pieces()[pi];
-      const MapInstance& m = inst[piece.instance];
-      const GeometryKind kind = geometryKind(m.cls);
-      const bool is_ground = m.cls == CrowdClass::kLaneLine || m.cls == CrowdClass::kStopLine ||
-                             m.cls == CrowdClass::kGroundArrow || m.cls == CrowdClass::kCrosswalk;
-      if (is_ground && kind == GeometryKind::kLine) {
-        const Polyline pts = resample(piece.points, kSampleStep);
-        const double half = (m.cls == CrowdClass::kStopLine ? kStopLineWidth : kLaneLineWidth) / 2;
-        nlohmann::json px = nlohmann::json::array();
-        for (std::size_t i = 0; i < pts.size(); ++i) {
-          const Eigen::Vector3d pc = T_cam_enu * pts[i];
-          const auto uv = camera.project(pc, kMinDepth);
-          const bool seen = uv && inImage(*uv) && pc.norm() <= C.max_range && !hidden(pts[i]);
-          if (seen) px.push_back(noisyPx(*uv));
-          if (i + 1 < pts.size() && !hidden(pts[i])) {  // painted strip segment
-            const Eigen::Vector3d dir = (pts[i + 1] - pts[i]).normalized();
-            const Eigen::Vector3d n(-dir.y() * half, dir.x() * half, 0.0);
-            const auto a = pixel(pts[i] + n), b = pixel(pts[i + 1] + n), c = pixel(pts[i + 1] - n),
-                       e = pixel(pts[i] - n);
-            if (a && b && c && e && (T_cam_enu * pts[i]).norm() <= C.max_range + 5.0) {
-              const cv::Point quad[4] = {toCv(*a), toCv(*b), toCv(*c), toCv(*e)};
-              cv::fillConvexPoly(mask, quad, 4, cv::Scalar(static_cast<int>(m.cls) + 1), cv::LINE_8,
-                                 kShift);
-            }
-          }
-        }
-        if (px.size() < 2) continue;
-        nlohmann::json o = {
-            {"instance", ground.size()}, {"track_id", trackOf(pi)}, {"truth_id", m.id}};
-        io::writeClassAndAttributes(o, m.cls, m.attributes);
-        o["pixels"] = px;
-        ground.push_back(o);
-      } else if (is_ground) {  // polygon: every corner in front of the camera, one in the image
-        std::vector<cv::Point> poly;
-        nlohmann::json px = nlohmann::json::array();
-        bool ok = true, any_inside = false;
-        for (const auto& p : piece.points) {
-          const Eigen::Vector3d pc = T_cam_enu * p;
-          const auto uv = camera.project(pc, kMinDepth);
-          if (!uv || pc.norm() > C.max_range || hidden(p)) {
-            ok = false;
-            break;
-          }
-          any_inside = any_inside || inImage(*uv);
-          poly.push_back(toCv(*uv));
-          px.push_back(noisyPx(*uv));
-        }
-        if (!ok || !any_inside) continue;
-        cv::fillPoly(mask, std::vector<std::vector<cv::Point>>{poly},
-                     cv::Scalar(static_cast<int>(m.cls) + 1), cv::LINE_8, kShift);
-        nlohmann::json o = {
-            {"instance", ground.size()}, {"track_id", trackOf(pi)}, {"truth_id", m.id}};
-        io::writeClassAndAttributes(o, m.cls, m.attributes);
-        o["pixels"] = px;
-        ground.push_back(o);
-      } else {  // aerial: key points and a 2D box
-        Polyline keys = piece.points;
-        double half_width = 0.0;
-        if (kind == GeometryKind::kPoint) {
-          keys.push_back(keys[0] + Eigen::Vector3d(0, 0, m.height));
-          half_width = m.cls == CrowdClass::kPole ? kPoleRadius : kLightHalfWidth;
-        }
-        std::vector<Eigen::Vector2d> uvs;
-        bool ok = true;
-        double umin = 1e300, vmin = 1e300, umax = -1e300, vmax = -1e300;
-        for (const auto& p : keys) {
-          const Eigen::Vector3d pc = T_cam_enu * p;
-          const auto uv = camera.project(pc, kMinDepth);
-          if (!uv || pc.norm() > C.max_range) {
-            ok = false;
-            break;
-          }
-          const double du = C.fx * half_width / pc.z();
-          umin = std::min(umin, uv->x() - du), umax = std::max(umax, uv->x() + du);
-          vmin = std::min(vmin, uv->y()), vmax = std::max(vmax, uv->y());
-          uvs.push_back(*uv);
-        }
-        if (!ok) continue;
-        umin = std::max(umin, -0.5), vmin = std::max(vmin, -0.5);
-        umax = std::min(umax, C.width - 0.5), vmax = std::min(vmax, C.height - 0.5);
-        if (umax - umin < 1.0 || vmax - vmin < 1.0) continue;
-        nlohmann::json o = {
-            {"track_id", trackOf(pi)}, {"truth_id", m.id}, {"class", crowdClassName(m.cls)}};
-        o["box"] = {roundPx(umin), roundPx(vmin), roundPx(umax), roundPx(vmax)};
-        nlohmann::json px = nlohmann::json::array();
-        for (const auto& uv : uvs) px.push_back(noisyPx(uv));
-        o["points"] = px;
-        aerial.push_back(o);
-      }
-    }
+    cv::Mat mask;
+    nlohmann::json ground, aerial;
+    renderer.render(f, mask, ground, aerial);
     stats.ground_observations += static_cast<int>(ground.size());
     stats.aerial_observations += static_cast<int>(aerial.size());
     jsonl += nlohmann::json(
