@@ -3,7 +3,8 @@
 # drives at --level lsm and --level frames (camera, IMU, wheel, GPS), run the whole chain
 # (scripts/crowd.mk: lsm-build per drive for frames, georef, align, aggregate, evaluate and the
 # trust check), measure keyframe and element heights against the simulator's truth
-# (bench_frames_height.py) and check each frames row against issue 33's bounds. Writes the
+# (bench_frames_height.py), check each frames row against issue 33's bounds and each map.osm
+# with the real Lanelet2 library (issue 35). Writes the
 # section between the frames-worlds markers of docs/performance-frames-chain.md.
 # usage: scripts/bench/bench_frames_worlds.sh [BIN_DIR=build/bin]
 # env: WORLDS (seed:grade of a procedural hill world with a 3 km outward route, or seed:FILE of
@@ -17,6 +18,7 @@ worlds=${WORLDS:-"11:0.05 3:0.08 3:$esmini/xodr__crest-curve.xodr \
 3:$esmini/xodr__curves_elevation.xodr 3:$esmini/xodr__e6mini.xodr 3:$esmini/xodr__tunnels.xodr \
 3:$maps/MONAEast.xodr 3:$maps/lanelet2_karlsruhe_mapping_example.osm"}
 traversals=${TRAVERSALS:-20}
+l2lib="${MAPFUSE_CACHE:-$HOME/.cache/mapfuse}/lanelet2-build"
 work=${WORK:-$tmp}
 mkdir -p "$work"
 rows="$work/frames-worlds-rows.md"
@@ -48,10 +50,18 @@ for w in $worlds; do
     python3 "$root/scripts/bench/bench_frames_height.py" --aligned "$out/align" \
       --truth-traj "$sim/truth" --map "$out/aggregate/map.json" \
       --truth "$sim/truth/vector_map.json" > "$out/height.json"
+    # The real Lanelet2 library on map.osm (tests/e2e/lanelet2_validate.sh builds and caches it)
+    l2=n/a
+    if [[ -x $l2lib/lanelet2_validate && -x $shared/tools/lanelet2/validate.sh ]]; then
+      read -r lat lon < <(grep -m1 -o 'lat="[^"]*" lon="[^"]*"' "$out/aggregate/map.osm" |
+        sed 's/lat="\([^"]*\)" lon="\([^"]*\)"/\1 \2/')
+      if bash "$shared/tools/lanelet2/validate.sh" "$out/aggregate/map.osm" "$lat" "$lon" "$l2lib" \
+        > "$out/aggregate/map.osm.validate.txt" 2>&1; then l2="exit 0"; else l2="exit $?"; fi
+    fi
     python3 - "$name" "$level" "$out" "$sim" "$((t2 - t1))" "$work/lsm-lane-$seed-$(basename "$what")" \
-      >> "$rows" <<'PY'
+      "$l2" >> "$rows" <<'PY'
 import json, os, sys
-name, level, out, sim, secs, lsm_file = sys.argv[1:]
+name, level, out, sim, secs, lsm_file, l2 = sys.argv[1:]
 ev = json.load(open(f"{out}/evaluate/evaluate.summary.json"))
 h = json.load(open(f"{out}/height.json"))
 chk = json.load(open(f"{out}/check.json"))
@@ -87,7 +97,7 @@ if level == "frames":
 f2 = lambda v: "n/a" if v is None else f"{v:.2f}"
 print(f"| {name} | {level} | {km:.2f} | {'n/a' if rel is None else f'{rel:.3f}'} | {comp} | "
       f"{red:.3f} | {f2(kv)} / {f2(kh)} | {f2(eh)} | {', '.join(chk['untrusted']) or 'none'} | "
-      f"{secs} | {verdict} |")
+      f"{secs} | {l2} | {verdict} |")
 PY
     echo "bench_frames_worlds: $name $level done ($((t2 - t0)) s)" >&2
   done
@@ -110,10 +120,12 @@ section="$work/frames-worlds-section.md"
   echo "  pose [m]; element height RMS against the nearest true element of the class [m];"
   echo "  drives the trust check names; chain seconds (make, without simulate); issue 33's bounds"
   echo "  for the frames row (lane <= 0.06 m and <= 2x the LSM row, completeness >= 0.95,"
-  echo "  redundancy <= 0.03, heights <= 0.3 m)."
+  echo "  redundancy <= 0.03, heights <= 0.3 m); Lanelet2: ../shared/tools/lanelet2/validate.sh on"
+  echo "  map.osm (exit 0: no load error, no lanelet2_validate issue, a valid routing graph; n/a"
+  echo "  where the library's cached build is absent)."
   echo
-  echo "| world | level | km per drive | lane rel. precision m | completeness | max redundancy | keyframes vertical / horizontal m | element height m | untrusted | chain s | bounds |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|"
+  echo "| world | level | km per drive | lane rel. precision m | completeness | max redundancy | keyframes vertical / horizontal m | element height m | untrusted | chain s | Lanelet2 validate.sh | bounds |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
   cat "$rows"
   echo "<!-- frames-worlds end -->"
 } > "$section"
