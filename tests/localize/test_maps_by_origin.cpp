@@ -1,6 +1,6 @@
 // localize: the map in each drive's ENU, built once per origin (localize/maps_by_origin.hpp).
-// The e2e localize tests crashed once when its cache grew while a caller held a reference into
-// it; here drives of two origins ask for their map alternately.
+// The e2e localize tests crashed once when its cache grew while it was being iterated; here
+// drives of two origins ask for their map alternately.
 #include <catch2/catch.hpp>
 
 #include "mapfuse/geo/origin.hpp"
@@ -31,7 +31,7 @@ TEST_CASE("maps by origin: one map per origin, shared by the drives of that orig
   const Eigen::Vector3d pole_in_b =
       geo::EnuConverter(b).toEnu(geo::EnuConverter(a).toWgs84(pole.points[0]));
   std::vector<const localize::MapIndex*> first(2, nullptr);
-  for (int call = 0; call < 12; ++call) {  // a, b, a, b, ...: the cache grows on every call
+  for (int call = 0; call < 12; ++call) {  // a, b, a, b, ...
     const bool in_a = call % 2 == 0;
     const localize::MapInDriveFrame m = maps.at(in_a ? a : b);
     REQUIRE(m.index);

@@ -9,12 +9,8 @@ MapsByOrigin::MapsByOrigin(const VectorMap& map, const std::optional<VectorMap>&
     : map_(map), truth_map_(truth_map), settings_(settings) {}
 
 MapInDriveFrame MapsByOrigin::at(const geo::GeoOrigin& origin) {
-  for (std::size_t k = 0; k < seen_.size(); ++k)
-    if (geo::sameOrigin(seen_[k].first, origin)) {
-      const MapInDriveFrame m = seen_[k].second;  // a copy: emplace_back may move seen_
-      seen_.emplace_back(origin, m);
-      return m;
-    }
+  for (const auto& [o, m] : seen_)
+    if (geo::sameOrigin(o, origin)) return m;  // built for an earlier drive of this origin
   MapInDriveFrame m;
   const VectorMap map = eval::inOrigin(map_, origin);
   m.index = std::make_shared<MapIndex>(map, settings_.match_attributes);

@@ -36,7 +36,7 @@ class MapsByOrigin {
   const VectorMap& map_;
   const std::optional<VectorMap>& truth_map_;
   const LocalizeSettings& settings_;
-  std::vector<std::pair<geo::GeoOrigin, MapInDriveFrame>> seen_;  ///< every call, in order
+  std::vector<std::pair<geo::GeoOrigin, MapInDriveFrame>> seen_;  ///< one per distinct origin
 };
 
 }  // namespace mapfuse::localize
