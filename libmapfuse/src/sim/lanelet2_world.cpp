@@ -249,9 +249,10 @@ struct L2Builder {
     add(w.id, CrowdClass::kTrafficSign,
         {a + bottom * up, b + bottom * up, b + (bottom + size) * up, a + (bottom + size) * up},
         h ? "" : "mounting height assumed by simulator");
-    if (!map_has_poles && posts.claim(0.5 * (a + b))) {
-      add(ids.fresh(), CrowdClass::kPole, {0.5 * (a + b)}, "placed by simulator under a sign")
-          .height = bottom + size;
+    const Eigen::Vector3d post = 0.5 * (a + b);
+    if (!map_has_poles && posts.claim(post)) {
+      add(ids.fresh(), CrowdClass::kPole, {post}, "placed by simulator under a sign").height =
+          bottom + size;
       ++placed_poles;
     }
     ++signs;

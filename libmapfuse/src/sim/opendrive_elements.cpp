@@ -202,9 +202,9 @@ void addOpenDriveElements(const OdrContext& ctx, World& world) {
   SignPosts posts;  // signs and lights mounted together share one pole
   if (!map_has_poles)
     for (const auto& [base, height] : B.pole_requests) {
-      if (!posts.claim(ctx.toEnu(base))) continue;
-      B.add(CrowdClass::kPole, {ctx.toEnu(base)}, "placed by simulator under a sign or light")
-          .height = height;
+      const Eigen::Vector3d enu = ctx.toEnu(base);
+      if (!posts.claim(enu)) continue;
+      B.add(CrowdClass::kPole, {enu}, "placed by simulator under a sign or light").height = height;
       ++placed_poles;
     }
   const int joins = joinLineChains(world.truth.instances, kJoinTolerance);
