@@ -6,6 +6,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "joins.hpp"
 #include "kinks.hpp"
 #include "ring_index.hpp"
 
@@ -297,6 +298,7 @@ struct LineSet {
   SegmentGrid grid;
   int kink_vertices_removed = 0;
   double kink_max_deviation = 0.0;
+  detail::LineJoins joins;  ///< facing ends of lines continuing each other (joins.hpp)
 };
 
 LineSet collectLines(const VectorMap& map, const LaneletSettings& settings) {
@@ -305,9 +307,14 @@ LineSet collectLines(const VectorMap& map, const LaneletSettings& settings) {
     const auto& m = map.instances[i];
     if (m.cls != CrowdClass::kLaneLine || m.points.size() < 2) continue;
     if (polylineLength(m.points) < settings.min_length) continue;
-    detail::KinkRemoval kinks;
     set.inst.push_back(i);
-    set.lines.push_back(detail::removeKinks(m.points, settings.max_curvature, &kinks));
+    set.lines.push_back(m.points);
+  }
+  // joined before the kinks go, so that a bend the join leaves at a moved end goes with them
+  set.joins = detail::joinLineEnds(set.lines, settings.join_gap);
+  for (auto& line : set.lines) {
+    detail::KinkRemoval kinks;
+    line = detail::removeKinks(line, settings.max_curvature, &kinks);
     set.kink_vertices_removed += kinks.removed;
     set.kink_max_deviation = std::max(set.kink_max_deviation, kinks.max_deviation);
   }
@@ -656,6 +663,7 @@ LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& dri
   LaneletPlan plan = buildLanelets(set, cutLines(set, intervals), intervals);
   plan.kink_vertices_removed = set.kink_vertices_removed;
   plan.kink_max_deviation = set.kink_max_deviation;
+  plan.line_ends_joined = set.joins.joined;
   detail::removePieceKinks(plan, settings.max_curvature);
   dropSameSideLanelets(plan);
   laneletGeometry(plan);
