@@ -19,6 +19,7 @@
 #include "mapfuse/lanelet/regulatory.hpp"
 #include "mapfuse/sim/lanelet2_world.hpp"
 #include "mapfuse/sim/procedural_world.hpp"
+#include "sim/line_chains.hpp"
 #include "support/test_support.hpp"
 
 using namespace mapfuse;
@@ -26,6 +27,7 @@ namespace fs = std::filesystem;
 
 namespace {
 constexpr double kRoundTripTolerance = 0.05;  // m, the issue's bound
+constexpr double kSharedNode = 1e-3;          // m, line ends the export writes as one node
 
 double pointToPolylineXYZ(const Eigen::Vector3d& p, const std::vector<Eigen::Vector3d>& line) {
   if (line.size() == 1) return (p - line.front()).norm();
@@ -252,9 +254,12 @@ TEST_CASE("Lanelet2 export: simulate --map loads an aggregated map.osm with its 
   CHECK(plate_loss < 0.5);
   // Lane lines that bound lanelets compare as the export writes them: without their kinks
   // (lanelet/kinks.hpp, lanelet_max_curvature), the plan's points; that loss is the summary's.
+  // Pieces of one painted line that aggregation broke apart end on one node once joined
+  // (lanelet/joins.hpp), and the reader takes lines sharing an end node as one line.
   const auto plan = lanelet::planExport(agg, {});
   for (const auto& line : plan.lanes.lines)
     agg_plates.instances[line.instance].points = line.points;
+  CHECK(sim::joinLineChains(agg_plates.instances, kSharedNode) <= plan.lanes.line_ends_joined);
   const auto summary = nlohmann::json::parse(io::readBytes(dir / "agg" / "aggregate.summary.json"));
   const double kink_loss = summary["lanelet2"]["kink_max_deviation_m"].get<double>();
   INFO("largest distance of a dropped lane-line kink from its line: " << kink_loss);

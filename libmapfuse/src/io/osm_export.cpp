@@ -279,6 +279,8 @@ std::string vectorMapToOsm(const VectorMap& map, const LaneletExportPlan& plan,
   e.stats.same_side_lanelets_dropped = plan.lanes.same_side_lanelets_dropped;
   e.stats.lanelets_oriented_by_neighbours = plan.lanes.lanelets_oriented_by_neighbours;
   e.stats.kink_vertices_removed = plan.lanes.kink_vertices_removed;
+  e.stats.line_ends_joined = plan.lanes.line_ends_joined;
+  e.stats.one_sided_connections = plan.lanes.one_sided_connections;
   e.stats.kink_max_deviation = plan.lanes.kink_max_deviation;
   if (stats_out) *stats_out = e.stats;
   std::string xml = e.osm.xml();

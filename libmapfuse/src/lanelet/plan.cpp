@@ -6,6 +6,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "joins.hpp"
 #include "kinks.hpp"
 #include "ring_index.hpp"
 
@@ -13,16 +14,17 @@ namespace mapfuse::lanelet {
 
 namespace {
 
-constexpr double kStationStep = 1.0;     // m between stations where neighbours are sought
-constexpr double kMinParallel = 0.9063;  // cos 25 deg between the two bounds
-constexpr double kRunBreak = 3.0;        // m of missing neighbour that ends a pair interval
-constexpr double kCutSnap = 1.0;         // m; a cut this close to another is the same cut
-constexpr double kMinPiece = 0.5;        // m; shorter pieces give no lanelet
-constexpr double kGridCell = 5.0;        // m, segment and drive-sample grid
-constexpr double kDriveStep = 2.0;       // m between drive samples used as votes
-constexpr int kMaxPropagation = 20;      // rounds of cut propagation
-constexpr double kConnectorStep = 1.0;   // m between drive samples tracing connections
-constexpr double kConnectorEnd = 4.0;    // m; the drive leaves / enters within this of the ends
+constexpr double kStationStep = 1.0;        // m between stations where neighbours are sought
+constexpr double kMinParallel = 0.9063;     // cos 25 deg between the two bounds
+constexpr double kRunBreak = 3.0;           // m of missing neighbour that ends a pair interval
+constexpr double kCutSnap = 1.0;            // m; a cut this close to another is the same cut
+constexpr double kMinPiece = 0.5;           // m; shorter pieces give no lanelet
+constexpr double kGridCell = 5.0;           // m, segment and drive-sample grid
+constexpr double kDriveStep = 2.0;          // m between drive samples used as votes
+constexpr int kMaxPropagation = 20;         // rounds of cut propagation
+constexpr double kConnectorStep = 1.0;      // m between drive samples tracing connections
+constexpr double kConnectorEnd = 4.0;       // m; the drive leaves / enters within this of the ends
+constexpr double kMinConnectorBound = 0.1;  // m; shorter is one node (io merges below 0.0502 m)
 
 using V3 = Eigen::Vector3d;
 using Poly = std::vector<V3>;
@@ -186,10 +188,12 @@ std::vector<Eigen::Vector3d> piecePoints(const LaneletPlan& plan, std::size_t pi
 
 namespace {
 
-/// Connector lanelets where drives leave one one-way lanelet at its end and enter another at its
-/// start after an unmarked stretch.
-void addConnectors(LaneletPlan& plan, const std::vector<DrivePath>& drives,
-                   const LaneletSettings& settings) {
+/// The connections drives made: where a drive leaves one one-way lanelet at its end and enters
+/// another at its start after an unmarked stretch, (from, to) with the number of drives, in the
+/// order they were first seen.
+std::vector<std::pair<std::pair<std::size_t, std::size_t>, int>> driveConnections(
+    const LaneletPlan& plan, const std::vector<DrivePath>& drives,
+    const LaneletSettings& settings) {
   std::map<Cell, std::vector<std::size_t>> grid;
   std::vector<detail::RingIndex> rings;  // the test of every drive sample against the rings
   rings.reserve(plan.lanelets.size());
@@ -214,7 +218,8 @@ void addConnectors(LaneletPlan& plan, const std::vector<DrivePath>& drives,
     }
     return -1;
   };
-  std::map<std::pair<std::size_t, std::size_t>, std::size_t> made;
+  std::vector<std::pair<std::pair<std::size_t, std::size_t>, int>> made;
+  std::map<std::pair<std::size_t, std::size_t>, std::size_t> index;
   for (const auto& d : drives) {
     if (d.size() < 2) continue;
     const auto dc = arcLengths(d);
@@ -233,24 +238,24 @@ void addConnectors(LaneletPlan& plan, const std::vector<DrivePath>& drives,
             (p - b.centre.front()).head<2>().norm() <= kConnectorEnd) {
           const auto key =
               std::make_pair(static_cast<std::size_t>(last), static_cast<std::size_t>(l));
-          const auto it = made.find(key);
-          if (it != made.end()) {
-            ++plan.connectors[it->second].drives;
-          } else {
-            LaneletPlan::Connector c;
-            c.from = key.first;
-            c.to = key.second;
-            c.drives = 1;
-            made[key] = plan.connectors.size();
-            plan.connectors.push_back(c);
-          }
+          const auto [it, fresh] = index.try_emplace(key, made.size());
+          if (fresh) made.push_back({key, 0});
+          ++made[it->second].second;
         }
       }
       last = l;
       left_at = s;
     }
   }
-  // Bounds: from the first lanelet's bound ends to the second's bound starts.
+  return made;
+}
+
+/// Connector lanelets for the drives' connections (driveConnections). Bounds run from the first
+/// lanelet's bound ends to the second's bound starts; a connection whose bounds already meet on
+/// one side would need a bound of one node there, which no lanelet can have (Lanelet2 routes
+/// nothing through it), and gets none (`one_sided_connections`).
+void addConnectors(LaneletPlan& plan, const std::vector<DrivePath>& drives,
+                   const LaneletSettings& settings) {
   auto endPoint = [&](const LaneletPlan::Lanelet& ll, bool left, bool at_end) {
     const auto [piece, last_point] = boundEnd(plan, ll, left, at_end);
     const Poly pts = piecePoints(plan, piece);
@@ -261,18 +266,26 @@ void addConnectors(LaneletPlan& plan, const std::vector<DrivePath>& drives,
     const Eigen::Vector2d d = (at_end ? c[n - 1] - c[n - 2] : c[1] - c[0]).head<2>();
     return d.norm() > 1e-9 ? Eigen::Vector2d(d.normalized()) : Eigen::Vector2d(1, 0);
   };
-  for (auto& c : plan.connectors) {
-    const auto& a = plan.lanelets[c.from];
-    const auto& b = plan.lanelets[c.to];
+  for (const auto& [key, count] : driveConnections(plan, drives, settings)) {
+    const auto& a = plan.lanelets[key.first];
+    const auto& b = plan.lanelets[key.second];
+    const V3 al = endPoint(a, true, true), bl = endPoint(b, true, false);
+    const V3 ar = endPoint(a, false, true), br = endPoint(b, false, false);
+    if ((bl - al).norm() < kMinConnectorBound || (br - ar).norm() < kMinConnectorBound) {
+      ++plan.one_sided_connections;
+      continue;
+    }
+    LaneletPlan::Connector c;
+    c.from = key.first;
+    c.to = key.second;
+    c.drives = count;
     const Eigen::Vector2d ta = direction(a.centre, true), tb = direction(b.centre, false);
     // a short connector between bound ends that do not face each other bends its Hermite
     // curve within a metre (MONAEast, frames level: 45 degrees over 0.65 m, curvature > 0.5 for
     // lanelet2_validate): interior vertices above max_curvature go as on the lane lines
-    c.left = detail::removeKinks(hermite(endPoint(a, true, true), ta, endPoint(b, true, false), tb),
-                                 settings.max_curvature);
-    c.right =
-        detail::removeKinks(hermite(endPoint(a, false, true), ta, endPoint(b, false, false), tb),
-                            settings.max_curvature);
+    c.left = detail::removeKinks(hermite(al, ta, bl, tb), settings.max_curvature);
+    c.right = detail::removeKinks(hermite(ar, ta, br, tb), settings.max_curvature);
+    plan.connectors.push_back(std::move(c));
   }
 }
 
@@ -285,6 +298,7 @@ struct LineSet {
   SegmentGrid grid;
   int kink_vertices_removed = 0;
   double kink_max_deviation = 0.0;
+  detail::LineJoins joins;  ///< facing ends of lines continuing each other (joins.hpp)
 };
 
 LineSet collectLines(const VectorMap& map, const LaneletSettings& settings) {
@@ -293,9 +307,14 @@ LineSet collectLines(const VectorMap& map, const LaneletSettings& settings) {
     const auto& m = map.instances[i];
     if (m.cls != CrowdClass::kLaneLine || m.points.size() < 2) continue;
     if (polylineLength(m.points) < settings.min_length) continue;
-    detail::KinkRemoval kinks;
     set.inst.push_back(i);
-    set.lines.push_back(detail::removeKinks(m.points, settings.max_curvature, &kinks));
+    set.lines.push_back(m.points);
+  }
+  // joined before the kinks go, so that a bend the join leaves at a moved end goes with them
+  set.joins = detail::joinLineEnds(set.lines, settings.join_gap);
+  for (auto& line : set.lines) {
+    detail::KinkRemoval kinks;
+    line = detail::removeKinks(line, settings.max_curvature, &kinks);
     set.kink_vertices_removed += kinks.removed;
     set.kink_max_deviation = std::max(set.kink_max_deviation, kinks.max_deviation);
   }
@@ -644,6 +663,7 @@ LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& dri
   LaneletPlan plan = buildLanelets(set, cutLines(set, intervals), intervals);
   plan.kink_vertices_removed = set.kink_vertices_removed;
   plan.kink_max_deviation = set.kink_max_deviation;
+  plan.line_ends_joined = set.joins.joined;
   detail::removePieceKinks(plan, settings.max_curvature);
   dropSameSideLanelets(plan);
   laneletGeometry(plan);

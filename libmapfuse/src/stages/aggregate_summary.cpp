@@ -45,6 +45,8 @@ nlohmann::json toJson(const AggregateRun& run) {
         {"right_of_way_elements", run.lanelet2.right_of_way_elements},
         {"all_way_stop_elements", run.lanelet2.all_way_stop_elements},
         {"kink_vertices_removed", run.lanelet2.kink_vertices_removed},
+        {"line_ends_joined", run.lanelet2.line_ends_joined},
+        {"one_sided_connections", run.lanelet2.one_sided_connections},
         {"same_side_lanelets_dropped", run.lanelet2.same_side_lanelets_dropped},
         {"kink_max_deviation_m", run.lanelet2.kink_max_deviation},
         {"lane_line_bound_share",

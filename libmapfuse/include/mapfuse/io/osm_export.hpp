@@ -44,6 +44,8 @@ struct Lanelet2ExportStats {
   double bound_m = 0.0;                ///< lane-line length that bounds at least one lanelet
   int kink_vertices_removed = 0;       ///< lane-line vertices dropped as kinks (lanelet/kinks.hpp)
   double kink_max_deviation = 0.0;     ///< m: farthest dropped vertex from the line kept
+  int line_ends_joined = 0;            ///< facing lane-line ends joined (lanelet/joins.hpp)
+  int one_sided_connections = 0;       ///< drive connections whose bounds met on one side
 };
 
 /// @brief The OSM XML document of `map` with the lanelets and regulatory elements of `plan`

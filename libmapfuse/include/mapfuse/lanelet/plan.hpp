@@ -57,6 +57,8 @@ struct LaneletPlan {
   int kink_vertices_removed = 0;            ///< lane-line vertices dropped as kinks (max_curvature)
   double kink_max_deviation = 0.0;     ///< m: farthest dropped vertex from its line's remainder
   int same_side_lanelets_dropped = 0;  ///< a piece bounded two lanelets on one side
+  int line_ends_joined = 0;  ///< pairs of facing lane-line ends joined (LaneletSettings::join_gap)
+  int one_sided_connections = 0;  ///< drive connections without a connector: bounds met on a side
 };
 
 /// @brief Pairs the lane lines of `map` into lanelets; `drives` give travel directions.

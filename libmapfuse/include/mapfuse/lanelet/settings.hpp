@@ -16,6 +16,7 @@ struct LaneletSettings {
   double regulatory_reach = 25.0;    ///< m from a stop line's middle to its lights and signs
   double lone_reach = 15.0;          ///< m from a light or sign without stop line to its lanelet
   double max_curvature = 0.4;        ///< 1/m; sharper lane-line vertices are kinks (kinks.hpp)
+  double join_gap = 3.0;  ///< m; facing lane-line ends this close continue one line (joins.hpp)
 
   template <class V>
   void visit(V& v) {
@@ -42,6 +43,11 @@ struct LaneletSettings {
       "Lanelet2 export: lane-line vertices bending sharper than this (kinks of the aggregated "
       "line; Lanelet2's validator warns above 0.5) are dropped from lanelet bounds",
       in(0.01, 10));
+    v("lanelet_join_gap", join_gap, "m",
+      "Lanelet2 export: two lane lines whose facing ends lie this close along the line (gap or "
+      "overlap, at most 0.5 m across) are one line broken by aggregation: their ends are joined "
+      "so that consecutive lanelets share their bounds' end nodes (0: no joins)",
+      in(0, 10));
   }
 };
 
