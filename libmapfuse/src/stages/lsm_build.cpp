@@ -68,10 +68,10 @@ LsmBuildRun runLsmBuild(const LsmBuildInputs& in, const LsmBuildParams& p) {
                   drive.egomotion,
                   drive.perception_seconds,
                   drive.network_seconds,
-                  vehicle::buildLsm(drive, p.build)};
-  run.cached_frames = drive.cached_frames;
-  run.aerial_detections = drive.aerial_detections;
-  run.lane_styles = drive.lane_styles;
+                  vehicle::buildLsm(drive, p.build),
+                  drive.cached_frames,
+                  drive.aerial_detections,
+                  drive.lane_styles};
   validateLsm(run.build.lsm, drive.drive_id);
   if (p.build.vanishing.enabled) {
     const auto& vp = run.build.vp;

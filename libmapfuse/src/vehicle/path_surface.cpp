@@ -15,6 +15,13 @@ constexpr double kSurfaceTol = 0.05;
 /// Share of its range a point may move when the road is kSurfaceTol lower: a flat road moves a
 /// point at the band's 30 m edge by 3.6 %; a ray skimming a crest by tens of metres.
 constexpr double kMaxRangeShift = 0.1;
+/// rad: the path from frame i to the frame abreast turned by more than this, and a point farther
+/// aside than path_max_offset is not ranged on the road there. Where the drive turns off, a
+/// point on the road straight on is "abreast" of a frame far along the new road, whose plane
+/// says nothing of it: unbounded, lane points 10-15 m aside 0.17 -> 1.5 m RMS (flat world) and
+/// 15-30 m ahead 0.10 -> 0.23 m (8 % world); gated at 0.3 rad, 0.10 m, while a crossing road's
+/// stop lines 15-25 m aside of a straight path keep the road's own cross-slope.
+constexpr double kStraightTurn = 0.3;
 /// Share of the reach the parabola also spans behind the frame (its d ∈ [-share reach, reach]):
 /// measured on the 8 % and the flat world (tests/vehicle/test_path_surface.cpp), 0.5 left the
 /// flat world's far lane points 16 % worse than the plane under the camera, 1.0 8 %, 2.0 smooths
@@ -154,10 +161,10 @@ PathSurface::PathSurface(const std::vector<Pose3>& T_odom_body, const Pose3& T_b
   // Per frame: its ground plane's normal (up) and the road's direction across (left), in odom.
   up_.resize(n);
   across_.resize(n);
-  for (std::size_t k = 0; k < n; ++k) {
+  for (std::size_t k = 0; k < n; ++k)
     up_[k] = (T_odom_body[k].linear() * T_body_cam.linear() * planes[k].normal_cam).normalized();
+  for (std::size_t k = 0; k < n; ++k)
     across_[k] = up_[k].cross(T_odom_body[k].linear().col(0)).normalized();
-  }
   const std::vector<double>& z = p.z;
   height_ = smoothAlongPath(distance_, z, kProfileSmooth);
   // Per frame: the parabola over the whole window where it follows the heights within
@@ -173,6 +180,12 @@ PathSurface::PathSurface(const std::vector<Pose3>& T_odom_body, const Pose3& T_b
   }
 }
 
+bool PathSurface::turned(std::size_t i, std::size_t j) const {
+  const Eigen::Vector2d a = T_odom_body_[i].linear().col(0).head<2>(),
+                        b = T_odom_body_[j].linear().col(0).head<2>();
+  return a.normalized().dot(b.normalized()) < std::cos(kStraightTurn);
+}
+
 double PathSurface::slopeAhead(std::size_t i, std::size_t j) const {
   if (profile_[i]) return slope_[j] - slope_[i];
   return 2.0 * bend_[i] * (distance_[j] - distance_[i]);
@@ -184,6 +197,57 @@ double PathSurface::riseAhead(std::size_t i, std::size_t j) const {
   return bend_[i] * d * d;
 }
 
+std::optional<PathSurface::Meeting> PathSurface::meet(std::size_t i, std::size_t j,
+                                                      const Eigen::Vector2d& pixel,
+                                                      const Eigen::Matrix3d& K_inv,
+                                                      double rise) const {
+  GroundPlane ahead = planes_[i];
+  ahead.height -= rise;
+  if (!(ahead.height > 0.0)) return std::nullopt;     // the road there rises above the camera
+  auto X = backProjectToGround(pixel, K_inv, ahead);  // eq. (1) on the road there
+  if (!X) return std::nullopt;
+  // Twist. The rise is the path's own height abreast of j. The road there is flat along frame
+  // j's ground plane across the path, not along frame i's: a point `aside` of the path abreast of
+  // j lies n_i · across_j · aside higher (n_i frame i's plane normal). On a curve up a grade b
+  // this is b sin(ψ_j − ψ_i) aside (esmini curves_elevation, 8 % on R ≈ 100 m: 6 cm 15 m ahead
+  // and 5 m aside; lane points 0.15-0.18 m off across the road without it); where the
+  // cross-slope changes ahead (superelevation runs) it is that change.
+  const Pose3 T_odom_cam_i = T_odom_body_[i] * T_body_cam_;
+  const double aside = (T_body_odom_[j] * (T_odom_cam_i * *X)).y();  // stable before the
+  const double twist = aside * up_[i].dot(across_[j]);                // crossing too
+  ahead.height -= twist;
+  X = ahead.height > 0.0 ? backProjectToGround(pixel, K_inv, ahead) : std::nullopt;
+  if (!X) return std::nullopt;
+  return Meeting{T_body_odom_[j] * (T_odom_cam_i * *X), rise + twist};
+}
+
+std::optional<PathSurface::Crossing> PathSurface::beyondEnd(std::size_t i,
+                                                           const Eigen::Vector2d& pixel,
+                                                           const Eigen::Matrix3d& K_inv,
+                                                           double lowered) const {
+  // The road beyond the drive's last frame L is L's own ground plane (the road it stood on, as
+  // its camera saw it), carried into frame i's camera by the dead-reckoned poses: no fit of the
+  // path's heights enters, whose slope at a drive's end is one-sided (measured: relative slopes
+  // of 3.6 % where the drive turned into its last road).
+  const std::size_t L = T_odom_body_.size() - 1;
+  const Pose3 T_cami_camL =
+      (T_odom_body_[i] * T_body_cam_).inverse() * (T_odom_body_[L] * T_body_cam_);
+  const Eigen::Vector3d n = T_cami_camL.linear() * planes_[L].normal_cam;
+  const Eigen::Vector3d on_road = T_cami_camL * (-planes_[L].height * planes_[L].normal_cam);
+  const GroundPlane road{n, -n.dot(on_road) - lowered};
+  if (!(road.height > 0.0)) return std::nullopt;
+  const auto X = backProjectToGround(pixel, K_inv, road);
+  if (!X) return std::nullopt;
+  const Eigen::Vector3d q = T_body_odom_[L] * (T_odom_body_[i] * T_body_cam_ * *X);
+  if (q.x() < 0.0 || (std::abs(q.y()) > max_offset_ && turned(i, L))) return std::nullopt;
+  // As a rise of frame i's plane through the same point, and the road's slope against it along
+  // the view (range() tilts the covariance's plane by it).
+  const Eigen::Vector3d& n_i = planes_[i].normal_cam;
+  const Eigen::Vector3d ahead_dir = (Eigen::Vector3d::UnitZ() - n_i.z() * n_i).normalized();
+  const double rise = planes_[i].height + n_i.dot(*X);
+  return Crossing{true, rise, -n.dot(ahead_dir) / n.dot(n_i)};
+}
+
 std::optional<PathSurface::Crossing> PathSurface::cross(std::size_t i, const Eigen::Vector2d& pixel,
                                                         const Eigen::Matrix3d& K_inv,
                                                         double lowered) const {
@@ -191,45 +255,30 @@ std::optional<PathSurface::Crossing> PathSurface::cross(std::size_t i, const Eig
   // the tangent plane raised to frame j's road is no longer ahead of frame j. (Re-ranging on the
   // road abreast of the last estimate instead converges slowly or not at all on a crest, where a
   // rise error of δ moves the point ~δ d / h: 1.6 m at 20 m ranged 10-12 m.)
-  const Pose3 T_odom_cam_i = T_odom_body_[i] * T_body_cam_;
   double x_prev = 0.0, rise_prev = 0.0;  // frame j - 1's: ahead of it (x > 0), and its rise
   bool have_prev = false;
   for (std::size_t j = i + 1; j < T_odom_body_.size(); ++j) {
     if (distance_[j] - distance_[i] > reach_) return Crossing{false, 0.0, 0.0};  // missed it
-    double rise = riseAhead(i, j) - lowered;  // the road abreast of j above the tangent
-    GroundPlane ahead = planes_[i];
-    ahead.height -= rise;
-    if (!(ahead.height > 0.0)) break;                   // the road ahead rises above the camera
-    auto X = backProjectToGround(pixel, K_inv, ahead);  // eq. (1) on the road there
-    if (X) {
-      // Twist. riseAhead is the path's own height abreast of j. The road there is flat along
-      // frame j's ground plane across the path, not along frame i's: a point `aside` of the
-      // path abreast of j lies n_i · across_j · aside higher (n_i frame i's plane normal).
-      // On a curve up a grade b this is b sin(ψ_j − ψ_i) aside (esmini curves_elevation, 8 % on
-      // R ≈ 100 m: 6 cm 15 m ahead and 5 m aside; lane points 0.15-0.18 m off across the road
-      // without it); where the cross-slope changes ahead (superelevation runs) it is that change.
-      const double aside = (T_body_odom_[j] * (T_odom_cam_i * *X)).y();  // stable before the
-      const double twist = aside * up_[i].dot(across_[j]);                // crossing too
-      rise += twist;
-      ahead.height -= twist;
-      X = ahead.height > 0.0 ? backProjectToGround(pixel, K_inv, ahead) : std::nullopt;
-    }
-    if (!X) {  // the road there is above the ray
+    const double rise0 = riseAhead(i, j) - lowered;  // the road abreast of j above the tangent
+    if (!(planes_[i].height - rise0 > 0.0)) return std::nullopt;  // above the camera
+    const auto m = meet(i, j, pixel, K_inv, rise0);
+    if (!m) {  // the road there is above the ray
       have_prev = false;
       continue;
     }
-    const Eigen::Vector3d q = T_body_odom_[j] * (T_odom_cam_i * *X);  // body j: x ahead
-    if (q.x() > 0.0) {  // the ray meets that road beyond frame j
-      x_prev = q.x(), rise_prev = rise, have_prev = true;
+    if (m->q.x() > 0.0) {  // the ray meets that road beyond frame j
+      x_prev = m->q.x(), rise_prev = m->rise, have_prev = true;
       continue;
     }
-    if (std::abs(q.y()) > max_offset_) break;
+    if (std::abs(m->q.y()) > max_offset_ && turned(i, j)) return std::nullopt;
     // Crossed between frames j - 1 and j: the rise and slope interpolated where x passes 0.
-    const double t = have_prev ? x_prev / (x_prev - q.x()) : 1.0;
+    const double t = have_prev ? x_prev / (x_prev - m->q.x()) : 1.0;
     const double slope_prev = slopeAhead(i, have_prev ? j - 1 : j);
-    return Crossing{true, (1.0 - t) * rise_prev + t * rise,
+    return Crossing{true, (1.0 - t) * rise_prev + t * m->rise,
                     (1.0 - t) * slope_prev + t * slopeAhead(i, j)};
   }
+  // The drive ends before the ray meets the road: still ahead of the last frame.
+  if (have_prev) return beyondEnd(i, pixel, K_inv, lowered);
   return std::nullopt;
 }
 

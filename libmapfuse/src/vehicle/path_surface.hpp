@@ -28,8 +28,15 @@
 /// the road ahead seen from frame i (a point towards the curve's centre is less far ahead than
 /// the path abreast, where frame i's tangent plane is lower); where the crossfall changes ahead
 /// (superelevation runs) it is that change, as frame j's plane shows it.
-/// Where no frame comes abreast within reach because the drive ends, or the point lies farther
-/// aside than path_max_offset, the plane under the camera is kept.
+/// Where the drive ends before a ray meets the road, the road goes on along the last frame's own
+/// ground plane, carried into frame i by the dead-reckoned poses: a drive that ends at an
+/// intersection sees its far side 20-30 m beyond the last frame, and on the 8 % world the plane
+/// under the camera put those stop lines and crosswalks 3-8 m short. Where the point
+/// lies farther aside than path_max_offset of a frame abreast that the path reached by turning
+/// (a road straight on where the drive turns off), the plane under the camera is kept; along a
+/// path that runs straight a point may lie as far aside as the band reaches (a crossing road's
+/// stop lines and crosswalks 15-25 m aside: on the 8 % world the plane under the camera ranged
+/// them 4-8 m short, a second element beside the right one).
 #include <Eigen/Core>
 #include <cstddef>
 #include <optional>
@@ -82,6 +89,20 @@ class PathSurface {
   /// @brief The march along the path for `pixel` of frame i, the road taken `lowered` m lower.
   std::optional<Crossing> cross(std::size_t i, const Eigen::Vector2d& pixel,
                                 const Eigen::Matrix3d& K_inv, double lowered) const;
+  /// @brief The ray still ahead of the drive's last frame: met on the road that continues along
+  /// that frame's ground plane (nullopt: it does not, the plane under the camera is kept).
+  std::optional<Crossing> beyondEnd(std::size_t i, const Eigen::Vector2d& pixel,
+                                    const Eigen::Matrix3d& K_inv, double lowered) const;
+  /// Where the ray of frame i meets frame i's tangent plane raised by `rise` and twisted to
+  /// frame j's plane across the path: the point in body j (x ahead) and the rise used there.
+  struct Meeting {
+    Eigen::Vector3d q;
+    double rise = 0.0;
+  };
+  /// @brief The path's heading turned by more than kStraightTurn from frame i to frame j.
+  bool turned(std::size_t i, std::size_t j) const;
+  std::optional<Meeting> meet(std::size_t i, std::size_t j, const Eigen::Vector2d& pixel,
+                              const Eigen::Matrix3d& K_inv, double rise) const;
 
   const std::vector<Pose3>& T_odom_body_;
   std::vector<Pose3> T_body_odom_;  ///< inverses, per frame

@@ -21,7 +21,8 @@ struct RangingSettings {
   double sigma_height = 0.03;     ///< m, 1-sigma camera height uncertainty
   double sigma_attitude = 0.003;  ///< rad, 1-sigma residual pitch and roll after calibration
   bool path_surface = true;       ///< range on the road ahead (vehicle/path_surface.hpp)
-  double path_max_offset = 15.0;  ///< m, farthest a point may lie aside of the frame abreast
+  /// m, farthest a point may lie aside of a frame abreast that the path reached by turning
+  double path_max_offset = 15.0;
 
   template <class V>
   void visit(V& v) {
@@ -37,8 +38,9 @@ struct RangingSettings {
       "road's vertical bend that the drive's own heights show (crests, sags, ramps); off: the "
       "plane under the camera only");
     v("path_max_offset", path_max_offset, "m",
-      "path_surface: farthest a ranged point may lie aside of the frame abreast (else the plane "
-      "under the camera is kept)",
+      "path_surface: farthest a ranged point may lie aside of the frame abreast where the path "
+      "turned on the way there (else the plane under the camera is kept; along a straight path "
+      "the band's max_range)",
       gt(0) & le(1000));
   }
 };
