@@ -150,3 +150,54 @@ TEST_CASE(
   assembleLsm(poses, stamps, {0, 10, 20, 29}, markings, {}, open, &st_open);
   CHECK(st_open.line_samples_spill == 0);
 }
+
+TEST_CASE("lsm assembly: a crosswalk's outline comes from its certain views, not their union") {
+  // A 4 x 7 m crosswalk 20-24 m ahead seen whole by four near frames (mask outlines of five
+  // vertices) and, partially and skewed, by three far ones (oblique views while the drive
+  // turns: 2 m off at one side, 8x the sigma). Of every view, the far ones are the only rings of
+  // four corners and make the outline; of the certain views, the near views' hull does.
+  std::vector<Pose3> poses;
+  std::vector<double> stamps;
+  straightDrive(poses, stamps);
+  constexpr double kCwSigma = 0.05, kObliqueSigma = 0.4;  // m
+  constexpr double kOutlineTol = 0.3;                       // m, each corner
+  auto ring = [](int frame, std::vector<Eigen::Vector3d> pts, double sigma) {
+    RangedMarking m;
+    m.cls = CrowdClass::kCrosswalk;
+    m.track_id = 3;
+    m.frame = frame;
+    m.points = std::move(pts);
+    m.covariances.assign(m.points.size(),
+                         Eigen::Vector3d(sigma * sigma, sigma * sigma, 1e-4).asDiagonal());
+    return m;
+  };
+  const std::vector<Eigen::Vector3d> truth = {
+      {20, -3.5, 0}, {24, -3.5, 0}, {24, 3.5, 0}, {20, 3.5, 0}};
+  std::vector<RangedMarking> markings;
+  for (int f : {14, 15, 16, 17}) {
+    auto pts = truth;
+    pts.emplace_back(22.0, 3.5, 0.0);  // a mask outline: five vertices, one on an edge
+    markings.push_back(ring(f, pts, kCwSigma));
+  }
+  for (int f : {2, 3, 4})  // a far partial view, its far side 2 m beyond and skewed
+    markings.push_back(ring(f, {{20, 0, 0}, {24, 0, 0}, {26, 3.5, 0}, {21, 5.5, 0}}, kObliqueSigma));
+  auto outline = [&](const AssemblySettings& s) {
+    const Lsm lsm = assembleLsm(poses, stamps, {0, 10, 20, 29}, markings, {}, s);
+    REQUIRE(lsm.elements.size() == 1);
+    const Element& e = lsm.elements[0];
+    const Pose3& anchor = lsm.keyframes[std::size_t(e.anchor)].T_frame_body;
+    double worst = 0.0;  // the farthest of the true corners from the outline's nearest vertex
+    for (const auto& t : truth) {
+      double best = 1e9;
+      for (const auto& pb : e.points_body) best = std::min(best, ((anchor * pb) - t).norm());
+      worst = std::max(worst, best);
+    }
+    return std::make_pair(worst, e.points_body.size());
+  };
+  const auto [certain, n] = outline(AssemblySettings{});
+  INFO("certain views: worst corner " << certain << " m, " << n << " vertices");
+  CHECK(certain <= kOutlineTol);
+  AssemblySettings all;
+  all.area_sigma_ratio = 1000.0;
+  CHECK(outline(all).first > 1.0);  // the union: the oblique views' corners
+}

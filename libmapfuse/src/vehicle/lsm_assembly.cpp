@@ -123,6 +123,26 @@ std::vector<Instance> groupInstances(const std::vector<RangedMarking>& markings,
   return out;
 }
 
+/// Mean horizontal 1-sigma of a view's points, m.
+double viewSigma(const RangedMarking& m) {
+  double sum = 0.0;
+  for (const auto& c : m.covariances) sum += std::sqrt(std::max(0.0, c(0, 0) + c(1, 1)));
+  return m.covariances.empty() ? 0.0 : sum / double(m.covariances.size());
+}
+
+/// The views of an instance whose sigma is at most `ratio` × the lower quartile of its views'.
+std::vector<const RangedMarking*> certainViews(const Instance& inst, double ratio) {
+  std::vector<double> sigma;
+  for (const auto* m : inst.parts) sigma.push_back(viewSigma(*m));
+  std::vector<double> sorted = sigma;
+  std::sort(sorted.begin(), sorted.end());
+  const double bound = ratio * sorted[sorted.size() / 4];
+  std::vector<const RangedMarking*> out;
+  for (std::size_t k = 0; k < inst.parts.size(); ++k)
+    if (sigma[k] <= bound) out.push_back(inst.parts[k]);
+  return out;
+}
+
 int64_t majorityTruth(const Instance& inst) {
   std::map<int64_t, int> votes;
   for (const auto* p : inst.parts) ++votes[p->truth_id];
@@ -391,7 +411,7 @@ Lsm assembleLsm(const std::vector<Pose3>& poses, const std::vector<double>& stam
       std::vector<std::vector<Eigen::Vector3d>> rings;
       Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
       std::size_t n = 0;
-      for (const auto* m : inst.parts) {
+      for (const auto* m : certainViews(inst, s.area_sigma_ratio)) {
         rings.push_back(m->points);
         for (const auto& c : m->covariances) C += c, ++n;
       }
