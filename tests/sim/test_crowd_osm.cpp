@@ -154,6 +154,12 @@ TEST_CASE("Lanelet2: malformed maps are ParseErrors naming file and element", "[
   no_bound.replace(no_bound.find("ref='-13' role='right'"), 9, "ref='-77'");
   CHECK_THAT(parseErrorOf([&] { io::parseLanelet2Osm(no_bound, "n.osm"); }),
              Catch::Contains("relation -21"));
+  // A tag value that is not UTF-8 (the OpenDRIVE reader's finding of issue 37; both XML
+  // readers share the check).
+  std::string latin = good;
+  latin.replace(latin.find("v='dashed'"), 10, "v='dash\xe9'");
+  CHECK_THAT(parseErrorOf([&] { io::parseLanelet2Osm(latin, "l.osm"); }),
+             Catch::Contains("l.osm") && Catch::Contains("field 'tag@v': text that is not UTF-8"));
   // Missing file: IoError.
   CHECK_THROWS_AS(io::readLanelet2Osm("/nonexistent/map.osm"), IoError);
 }

@@ -3,12 +3,14 @@
 // graph and the true elements the world exposes, with the world `simulate` builds by default.
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cmath>
 #include <set>
 
 #include "mapfuse/sim/drive.hpp"
 #include "mapfuse/sim/polyline.hpp"
 #include "mapfuse/sim/procedural_world.hpp"
+#include "mapfuse/sim/world.hpp"
 #include "mapfuse/stages/simulate.hpp"
 
 using namespace mapfuse;
@@ -263,4 +265,35 @@ TEST_CASE("simulate routes: a lane far longer than the route is cut 1 km past th
   world.lanes[0].centerline = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(2400, 0, 0)};
   CHECK(sim::arcLengths(sim::planRoutes(world, 1, kTarget, 7).front()).back() ==
         Approx(2400.0).margin(1e-6));
+}
+
+TEST_CASE("simulate world: a 400 km dashed lane line is cut into dashes in linear time",
+          "[sim][world][bounds]") {
+  // Triage of fuzz_opendrive_drive's slow inputs (issue 37): every dash of a dashed lane line
+  // re-measured the whole line, O(dashes x points). Release build, 2-core machine at load 5:
+  // 100 km of dashed line took 20.8 s to cut (0.02 s now), and simulate on a 1 KB .xodr of one
+  // 100 km road with a broken centre mark 51 s. Here 400 km, 800,001 points and 44,445
+  // dashes: about 3.6e10 steps before (minutes), 0.09 s now in release; the bound of 10 s
+  // leaves room for the sanitizers and a loaded machine.
+  constexpr double kLength = 400000.0, kStep = 0.5, kMaxSeconds = 10.0;
+  MapInstance line;
+  line.cls = CrowdClass::kLaneLine;
+  line.attributes.style = LineStyle::kDashed;
+  for (int i = 0; i <= static_cast<int>(kLength / kStep); ++i)
+    line.points.emplace_back(i * kStep, 0.0, 0.0);
+  const sim::DashPattern dashes;  // 3 m dash, 6 m gap
+  const auto start = std::chrono::steady_clock::now();
+  const auto pieces = sim::observablePieces(line, dashes, kStep);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  INFO(pieces.size() << " dashes in " << seconds << " s");
+  CHECK(seconds < kMaxSeconds);
+  const auto period = dashes.dash + dashes.gap;
+  REQUIRE(pieces.size() == static_cast<std::size_t>(std::ceil((kLength - 0.3) / period)));
+  for (std::size_t k : {std::size_t{0}, pieces.size() / 2, pieces.size() - 1}) {
+    INFO("dash " << k);
+    REQUIRE(pieces[k].size() == 7);  // 3 m at 0.5 m
+    CHECK(pieces[k].front().x() == Approx(k * period).margin(1e-6));
+    CHECK(pieces[k].back().x() == Approx(k * period + dashes.dash).margin(1e-6));
+  }
 }

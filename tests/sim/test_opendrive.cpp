@@ -396,6 +396,16 @@ TEST_CASE("OpenDRIVE: malformed maps name the file, the element and the field",
   CHECK_THAT(parseMessage(edited(road_a_geometry,
                                  R"(<geometry s="0" x="0" y="0" hdg="0"><line/></geometry>)")),
              Contains("field 'road A geometry@length': missing"));
+  // Text that is not UTF-8 (fuzz_opendrive_drive, issue 37: a roadMark colour holding byte
+  // 0x86 went into the truth's note, and writing the vector map as JSON threw: simulate exit 1).
+  CHECK_THAT(parseMessage(edited(R"(color="standard")", "color=\"s\x86" "andard\"")),
+             Contains("ParseError: bad.xodr: field 'roadMark@color': text that is not UTF-8"));
+  CHECK_THAT(parseMessage(edited(R"(<road id="A")", "<road name=\"\xff\" id=\"A\"")),
+             Contains("field 'road@name': text that is not UTF-8"));
+  CHECK_THAT(parseMessage(edited("<header", "<userData>\xc3\x28</userData><header")),
+             Contains("field 'userData text': text that is not UTF-8"));
+  CHECK(parseMessage(edited(R"(<road id="A")", "<road name=\"Stra\xc3\x9f" "e\" id=\"A\"")) ==
+        "(accepted)");  // UTF-8 itself is fine
   CHECK_THAT(parseMessage(
                  edited(R"(hdg="0" length="100"><line/>)", R"(hdg="north" length="100"><line/>)")),
              Contains("field 'road A geometry@hdg': 'north' is not a number"));

@@ -22,7 +22,11 @@ Eigen::Vector3d pointAt(const Polyline& line, const std::vector<double>& cumulat
 }
 
 Polyline subLine(const Polyline& line, double s0, double s1, double step) {
-  const auto cum = arcLengths(line);
+  return subLine(line, arcLengths(line), s0, s1, step);
+}
+
+Polyline subLine(const Polyline& line, const std::vector<double>& cum, double s0, double s1,
+                 double step) {
   s0 = std::max(0.0, s0);
   s1 = std::min(cum.back(), s1);
   Polyline out;

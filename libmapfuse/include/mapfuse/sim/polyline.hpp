@@ -21,6 +21,12 @@ Polyline resample(const Polyline& line, double step);
 /// @brief Part of the line between arc lengths s0 < s1, resampled at `step`.
 Polyline subLine(const Polyline& line, double s0, double s1, double step);
 
+/// @brief subLine with the line's arc lengths given: cutting many parts from one line (the
+/// dashes of a lane line) costs O(parts x (points per part + log n)), not O(parts x n).
+/// @param cumulative arcLengths(line).
+Polyline subLine(const Polyline& line, const std::vector<double>& cumulative, double s0, double s1,
+                 double step);
+
 /// @brief Offsets a line sideways in the xy plane by `offset` metres (positive = left of the
 /// direction of travel), using vertex normals (averaged neighbouring segment directions).
 Polyline offsetLine(const Polyline& line, double offset);
