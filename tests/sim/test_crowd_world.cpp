@@ -3,7 +3,6 @@
 // graph and the true elements the world exposes, with the world `simulate` builds by default.
 #include <algorithm>
 #include <catch2/catch.hpp>
-#include <chrono>
 #include <cmath>
 #include <set>
 
@@ -267,27 +266,22 @@ TEST_CASE("simulate routes: a lane far longer than the route is cut 1 km past th
         Approx(2400.0).margin(1e-6));
 }
 
-TEST_CASE("simulate world: a 400 km dashed lane line is cut into dashes in linear time",
+TEST_CASE("simulate world: a 400 km dashed lane line is cut into its dashes",
           "[sim][world][bounds]") {
   // Triage of fuzz_opendrive_drive's slow inputs (issue 37): every dash of a dashed lane line
   // re-measured the whole line, O(dashes x points). Release build, 2-core machine at load 5:
   // 100 km of dashed line took 20.8 s to cut (0.02 s now), and simulate on a 1 KB .xodr of one
   // 100 km road with a broken centre mark 51 s. Here 400 km, 800,001 points and 44,445
-  // dashes: about 3.6e10 steps before (minutes), 0.09 s now in release; the bound of 10 s
-  // leaves room for the sanitizers and a loaded machine.
-  constexpr double kLength = 400000.0, kStep = 0.5, kMaxSeconds = 10.0;
+  // dashes: about 3.6e10 steps before (minutes), 0.09 s now in release. No clock here (unit
+  // tests are not timed); the fuzz target's timeout and the bench guard the cost.
+  constexpr double kLength = 400000.0, kStep = 0.5;
   MapInstance line;
   line.cls = CrowdClass::kLaneLine;
   line.attributes.style = LineStyle::kDashed;
   for (int i = 0; i <= static_cast<int>(kLength / kStep); ++i)
     line.points.emplace_back(i * kStep, 0.0, 0.0);
   const sim::DashPattern dashes;  // 3 m dash, 6 m gap
-  const auto start = std::chrono::steady_clock::now();
   const auto pieces = sim::observablePieces(line, dashes, kStep);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  INFO(pieces.size() << " dashes in " << seconds << " s");
-  CHECK(seconds < kMaxSeconds);
   const auto period = dashes.dash + dashes.gap;
   REQUIRE(pieces.size() == static_cast<std::size_t>(std::ceil((kLength - 0.3) / period)));
   for (std::size_t k : {std::size_t{0}, pieces.size() / 2, pieces.size() - 1}) {
