@@ -123,10 +123,15 @@ std::vector<Instance> groupInstances(const std::vector<RangedMarking>& markings,
   return out;
 }
 
+/// Horizontal 1-sigma of a point's covariance, m: sqrt of the x-y trace.
+double horizontalSigma(const Eigen::Matrix3d& cov) {
+  return std::sqrt(std::max(0.0, cov.topLeftCorner<2, 2>().trace()));
+}
+
 /// Mean horizontal 1-sigma of a view's points, m.
 double viewSigma(const RangedMarking& m) {
   double sum = 0.0;
-  for (const auto& c : m.covariances) sum += std::sqrt(std::max(0.0, c(0, 0) + c(1, 1)));
+  for (const auto& c : m.covariances) sum += horizontalSigma(c);
   return m.covariances.empty() ? 0.0 : sum / double(m.covariances.size());
 }
 
@@ -235,7 +240,7 @@ std::vector<Sample> resampleLine(const Instance& inst, const std::vector<double>
 }
 
 double horizontalSigma(const Sample& smp) {
-  return std::sqrt(smp.cov.topLeftCorner<2, 2>().trace());
+  return horizontalSigma(smp.cov);
 }
 
 /// Line samples at most max_line_sigma, hashed by class and cell of kGhostRadius.

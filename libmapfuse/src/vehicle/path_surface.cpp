@@ -149,22 +149,25 @@ std::vector<bool> sharpVerticalCurves(const std::vector<Pose3>& T_odom_body,
 PathSurface::PathSurface(const std::vector<Pose3>& T_odom_body, const Pose3& T_body_cam,
                          const std::vector<GroundPlane>& planes, const RangingSettings& settings)
     : T_odom_body_(T_odom_body),
-      T_body_cam_(T_body_cam),
       planes_(planes),
       max_offset_(settings.path_max_offset),
       reach_(kReachMargin * settings.max_range) {
   const std::size_t n = T_odom_body.size();
   T_body_odom_.reserve(n);
-  for (const Pose3& T : T_odom_body) T_body_odom_.push_back(T.inverse());
+  T_odom_cam_.reserve(n);
+  for (const Pose3& T : T_odom_body) {
+    T_body_odom_.push_back(T.inverse());
+    T_odom_cam_.push_back(T * T_body_cam);
+  }
   const Profile p = heightProfile(T_odom_body);
   distance_ = p.distance;
   // Per frame: its ground plane's normal (up) and the road's direction across (left), in odom.
   up_.resize(n);
   across_.resize(n);
-  for (std::size_t k = 0; k < n; ++k)
+  for (std::size_t k = 0; k < n; ++k) {
     up_[k] = (T_odom_body[k].linear() * T_body_cam.linear() * planes[k].normal_cam).normalized();
-  for (std::size_t k = 0; k < n; ++k)
     across_[k] = up_[k].cross(T_odom_body[k].linear().col(0)).normalized();
+  }
   const std::vector<double>& z = p.z;
   height_ = smoothAlongPath(distance_, z, kProfileSmooth);
   // Per frame: the parabola over the whole window where it follows the heights within
@@ -179,6 +182,13 @@ PathSurface::PathSurface(const std::vector<Pose3>& T_odom_body, const Pose3& T_b
     slope_[i] = narrow[i].b;
   }
 }
+
+namespace {
+/// The camera's view direction (z) within the plane of normal n: "ahead" for a road's slope.
+Eigen::Vector3d viewAhead(const Eigen::Vector3d& n) {
+  return (Eigen::Vector3d::UnitZ() - n.z() * n).normalized();
+}
+}  // namespace
 
 bool PathSurface::turned(std::size_t i, std::size_t j) const {
   const Eigen::Vector2d a = T_odom_body_[i].linear().col(0).head<2>(),
@@ -212,7 +222,7 @@ std::optional<PathSurface::Meeting> PathSurface::meet(std::size_t i, std::size_t
   // this is b sin(ψ_j − ψ_i) aside (esmini curves_elevation, 8 % on R ≈ 100 m: 6 cm 15 m ahead
   // and 5 m aside; lane points 0.15-0.18 m off across the road without it); where the
   // cross-slope changes ahead (superelevation runs) it is that change.
-  const Pose3 T_odom_cam_i = T_odom_body_[i] * T_body_cam_;
+  const Pose3& T_odom_cam_i = T_odom_cam_[i];
   const double aside = (T_body_odom_[j] * (T_odom_cam_i * *X)).y();  // stable before the
   const double twist = aside * up_[i].dot(across_[j]);                // crossing too
   ahead.height -= twist;
@@ -230,20 +240,19 @@ std::optional<PathSurface::Crossing> PathSurface::beyondEnd(std::size_t i,
   // path's heights enters, whose slope at a drive's end is one-sided (measured: relative slopes
   // of 3.6 % where the drive turned into its last road).
   const std::size_t L = T_odom_body_.size() - 1;
-  const Pose3 T_cami_camL =
-      (T_odom_body_[i] * T_body_cam_).inverse() * (T_odom_body_[L] * T_body_cam_);
+  const Pose3 T_cami_camL = T_odom_cam_[i].inverse() * T_odom_cam_[L];
   const Eigen::Vector3d n = T_cami_camL.linear() * planes_[L].normal_cam;
   const Eigen::Vector3d on_road = T_cami_camL * (-planes_[L].height * planes_[L].normal_cam);
   const GroundPlane road{n, -n.dot(on_road) - lowered};
   if (!(road.height > 0.0)) return std::nullopt;
   const auto X = backProjectToGround(pixel, K_inv, road);
   if (!X) return std::nullopt;
-  const Eigen::Vector3d q = T_body_odom_[L] * (T_odom_body_[i] * T_body_cam_ * *X);
+  const Eigen::Vector3d q = T_body_odom_[L] * (T_odom_cam_[i] * *X);
   if (q.x() < 0.0 || (std::abs(q.y()) > max_offset_ && turned(i, L))) return std::nullopt;
   // As a rise of frame i's plane through the same point, and the road's slope against it along
   // the view (range() tilts the covariance's plane by it).
   const Eigen::Vector3d& n_i = planes_[i].normal_cam;
-  const Eigen::Vector3d ahead_dir = (Eigen::Vector3d::UnitZ() - n_i.z() * n_i).normalized();
+  const Eigen::Vector3d ahead_dir = viewAhead(n_i);
   const double rise = planes_[i].height + n_i.dot(*X);
   return Crossing{true, rise, -n.dot(ahead_dir) / n.dot(n_i)};
 }
@@ -309,7 +318,7 @@ std::optional<GroundPoint> PathSurface::range(std::size_t i, const Eigen::Vector
     // The covariance on the road's own plane there, through the same point: where the road
     // turns away from the ray the incidence is shallower than on the tangent plane.
     const Eigen::Vector3d n = raised.normal_cam;
-    const Eigen::Vector3d ahead_dir = (Eigen::Vector3d::UnitZ() - n.z() * n).normalized();
+    const Eigen::Vector3d ahead_dir = viewAhead(n);
     plane.normal_cam = (n - c->slope * ahead_dir).normalized();  // rising road: leans back
     plane.height = -plane.normal_cam.dot(*at);
   }

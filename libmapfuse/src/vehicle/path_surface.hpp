@@ -106,7 +106,7 @@ class PathSurface {
 
   const std::vector<Pose3>& T_odom_body_;
   std::vector<Pose3> T_body_odom_;  ///< inverses, per frame
-  Pose3 T_body_cam_;
+  std::vector<Pose3> T_odom_cam_;   ///< camera poses, per frame
   const std::vector<GroundPlane>& planes_;
   double max_offset_;             ///< m (RangingSettings::path_max_offset)
   double reach_;                  ///< m of path ahead searched for the frame abreast
