@@ -4,13 +4,12 @@
 #include <cmath>
 #include <limits>
 
+#include "mapfuse/core/angles.hpp"
 #include "mapfuse/core/error.hpp"
 
 namespace mapfuse::lidar {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
 constexpr float kNoReturn = std::numeric_limits<float>::infinity();
 constexpr double kMinPointRange = 0.5;  // m, returns from the vehicle itself are ignored
 constexpr double kColumnSize = 10.0;    // m, (x, y) cells of the per-scan voxel culling
@@ -64,9 +63,9 @@ void SeenThroughFilter::addScan(const std::vector<Eigen::Vector3f>& scan_velo,
                                 const Pose3& T_map_velo) {
   ++scans_;
   if (through_.empty()) return;
-  const double az_scale = 1.0 / (s_.azimuth_resolution_deg * kDeg);
-  const double el_scale = 1.0 / (s_.elevation_resolution_deg * kDeg);
-  const double el_min = s_.elevation_min_deg * kDeg;
+  const double az_scale = 1.0 / (s_.azimuth_resolution_deg * kDegree);
+  const double el_scale = 1.0 / (s_.elevation_resolution_deg * kDegree);
+  const double el_min = s_.elevation_min_deg * kDegree;
   auto pixel = [&](const Eigen::Vector3d& p, double r, int* row, int* col) {
     const double el = std::asin(std::clamp(p.z() / r, -1.0, 1.0));
     *row = static_cast<int>(std::floor((el - el_min) * el_scale));

@@ -5,12 +5,12 @@
 #include <random>
 
 #include "draw_order.hpp"
+#include "mapfuse/core/angles.hpp"
 #include "mapfuse/core/error.hpp"
 
 namespace mapfuse::sim {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kGravity = 9.80665;  // m/s^2
 constexpr double kPathStep = 0.5;     // m, route resampling
 constexpr int kSmoothHalfWindow = 4;  // samples (2 m) of the path smoothing

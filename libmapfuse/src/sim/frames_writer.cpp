@@ -19,7 +19,7 @@
 namespace mapfuse::sim {
 
 namespace {
-constexpr double kSampleStep = 0.5;      // m, ground polyline sampling
+constexpr double kGroundStep = 0.5;      // m, ground polyline sampling
 constexpr double kMinDepth = 1.0;        // m in front of the camera
 constexpr double kLaneLineWidth = 0.15;  // m, painted width in masks
 constexpr double kStopLineWidth = 0.30;  // m
@@ -193,7 +193,7 @@ class FrameRenderer {
   /// A painted line: its seen samples' pixels, its strip painted into the mask.
   void groundLine(int pi, const MapInstance& m, const Polyline& points, cv::Mat& mask,
                   nlohmann::json& ground) {
-    const Polyline pts = resample(points, kSampleStep);
+    const Polyline pts = resample(points, kGroundStep);
     const double half = (m.cls == CrowdClass::kStopLine ? kStopLineWidth : kLaneLineWidth) / 2;
     nlohmann::json px = nlohmann::json::array();
     for (std::size_t i = 0; i < pts.size(); ++i) {

@@ -11,11 +11,11 @@
 
 namespace mapfuse::sim {
 namespace {
-constexpr double kRadius = 6.0;      // m, samples around a query: the lanes of one carriageway
-constexpr double kDeckGap = 1.5;     // m, samples farther in height belong to another deck
-constexpr double kSampleStep = 1.0;  // m between samples along a lane or a line
-constexpr double kMinAcross = 0.25;  // m², least variance across the samples' main axis
-constexpr int kMinSamples = 6;       // for a plane
+constexpr double kRadius = 6.0;       // m, samples around a query: the lanes of one carriageway
+constexpr double kDeckGap = 1.5;      // m, samples farther in height belong to another deck
+constexpr double kSurfaceStep = 1.0;  // m between samples along a lane or a line
+constexpr double kMinAcross = 0.25;   // m², least variance across the samples' main axis
+constexpr int kMinSamples = 6;        // for a plane
 
 /// Samples in 2-D cells of kRadius (a query reads its cell and the 8 around it).
 struct SurfaceSamples {
@@ -27,7 +27,7 @@ struct SurfaceSamples {
   }
   void addLine(const Polyline& line) {
     if (line.size() < 2) return;
-    for (const auto& p : resample(line, kSampleStep)) add(p);
+    for (const auto& p : resample(line, kSurfaceStep)) add(p);
   }
   double height(const Eigen::Vector3d& q) const {
     std::vector<Eigen::Vector3d> near;

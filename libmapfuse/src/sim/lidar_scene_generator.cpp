@@ -16,7 +16,7 @@ bool chance(Rng& rng, double p) {
 }
 
 /// Builds primitives while keeping them off the road and sidewalk.
-struct Builder {
+struct SceneBuilder {
   const Road& road;
   std::vector<Primitive>& out;
 
@@ -60,7 +60,8 @@ const SurfaceLabel kSign{LidarClass::kPole, 81, 0, 0.85f};         // traffic si
 const SurfaceLabel kTrunk{LidarClass::kVegetation, 70, 0, 0.25f};  // trunks count as vegetation
 const SurfaceLabel kFoliage{LidarClass::kVegetation, 70, 0, 0.20f};
 
-void addTree(Builder& b, Rng& rng, double s, double lateral, double ground, double min_lateral) {
+void addTree(SceneBuilder& b, Rng& rng, double s, double lateral, double ground,
+             double min_lateral) {
   const double trunk_h = uniform(rng, 1.8, 3.0), trunk_r = uniform(rng, 0.12, 0.25);
   Primitive trunk = b.make(Primitive::Kind::kCylinder, s, lateral, ground + 0.5 * trunk_h,
                            {trunk_r, trunk_r, 0.5 * trunk_h}, kTrunk);
@@ -83,7 +84,7 @@ void addTree(Builder& b, Rng& rng, double s, double lateral, double ground, doub
   }
 }
 
-void addFrontage(Builder& b, Rng& rng, const StreetParams& P, double side) {
+void addFrontage(SceneBuilder& b, Rng& rng, const StreetParams& P, double side) {
   const RoadProfile& rp = P.profile;
   const double line = rp.road_half_width + rp.sidewalk_width;  // property line
   const double h = rp.curb_height, L = b.road.length();
@@ -157,7 +158,7 @@ LidarScene generateStreet(const StreetParams& P, uint64_t seed) {
   Road road(makeCentreline(straights, radii, angles, 1.0), rp,
             rp.road_half_width + rp.sidewalk_width + 2.0);
   std::vector<Primitive> statics;
-  Builder b{road, statics};
+  SceneBuilder b{road, statics};
   addFrontage(b, rng, P, +1.0);
   addFrontage(b, rng, P, -1.0);
 

@@ -4,11 +4,12 @@
 #include <cmath>
 #include <complex>
 
+#include "mapfuse/core/angles.hpp"
+
 namespace mapfuse::sim {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kFresnelEps = 1e-16;
 constexpr int kFresnelMaxIterations = 300;
 constexpr double kFresnelSeriesLimit = 1.5;

@@ -3,14 +3,14 @@
 #include <cmath>
 #include <random>
 
+#include "mapfuse/core/angles.hpp"
 #include "mapfuse/core/error.hpp"
 
 namespace mapfuse::sim {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kSampleStep = 1.0;        // m, spacing of generated polylines
+constexpr double kPolylineStep = 1.0;      // m, spacing of generated polylines
 constexpr double kSignBottom = 2.0;        // m, sign lower edge above the road
 constexpr double kSignSize = 0.6;          // m, square sign edge
 constexpr double kLightBottom = 2.8;       // m, traffic-light housing lower edge
@@ -18,13 +18,13 @@ constexpr double kLightHeight = 0.9;       // m, housing height (red/yellow/gree
 constexpr double kLampHeight = 8.0;        // m, street lamp pole height
 constexpr double kArrowBeforeStop = 12.0;  // m, arrow centre before the stop line
 
-struct Builder {
+struct WorldBuilder {
   World world;
   int64_t next_lane = 1;
   int64_t next_instance = 1;
   std::mt19937_64 rng;
 
-  explicit Builder(uint64_t seed) : rng(seed) {}
+  explicit WorldBuilder(uint64_t seed) : rng(seed) {}
   double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
 
   void addLane(Polyline centerline, double width) {
@@ -69,7 +69,7 @@ Polyline bezier(const Eigen::Vector3d& p0, const Eigen::Vector3d& t0, const Eige
                 const Eigen::Vector3d& t3) {
   const double d = (p3 - p0).norm();
   const Eigen::Vector3d p1 = p0 + t0 * d / 3.0, p2 = p3 - t3 * d / 3.0;
-  const int n = std::max(2, static_cast<int>(std::ceil(d / kSampleStep)));
+  const int n = std::max(2, static_cast<int>(std::ceil(d / kPolylineStep)));
   Polyline out;
   for (int k = 0; k <= n; ++k) {
     const double s = static_cast<double>(k) / n, u = 1.0 - s;
@@ -105,7 +105,7 @@ void liftOntoTerrain(World& world, const ProceduralParams& P, double phase_a, do
 }
 
 /// Intersection centres on the grid, each shifted by a random jitter.
-std::vector<Eigen::Vector3d> intersectionCentres(Builder& B, const ProceduralParams& P) {
+std::vector<Eigen::Vector3d> intersectionCentres(WorldBuilder& B, const ProceduralParams& P) {
   const int G = P.grid_size;
   std::vector<Eigen::Vector3d> centre(G * G);
   for (int i = 0; i < G; ++i)
@@ -129,11 +129,11 @@ struct Road {
 
 /// The bypass lane: forks off the outer forward lane `fwd` and merges back (a fork + a merge),
 /// with its own solid edges.
-void addBypass(Builder& B, const Polyline& fwd, double L, double w, Arm& arm_a, Arm& arm_b) {
+void addBypass(WorldBuilder& B, const Polyline& fwd, double L, double w, Arm& arm_a, Arm& arm_b) {
   const double s1 = 0.25 * L, s2 = 0.75 * L, ramp = 0.2 * L, D = 3.0 * w;
   Polyline branch, right_edge, left_edge;
   // Samples span [s1, s2] exactly, so the branch ends where the merge lane starts.
-  const int nb = static_cast<int>(std::ceil((s2 - s1) / kSampleStep));
+  const int nb = static_cast<int>(std::ceil((s2 - s1) / kPolylineStep));
   for (int k = 0; k <= nb; ++k) {
     const double s = s1 + (s2 - s1) * k / nb;
     const Frame f = frameAt(fwd, s);
@@ -142,11 +142,11 @@ void addBypass(Builder& B, const Polyline& fwd, double L, double w, Arm& arm_a, 
     right_edge.push_back(f.p - (d + w / 2) * f.n);
     if (d >= w) left_edge.push_back(f.p - (d - w / 2) * f.n);
   }
-  B.addLane(subLine(fwd, 0, s1, kSampleStep), w);
+  B.addLane(subLine(fwd, 0, s1, kPolylineStep), w);
   arm_a.out_lanes.push_back(B.world.lanes.size() - 1);
-  B.addLane(subLine(fwd, s1, s2, kSampleStep), w);
+  B.addLane(subLine(fwd, s1, s2, kPolylineStep), w);
   B.addLane(branch, w);
-  B.addLane(subLine(fwd, s2, L, kSampleStep), w);
+  B.addLane(subLine(fwd, s2, L, kPolylineStep), w);
   arm_b.in_lanes.push_back(B.world.lanes.size() - 1);
   B.addLine(right_edge, LineStyle::kSolid);
   if (left_edge.size() >= 2) B.addLine(left_edge, LineStyle::kSolid);
@@ -154,7 +154,7 @@ void addBypass(Builder& B, const Polyline& fwd, double L, double w, Arm& arm_a, 
 
 /// Lanes: forward (a->b) on the right, backward on the left; inner lane first. The first road
 /// long enough gets the bypass on its outer forward lane.
-void addLanes(Builder& B, const Road& r, double w, Arm& arm_a, Arm& arm_b, bool& fork_done) {
+void addLanes(WorldBuilder& B, const Road& r, double w, Arm& arm_a, Arm& arm_b, bool& fork_done) {
   for (int k = 0; k < r.lanes; ++k) {
     const Polyline fwd = offsetLine(r.ref, -(k + 0.5) * w);
     if (!fork_done && k == r.lanes - 1 && r.length > 150.0) {
@@ -172,7 +172,7 @@ void addLanes(Builder& B, const Road& r, double w, Arm& arm_a, Arm& arm_b, bool&
 }
 
 /// Lane lines (solid centre and edges, dashed between lanes) and street lamps, alternating sides.
-void addLinesAndLamps(Builder& B, const ProceduralParams& P, const Road& r) {
+void addLinesAndLamps(WorldBuilder& B, const ProceduralParams& P, const Road& r) {
   const double w = P.lane_width;
   B.addLine(r.ref, LineStyle::kSolid);
   for (int k = 1; k < r.lanes; ++k) {
@@ -190,7 +190,7 @@ void addLinesAndLamps(Builder& B, const ProceduralParams& P, const Road& r) {
 
 /// One road end arriving at `node` along `dirline`: stop line, arrows, sign + pole, light +
 /// pole where the intersection has lights, crosswalk (always with lights, else drawn).
-void addRoadEnd(Builder& B, const ProceduralParams& P, const Road& r, const Polyline& dirline,
+void addRoadEnd(WorldBuilder& B, const ProceduralParams& P, const Road& r, const Polyline& dirline,
                 bool lights) {
   const double w = P.lane_width, L = r.length;
   const Frame f = frameAt(dirline, L);
@@ -234,7 +234,7 @@ void addRoadEnd(Builder& B, const ProceduralParams& P, const Road& r, const Poly
 
 /// The road between intersections a and b (draws: its bulge, its lanes per direction, then the
 /// crosswalks of its two ends) with everything on it.
-void addRoad(Builder& B, const ProceduralParams& P, const std::vector<Eigen::Vector3d>& centre,
+void addRoad(WorldBuilder& B, const ProceduralParams& P, const std::vector<Eigen::Vector3d>& centre,
              int a, int b, const std::vector<bool>& has_lights, std::vector<std::vector<Arm>>& arms,
              bool& fork_done) {
   const Eigen::Vector3d u = (centre[b] - centre[a]).normalized();
@@ -245,7 +245,7 @@ void addRoad(Builder& B, const ProceduralParams& P, const std::vector<Eigen::Vec
   r.a = a, r.b = b;
   const double amp = B.uniform(-P.curve_amplitude, P.curve_amplitude);
   r.lanes = 1 + static_cast<int>(B.uniform(0, P.max_lanes_per_direction - 1e-9));
-  const int n = static_cast<int>(std::ceil((p1 - p0).norm() / kSampleStep));
+  const int n = static_cast<int>(std::ceil((p1 - p0).norm() / kPolylineStep));
   for (int k = 0; k <= n; ++k) {
     const double s = static_cast<double>(k) / n;
     r.ref.push_back(p0 + s * (p1 - p0) + amp * std::pow(std::sin(kPi * s), 2) * nrm);
@@ -261,7 +261,7 @@ void addRoad(Builder& B, const ProceduralParams& P, const std::vector<Eigen::Vec
 }
 
 /// Intersection connectors: every arriving lane to every leaving arm (no U-turns).
-void addConnectors(Builder& B, const std::vector<std::vector<Arm>>& arms, double w) {
+void addConnectors(WorldBuilder& B, const std::vector<std::vector<Arm>>& arms, double w) {
   for (const auto& node : arms)
     for (std::size_t ai = 0; ai < node.size(); ++ai)
       for (std::size_t bi = 0; bi < node.size(); ++bi) {
@@ -285,7 +285,7 @@ World buildProceduralWorld(const ProceduralParams& P, const geo::GeoOrigin& orig
     throw ConfigError(
         "procedural world: world_block_length must exceed 2 * "
         "world_intersection_radius + 40 m");
-  Builder B(seed);
+  WorldBuilder B(seed);
   B.world.name = "procedural";
   B.world.truth.origin = origin;
   B.world.truth.source = "simulate ground truth (procedural world)";

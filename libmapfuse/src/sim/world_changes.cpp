@@ -6,12 +6,12 @@
 #include <random>
 #include <set>
 
+#include "mapfuse/core/angles.hpp"
 #include "mapfuse/core/error.hpp"
 
 namespace mapfuse::sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kMinRestripeLength = 10.0;  // m, shorter lane lines are not restriped
 constexpr double kStretchRamp = 10.0;        // m, a stretch shift fades in and out over this
 constexpr double kMinStretchLine = 60.0;     // m, shorter lines are shifted over their length

@@ -13,7 +13,7 @@
 
 namespace mapfuse::stages {
 namespace {
-constexpr const char* kStage = "evaluate-voxels";
+constexpr const char* kEvaluateVoxels = "evaluate-voxels";
 
 }  // namespace
 
@@ -38,8 +38,8 @@ nlohmann::json runEvaluateVoxels(const EvaluateVoxelsInputs& in, const std::file
   const std::string md = eval::scoresToMarkdown(scores, P.title);
   io::writeDocument(out / "voxels.json", doc);
   io::writeBytesAtomic(out / "voxels.md", md);
-  io::writeResolvedConfig(out, kStage, paramsToJson(P));
-  io::writeSummary(out, kStage,
+  io::writeResolvedConfig(out, kEvaluateVoxels, paramsToJson(P));
+  io::writeSummary(out, kEvaluateVoxels,
                    {{"mode", doc["mode"]},
                     {"mean_iou", doc["scores"]["mean_iou"]},
                     {"mean_accuracy", doc["scores"]["mean_accuracy"]},

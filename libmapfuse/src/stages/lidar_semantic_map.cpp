@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 namespace {
-constexpr const char* kStage = "lidar-semantic-map";
+constexpr const char* kLidarSemanticMap = "lidar-semantic-map";
 /// labels/<frame>.label for every scan; the summary's share of labelled points.
 json writeScanLabels(const io::KittiRawDrive& drive, const lidar::SemanticMapResult& r,
                      const fs::path& output) {
@@ -58,7 +58,7 @@ lidar::SemanticMapResult runLidarSemanticMap(const fs::path& drive_dir, const fs
   const Stopwatch total;
   const io::KittiRawDrive drive = io::openKittiRawDrive(drive_dir, p.frames);
   const double t_open = total.seconds();
-  MAPFUSE_INFO(kStage << ": " << drive.frames.size() << " frames of " << drive.dir);
+  MAPFUSE_INFO(kLidarSemanticMap << ": " << drive.frames.size() << " frames of " << drive.dir);
   lidar::SemanticMapResult r = lidar::buildSemanticMap(drive, p.map, output / "semantics_02");
 
   const Stopwatch t;
@@ -99,8 +99,8 @@ lidar::SemanticMapResult runLidarSemanticMap(const fs::path& drive_dir, const fs
                         {"origin_xy", {top.origin_xy.x(), top.origin_xy.y()}},
                         {"width", top.width},
                         {"height", top.height}};
-  io::writeResolvedConfig(output, kStage, paramsToJson(p));
-  io::writeSummary(output, kStage, summary);
+  io::writeResolvedConfig(output, kLidarSemanticMap, paramsToJson(p));
+  io::writeSummary(output, kLidarSemanticMap, summary);
   outputs.commit();  // every output replaced as a set: a failed run above left the previous ones
   return r;
 }

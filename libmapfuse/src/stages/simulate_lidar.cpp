@@ -15,7 +15,7 @@
 namespace mapfuse::stages {
 namespace {
 namespace fs = std::filesystem;
-constexpr const char* kStage = "simulate-lidar";
+constexpr const char* kSimulateLidar = "simulate-lidar";
 
 double seconds(std::chrono::steady_clock::time_point a) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
@@ -91,8 +91,8 @@ SimulateLidarRun runSimulateLidar(const fs::path& out, const SimulateLidarParams
   progress.finish();
   writer.finish();
   run.seconds_total = seconds(t_start);
-  io::writeResolvedConfig(run.drive_dir, kStage, paramsToJson(P));
-  io::writeSummary(run.drive_dir, kStage, toJson(run));
+  io::writeResolvedConfig(run.drive_dir, kSimulateLidar, paramsToJson(P));
+  io::writeSummary(run.drive_dir, kSimulateLidar, toJson(run));
   outputs.commit();
   return run;
 }
