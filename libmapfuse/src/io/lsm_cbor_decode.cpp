@@ -25,7 +25,7 @@ bool within(const Eigen::Vector3d& v, double limit) {
   return v.cwiseAbs().maxCoeff() <= limit;
 }
 
-Pose3 readPose(Reader& r) {
+Pose3 readPose(CborReader& r) {
   Eigen::Vector4d q;
   Eigen::Vector3d t;
   const Seen seen = readMembers(r, {"q", "t"}, [&](std::size_t i) {
@@ -42,7 +42,7 @@ Pose3 readPose(Reader& r) {
   return T;
 }
 
-geo::GeoOrigin readOrigin(Reader& r) {
+geo::GeoOrigin readOrigin(CborReader& r) {
   geo::GeoOrigin o{};
   double* const value[] = {&o.lat, &o.lon, &o.alt};
   const Seen seen =
@@ -52,7 +52,7 @@ geo::GeoOrigin readOrigin(Reader& r) {
   return o;
 }
 
-Keyframe readKeyframe(Reader& r) {
+Keyframe readKeyframe(CborReader& r) {
   Keyframe k;
   const Seen seen = readMembers(r, {"id", "stamp", "pose", "sigma", "cov"}, [&](std::size_t i) {
     if (i == 0) {
@@ -76,7 +76,7 @@ Keyframe readKeyframe(Reader& r) {
   return k;
 }
 
-GpsFix readGps(Reader& r) {
+GpsFix readGps(CborReader& r) {
   GpsFix g;
   double* const value[] = {&g.stamp,        &g.position.lat, &g.position.lon,
                            &g.position.alt, &g.sigma_h,      &g.sigma_v};
@@ -90,7 +90,7 @@ GpsFix readGps(Reader& r) {
 
 // PSD as io::readCov3 judges it (smallest eigenvalue >= -1e-9 max(1, |C|)); the eigen solver
 // only when the leading minors do not already prove the matrix positive definite.
-Eigen::Matrix3d readCov(Reader& r) {
+Eigen::Matrix3d readCov(CborReader& r) {
   const Vector6d c = r.fixed<6>();
   Eigen::Matrix3d C;
   C << c[0], c[1], c[2], c[1], c[3], c[4], c[2], c[4], c[5];
@@ -103,7 +103,7 @@ Eigen::Matrix3d readCov(Reader& r) {
   return C;
 }
 
-Element readElement(Reader& r) {
+Element readElement(CborReader& r) {
   Element e;
   // "sigma" instead of "cov" is not among the keys: rare, the general path reads it
   static constexpr std::string_view kKeys[] = {"id",           "class",  "style",   "color",
@@ -163,7 +163,7 @@ Element readElement(Reader& r) {
 
 std::optional<Lsm> decodeLsmCbor(std::string_view bytes) {
   try {
-    Reader r(bytes);
+    CborReader r(bytes);
     Lsm lsm;
     static constexpr std::string_view kKeys[] = {"format",     "version", "drive_id",
                                                  "vehicle_id", "frame",   "origin",

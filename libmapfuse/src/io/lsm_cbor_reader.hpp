@@ -13,9 +13,9 @@ namespace mapfuse::io::detail {
 
 struct Fallback {};  // anything the general reader must judge
 
-class Reader {
+class CborReader {
  public:
-  explicit Reader(std::string_view b)
+  explicit CborReader(std::string_view b)
       : p_(reinterpret_cast<const uint8_t*>(b.data())), end_(p_ + b.size()) {}
   bool done() const { return p_ == end_; }
 
@@ -130,7 +130,7 @@ inline void require(bool ok) {
 // The members of one object: `read(i)` reads the value of keys[i]. Each key at most once; any
 // other key sends the file to the general reader. @return the keys present (bit i: keys[i]).
 template <std::size_t N, class F>
-Seen readMembers(Reader& r, const std::string_view (&keys)[N], F&& read) {
+Seen readMembers(CborReader& r, const std::string_view (&keys)[N], F&& read) {
   Seen seen;
   for (std::size_t n = r.map(); n > 0; --n) {
     const std::string_view k = r.text();
