@@ -13,17 +13,8 @@
 namespace mapfuse::localize {
 namespace {
 
-double yawOf(const Pose3& T) {
-  return std::atan2(T.linear()(1, 0), T.linear()(0, 0));
-}
-
-/// The pose after a planar correction x about its own position (eq. L1 on the whole pose).
-Pose3 corrected(const Pose3& T, const Eigen::Vector3d& x) {
-  Pose3 out = T;
-  out.linear() = Eigen::AngleAxisd(x.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix() * T.linear();
-  out.translation().head<2>() += x.head<2>();
-  return out;
-}
+using detail::corrected;
+using detail::yawOf;
 
 /// Keyframe k's own observed points in ENU at the pose T.
 std::vector<detail::WorldPoint> ownPoints(const DriveObservations& d, std::size_t k,

@@ -10,21 +10,10 @@
 namespace mapfuse::localize {
 namespace {
 
+using detail::corrected;
 using detail::matchPoints;
 using detail::WorldPoint;
-
-double yawOf(const Pose3& T) {
-  return std::atan2(T.linear()(1, 0), T.linear()(0, 0));
-}
-
-/// The pose after a planar correction x about centre c (eq. L1 applied to the whole pose).
-Pose3 corrected(const Pose3& T, const Eigen::Vector3d& x) {
-  const Eigen::Vector2d c = T.translation().head<2>();
-  Pose3 out = T;
-  out.linear() = Eigen::AngleAxisd(x.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix() * T.linear();
-  out.translation().head<2>() = c + x.head<2>();
-  return out;
-}
+using detail::yawOf;
 
 /// The window's observed points in ENU: each keyframe's points placed by the drive's relative
 /// poses (prior_k^-1 prior_j), then by the current pose of keyframe k.

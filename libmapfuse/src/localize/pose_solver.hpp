@@ -7,11 +7,28 @@
 ///   eq. (L3)  r_gps = (c + d - t_gps) / sigma_gps, (psi + dtheta - psi_gps) / sigma_psi;
 ///             r_odo = (c + d - t_pred) / sigma_m(s),  (psi + dtheta - psi_pred) / sigma_mpsi(s)
 ///   eq. (L4)  min_x  sum rho_Cauchy(|r_match|^2) + |r_gps|^2 + |r_odo|^2
-#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cmath>
 #include <optional>
 #include <vector>
 
+#include "mapfuse/core/se3.hpp"
+
 namespace mapfuse::localize::detail {
+
+/// Heading of a pose (rad, from east, counter-clockwise).
+inline double yawOf(const Pose3& T) {
+  return std::atan2(T.linear()(1, 0), T.linear()(0, 0));
+}
+
+/// The pose after a planar correction x = (dx, dy, dtheta) about its own position (eq. L1 applied
+/// to the whole pose).
+inline Pose3 corrected(const Pose3& T, const Eigen::Vector3d& x) {
+  Pose3 out = T;
+  out.linear() = Eigen::AngleAxisd(x.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix() * T.linear();
+  out.translation().head<2>() += x.head<2>();
+  return out;
+}
 
 /// One observed point matched to a map target, in ENU (2D, m).
 struct Match {
