@@ -20,20 +20,31 @@ SANITIZE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMAPFUSE_FUZZ=ON -DMAPFUSE_
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$(SANITIZE_OPT)" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=$(SANITIZE_OPT)"
 
-.PHONY: deps configure build demo test test-release sanitizer-pass bench format clean \
+.PHONY: deps deps-demo configure build demo test test-release sanitizer-pass bench format clean \
         sanitize-configure sanitize-build test-sanitize test-sanitize-and-fuzz fuzz-corpus fuzz
 
 deps:
 	bash scripts/install-deps.sh
 
+deps-demo:
+	bash scripts/install-deps.sh --demo
+
+# Configures once with CMAKE_FLAGS; later runs only re-run CMake, so that a build folder first
+# configured by `make demo` (without PCL, which only the benchmarks use) finds what `make test`
+# installed since.
+CONFIGURE = if [ ! -f $(BUILD)/build.ninja ]; then cmake -S . -B $(BUILD) -G Ninja $(CMAKE_FLAGS); \
+  else cmake $(BUILD) > /dev/null; fi
+
 configure: deps
-	@if [ ! -f $(BUILD)/build.ninja ]; then cmake -S . -B $(BUILD) -G Ninja $(CMAKE_FLAGS); fi
+	@$(CONFIGURE)
 
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-# The demo builds only the tools it runs (CMake target demo_tools), not the tests and benchmarks.
-demo: configure
+# The demo installs and builds only what it runs (install-deps.sh --demo; CMake target
+# demo_tools), not the tests and benchmarks.
+demo: deps-demo
+	@$(CONFIGURE)
 	cmake --build $(BUILD) -j $(JOBS) --target demo_tools
 	bash scripts/demo.sh $(BUILD)/bin out/demo
 
