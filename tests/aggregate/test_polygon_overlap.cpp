@@ -3,7 +3,9 @@
 // arithmetic (Boost.Multiprecision): in double, Boost 1.74 places intersection points up to
 // ~1e-7 m off (a bar across a holed square: 8.7274043743 m² instead of the exact
 // 8.7274038462 m²), far above the 1e-9 m² this routine is checked to.
+#if defined(__GNUC__) && !defined(__clang__)  // a gcc warning clang does not know
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"  // Boost.Geometry buffer, as in the lib
+#endif
 #include <boost/geometry.hpp>
 #include <boost/geometry/geometries/point_xy.hpp>
 #include <boost/multiprecision/cpp_bin_float.hpp>

@@ -52,6 +52,7 @@ TEST_CASE("georef puts keyframes at GPS level and rejects multipath fixes") {
     CHECK(r.lsm.elements[0].points_body[0] == tr.lsm.elements[0].points_body[0]);
   }
   CHECK(injected > 0);
+  CHECK(rejected >= injected);  // over all four drives too
 }
 
 TEST_CASE("georef keeps the odometry's tilt: a near-straight drive gets no spurious roll") {

@@ -88,7 +88,7 @@ CameraOverlay renderCameraOverlay(const cv::Mat& bgr, const OverlayPoints& pts,
         px[c][k] = cv::saturate_cast<uint8_t>(a * rgb[2 - k] + (1.0 - a) * px[c][k]);
     }
   }
-  io::PictureKey key{io::lidarLegend(out.classes), 0.0, false, style.title};
+  io::PictureKey key{io::lidarLegend(out.classes), 0.0, false, style.title, ""};
   for (const auto& e : key.legend) out.legend.push_back(e.label);
   out.image = io::withPictureKey(photo, key);
   return out;

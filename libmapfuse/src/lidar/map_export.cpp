@@ -113,8 +113,8 @@ TopDownPicture renderTopDownPicture(const SemanticVoxelMap& map,
   const int path_shown = io::drawPath(img, path, out.origin_xy, resolution, path_rgb);
   std::set<LidarClass> present;
   for (const auto& v : map.voxels()) present.insert(static_cast<LidarClass>(v.label));
-  io::PictureKey key{io::lidarLegend(present), resolution, north_up, "LiDAR map, top down"};
-  key.up_note = "no north (no GPS): up is the car's left at the first frame";
+  io::PictureKey key{io::lidarLegend(present), resolution, north_up, "LiDAR map, top down",
+                     "no north (no GPS): up is the car's left at the first frame"};
   if (path_shown > 0) key.legend.push_back({"trajectory", path_rgb, true});
   out.image = io::withPictureKey(img, key);
   return out;
