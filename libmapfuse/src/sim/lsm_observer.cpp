@@ -1,6 +1,7 @@
 #include "mapfuse/sim/lsm_observer.hpp"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <random>
@@ -10,6 +11,12 @@
 #include "mapfuse/core/voxel_grid.hpp"
 
 namespace mapfuse::sim {
+
+namespace {
+/// Points of a piece from which pointsNear indexes them by cell (shorter pieces are visited
+/// whole: a dash, an arrow, a stop line).
+constexpr std::size_t kIndexedPoints = 64;
+}  // namespace
 
 PieceIndex::PieceIndex(const World& world, double point_spacing) {
   const auto& inst = world.truth.instances;
@@ -21,13 +28,41 @@ PieceIndex::PieceIndex(const World& world, double point_spacing) {
       for (const auto& q : pts) p.centroid += q / static_cast<double>(pts.size());
       p.points = std::move(pts);
       const int id = static_cast<int>(pieces_.size());
-      std::set<int64_t> cells;
-      for (const auto& q : p.points)
-        cells.insert(key(static_cast<int64_t>(std::floor(q.x() / cell_)),
-                         static_cast<int64_t>(std::floor(q.y() / cell_))));
-      for (int64_t c : cells) grid_[c].push_back(id);
+      // per cell the index ranges [begin, end) of the piece's points in it
+      std::unordered_map<int64_t, std::vector<std::pair<uint32_t, uint32_t>>> cells;
+      for (std::size_t k = 0; k < p.points.size(); ++k) {
+        auto& ranges = cells[key(static_cast<int64_t>(std::floor(p.points[k].x() / cell_)),
+                                 static_cast<int64_t>(std::floor(p.points[k].y() / cell_)))];
+        if (!ranges.empty() && ranges.back().second == k)
+          ++ranges.back().second;
+        else
+          ranges.emplace_back(static_cast<uint32_t>(k), static_cast<uint32_t>(k + 1));
+      }
+      for (const auto& c : cells) grid_[c.first].push_back(id);
+      if (p.points.size() < kIndexedPoints) cells.clear();
+      point_cells_.push_back(std::move(cells));
       pieces_.push_back(std::move(p));
     }
+}
+
+std::vector<uint32_t> PieceIndex::pointsNear(int pi, const Eigen::Vector3d& c,
+                                             double radius) const {
+  const auto& cells = point_cells_[static_cast<std::size_t>(pi)];
+  std::vector<uint32_t> out;
+  if (cells.empty()) {  // a short piece: all of it
+    out.resize(pieces_[static_cast<std::size_t>(pi)].points.size());
+    for (std::size_t k = 0; k < out.size(); ++k) out[k] = static_cast<uint32_t>(k);
+    return out;
+  }
+  voxel_grid::forEachCell2d(c.x() - radius, c.y() - radius, c.x() + radius, c.y() + radius, cell_,
+                            [&](int64_t x, int64_t y) {
+                              const auto it = cells.find(key(x, y));
+                              if (it == cells.end()) return;
+                              for (const auto& [begin, end] : it->second)
+                                for (uint32_t k = begin; k < end; ++k) out.push_back(k);
+                            });
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 std::vector<int> PieceIndex::near(const Eigen::Vector3d& c, double radius) const {
@@ -116,6 +151,8 @@ class LsmObserver {
   struct Window {
     std::size_t j = 0;
     double win = 0.0, x0 = 0.0, x1 = 0.0, a0 = 0.0, a1 = 0.0;
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< ENU, of the pieces' query (near)
+    double radius = 0.0;                               ///< m
   };
   /// Stop lines whose centre never enters this drive's view (a crossing road's stop line while
   /// the vehicle turns) are still seen in part: the longest visible run, by the solid-line rule
@@ -203,6 +240,7 @@ class LsmObserver {
     const Eigen::Vector3d centre = T * Eigen::Vector3d(0.5 * (w.x0 + x_far), 0, 0);
     const double radius = std::hypot(0.5 * (x_far - w.x0), P_.lateral_range) + 2.0;
     const Pose3 Tinv = T.inverse();
+    w.centre = centre, w.radius = radius;
     for (int pi : index_.near(centre, radius)) observePiece(pi, kf.id, Tinv, w);
     falsePositive(kf.id, w);
   }
@@ -223,7 +261,7 @@ class LsmObserver {
     e.confidence = U(0.7, 1.0);
     std::vector<std::vector<Eigen::Vector3d>> runs;
     if (m.cls == CrowdClass::kLaneLine && m.attributes.style != LineStyle::kDashed) {
-      runs = solidRuns(piece.points, Tinv, w.win);
+      runs = solidRuns(piece.points, index_.pointsNear(pi, w.centre, w.radius), Tinv, w.win);
     } else {
       std::vector<Eigen::Vector3d> pts;
       for (const auto& q : piece.points) pts.push_back(Tinv * q);
@@ -253,13 +291,22 @@ class LsmObserver {
     }
   }
 
-  /// A solid line's visible runs inside the ground window.
+  /// A solid line's visible runs inside the ground window, from the points `near` (ascending
+  /// indices; a point left out lies outside the window's cells, so it ends a run as an
+  /// invisible one does).
   std::vector<std::vector<Eigen::Vector3d>> solidRuns(const std::vector<Eigen::Vector3d>& points,
+                                                      const std::vector<uint32_t>& near,
                                                       const Pose3& Tinv, double win) const {
     std::vector<std::vector<Eigen::Vector3d>> runs;
     std::vector<Eigen::Vector3d> run;
-    for (const auto& q : points) {
-      const Eigen::Vector3d b = Tinv * q;
+    uint32_t next = 0;  // the index that continues the run
+    for (const uint32_t k : near) {
+      if (k != next && !run.empty()) {
+        runs.push_back(run);
+        run.clear();
+      }
+      next = k + 1;
+      const Eigen::Vector3d b = Tinv * points[k];
       if (groundVisible(b, win)) {
         run.push_back(b);
       } else if (!run.empty()) {

@@ -6,6 +6,7 @@
 /// element per dash; GPS fixes.
 #include <cstdint>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "mapfuse/core/lsm.hpp"
@@ -83,6 +84,10 @@ class PieceIndex {
   const std::vector<Piece>& pieces() const { return pieces_; }
   /// @brief Indices of pieces with a point within about `radius` m of `center` (xy).
   std::vector<int> near(const Eigen::Vector3d& center, double radius) const;
+  /// @brief Indices, ascending, of piece `pi`'s points in the cells near() visits for the same
+  /// query; every index of a short piece. A solid lane line is one piece however long: a
+  /// keyframe visits the points near it, not all of them (a 20 km road: O(keyframes x points)).
+  std::vector<uint32_t> pointsNear(int pi, const Eigen::Vector3d& center, double radius) const;
 
  private:
   static int64_t key(int64_t ix, int64_t iy) {  // unsigned shift: defined for negative ix
@@ -91,6 +96,9 @@ class PieceIndex {
   double cell_ = 10.0;
   std::vector<Piece> pieces_;
   std::unordered_map<int64_t, std::vector<int>> grid_;
+  /// Per piece of at least kIndexedPoints points: per cell, the ranges [begin, end) of the
+  /// indices of its points there.
+  std::vector<std::unordered_map<int64_t, std::vector<std::pair<uint32_t, uint32_t>>>> point_cells_;
 };
 
 /// Counts of one observed traversal.
