@@ -7,6 +7,7 @@
 #include <optional>
 #include <random>
 #include <sstream>
+#include <unordered_map>
 
 #include "draw_order.hpp"
 #include "mapfuse/core/error.hpp"
@@ -14,12 +15,14 @@
 #include "mapfuse/io/document.hpp"
 #include "mapfuse/io/json_geometry.hpp"
 #include "mapfuse/io/png_frames.hpp"
+#include "mapfuse/sim/point_cells.hpp"
 #include "road_occlusion.hpp"
 
 namespace mapfuse::sim {
 
 namespace {
 constexpr double kGroundStep = 0.5;      // m, ground polyline sampling
+constexpr double kSampleCell = 10.0;     // m, grid of a line's samples (as the piece index's)
 constexpr double kMinDepth = 1.0;        // m in front of the camera
 constexpr double kLaneLineWidth = 0.15;  // m, painted width in masks
 constexpr double kStopLineWidth = 0.30;  // m
@@ -139,8 +142,9 @@ class FrameRenderer {
     T_cam_enu_ = T_enu_cam_.inverse();
     mask = cv::Mat::zeros(C_.height, C_.width, CV_8UC1);
     ground = nlohmann::json::array(), aerial = nlohmann::json::array();
-    const Eigen::Vector3d centre = d_.truth[k_] * Eigen::Vector3d(C_.max_range / 2, 0, 0);
-    for (int pi : index_.near(centre, C_.max_range / 2 + 15.0)) {
+    centre_ = d_.truth[k_] * Eigen::Vector3d(C_.max_range / 2, 0, 0);
+    radius_ = C_.max_range / 2 + 15.0;
+    for (int pi : index_.near(centre_, radius_)) {
       const auto& piece = index_.pieces()[pi];
       const MapInstance& m = world_.truth.instances[piece.instance];
       const GeometryKind kind = geometryKind(m.cls);
@@ -190,13 +194,31 @@ class FrameRenderer {
     ground.push_back(o);
   }
 
-  /// A painted line: its seen samples' pixels, its strip painted into the mask.
+  /// A line's samples (kGroundStep apart) and their cells, made on its first frame.
+  struct Samples {
+    Polyline pts;
+    PointCells cells;
+  };
+  const Samples& samplesOf(int pi, const Polyline& points) {
+    auto it = samples_.find(pi);
+    if (it == samples_.end()) {
+      Polyline pts = resample(points, kGroundStep);
+      PointCells cells(pts, kSampleCell);
+      it = samples_.emplace(pi, Samples{std::move(pts), std::move(cells)}).first;
+    }
+    return it->second;
+  }
+
+  /// A painted line: its seen samples' pixels, its strip painted into the mask. Only the samples
+  /// in the cells of this frame's query: the others are out of the view and paint nothing (a
+  /// solid lane line is one piece however long).
   void groundLine(int pi, const MapInstance& m, const Polyline& points, cv::Mat& mask,
                   nlohmann::json& ground) {
-    const Polyline pts = resample(points, kGroundStep);
+    const Samples& samples = samplesOf(pi, points);
+    const Polyline& pts = samples.pts;
     const double half = (m.cls == CrowdClass::kStopLine ? kStopLineWidth : kLaneLineWidth) / 2;
     nlohmann::json px = nlohmann::json::array();
-    for (std::size_t i = 0; i < pts.size(); ++i) {
+    for (const uint32_t i : samples.cells.near(centre_, radius_)) {
       const Eigen::Vector3d pc = T_cam_enu_ * pts[i];
       const auto uv = camera_.project(pc, kMinDepth);
       const bool seen = uv && inImage(*uv) && pc.norm() <= C_.max_range && !hidden(pts[i]);
@@ -284,6 +306,9 @@ class FrameRenderer {
   int f_ = 0;
   std::size_t k_ = 0;
   Pose3 T_enu_cam_, T_cam_enu_;
+  Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();  // ENU, this frame's query of the pieces
+  double radius_ = 0.0;                               // m
+  std::unordered_map<int, Samples> samples_;          // piece -> its line's samples
 };
 
 }  // namespace

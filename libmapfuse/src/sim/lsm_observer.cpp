@@ -28,48 +28,27 @@ PieceIndex::PieceIndex(const World& world, double point_spacing) {
       for (const auto& q : pts) p.centroid += q / static_cast<double>(pts.size());
       p.points = std::move(pts);
       const int id = static_cast<int>(pieces_.size());
-      // per cell the index ranges [begin, end) of the piece's points in it
-      std::unordered_map<int64_t, std::vector<std::pair<uint32_t, uint32_t>>> cells;
-      for (std::size_t k = 0; k < p.points.size(); ++k) {
-        auto& ranges = cells[key(static_cast<int64_t>(std::floor(p.points[k].x() / cell_)),
-                                 static_cast<int64_t>(std::floor(p.points[k].y() / cell_)))];
-        if (!ranges.empty() && ranges.back().second == k)
-          ++ranges.back().second;
-        else
-          ranges.emplace_back(static_cast<uint32_t>(k), static_cast<uint32_t>(k + 1));
-      }
-      for (const auto& c : cells) grid_[c.first].push_back(id);
-      if (p.points.size() < kIndexedPoints) cells.clear();
-      point_cells_.push_back(std::move(cells));
+      PointCells cells(p.points, cell_);
+      for (int64_t c : cells.cells()) grid_[c].push_back(id);
+      point_cells_.push_back(p.points.size() < kIndexedPoints ? PointCells() : std::move(cells));
       pieces_.push_back(std::move(p));
     }
 }
 
 std::vector<uint32_t> PieceIndex::pointsNear(int pi, const Eigen::Vector3d& c,
                                              double radius) const {
-  const auto& cells = point_cells_[static_cast<std::size_t>(pi)];
-  std::vector<uint32_t> out;
-  if (cells.empty()) {  // a short piece: all of it
-    out.resize(pieces_[static_cast<std::size_t>(pi)].points.size());
-    for (std::size_t k = 0; k < out.size(); ++k) out[k] = static_cast<uint32_t>(k);
-    return out;
-  }
-  voxel_grid::forEachCell2d(c.x() - radius, c.y() - radius, c.x() + radius, c.y() + radius, cell_,
-                            [&](int64_t x, int64_t y) {
-                              const auto it = cells.find(key(x, y));
-                              if (it == cells.end()) return;
-                              for (const auto& [begin, end] : it->second)
-                                for (uint32_t k = begin; k < end; ++k) out.push_back(k);
-                            });
-  std::sort(out.begin(), out.end());
-  return out;
+  const std::size_t n = pieces_[static_cast<std::size_t>(pi)].points.size();
+  if (n >= kIndexedPoints) return point_cells_[static_cast<std::size_t>(pi)].near(c, radius);
+  std::vector<uint32_t> all(n);  // a short piece: all of it
+  for (std::size_t k = 0; k < n; ++k) all[k] = static_cast<uint32_t>(k);
+  return all;
 }
 
 std::vector<int> PieceIndex::near(const Eigen::Vector3d& c, double radius) const {
   std::set<int> out;
   voxel_grid::forEachCell2d(c.x() - radius, c.y() - radius, c.x() + radius, c.y() + radius, cell_,
                             [&](int64_t x, int64_t y) {
-                              const auto it = grid_.find(key(x, y));
+                              const auto it = grid_.find(PointCells::key(x, y));
                               if (it != grid_.end())
                                 out.insert(it->second.begin(), it->second.end());
                             });

@@ -6,12 +6,12 @@
 /// element per dash; GPS fixes.
 #include <cstdint>
 #include <unordered_map>
-#include <utility>
 #include <vector>
 
 #include "mapfuse/core/lsm.hpp"
 #include "mapfuse/core/param.hpp"
 #include "mapfuse/sim/drive.hpp"
+#include "mapfuse/sim/point_cells.hpp"
 #include "mapfuse/sim/sim_camera.hpp"
 #include "mapfuse/sim/world.hpp"
 
@@ -90,15 +90,11 @@ class PieceIndex {
   std::vector<uint32_t> pointsNear(int pi, const Eigen::Vector3d& center, double radius) const;
 
  private:
-  static int64_t key(int64_t ix, int64_t iy) {  // unsigned shift: defined for negative ix
-    return int64_t((uint64_t(ix) << 32) ^ (uint64_t(iy) & 0xffffffffULL));
-  }
   double cell_ = 10.0;
   std::vector<Piece> pieces_;
   std::unordered_map<int64_t, std::vector<int>> grid_;
-  /// Per piece of at least kIndexedPoints points: per cell, the ranges [begin, end) of the
-  /// indices of its points there.
-  std::vector<std::unordered_map<int64_t, std::vector<std::pair<uint32_t, uint32_t>>>> point_cells_;
+  /// Per piece: its points by cell (empty for a piece of fewer than kIndexedPoints points).
+  std::vector<PointCells> point_cells_;
 };
 
 /// Counts of one observed traversal.
