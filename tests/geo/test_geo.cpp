@@ -55,7 +55,7 @@ TEST_CASE("ENU <-> WGS84 matches an independent ECEF reference", "[geo]") {
 
 TEST_CASE("ENU round trip over 10 km stays within a millimetre", "[geo]") {
   const geo::EnuConverter enu({49.011212804408, 8.4228850417969, 112.83492279053});
-  for (const Eigen::Vector3d p :
+  for (const Eigen::Vector3d& p :
        {Eigen::Vector3d(10000, -5000, 30), Eigen::Vector3d(-7000, 9000, -20)}) {
     CHECK((enu.toEnu(enu.toWgs84(p)) - p).norm() < kMm);
   }

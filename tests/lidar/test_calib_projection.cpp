@@ -74,7 +74,7 @@ TEST_CASE("drive 0005 frame 0 scan projects onto image_02 as the calibration say
   Tv.block<3, 1>(0, 3) << -4.069766e-03, -7.631618e-02, -2.717806e-01;
   const Eigen::Matrix<double, 3, 4> M = P2 * Rr * Tv;
   const auto lib = drive.calib.veloToImage2();
-  for (const Eigen::Vector3d p :
+  for (const Eigen::Vector3d& p :
        {Eigen::Vector3d(10, 0, 0), Eigen::Vector3d(20, 5, -1.5), Eigen::Vector3d(8, -3, 0.5),
         Eigen::Vector3d(scan.points[1000].cast<double>())}) {
     const Eigen::Vector3d h = M * p.homogeneous();
