@@ -16,6 +16,7 @@
 
 #include "mapfuse/aggregate/observations.hpp"
 #include "mapfuse/aggregate/settings.hpp"
+#include "mapfuse/core/voxel_grid.hpp"
 
 namespace mapfuse::aggregate {
 
@@ -69,9 +70,7 @@ class VoteGrid {
   /// @brief Centre of cell `key` in ENU, z the mean height of its votes.
   Eigen::Vector3d centre(int64_t key) const;
 
-  static int64_t key(int64_t ix, int64_t iy) {
-    return int64_t((uint64_t(ix) << 32) | (uint64_t(iy) & 0xffffffffULL));
-  }
+  static int64_t key(int64_t ix, int64_t iy) { return voxel_grid::cellKey2d(ix, iy); }
   static int64_t ix(int64_t key) { return int32_t(uint64_t(key) >> 32); }
   static int64_t iy(int64_t key) { return int32_t(uint32_t(uint64_t(key) & 0xffffffffULL)); }
 

@@ -13,13 +13,14 @@
 
 #include "box2d.hpp"
 #include "crossing_lines.hpp"
-#include "mapfuse/aggregate/dbscan.hpp"
 #include "lane_fragments.hpp"
 #include "lane_links.hpp"
 #include "line_buffer.hpp"
+#include "mapfuse/aggregate/dbscan.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/parallel_for.hpp"
+#include "mapfuse/core/voxel_grid.hpp"
 #include "mapfuse/io/bounds.hpp"
 #include "partner_drives.hpp"
 #include "polygon_overlap.hpp"
@@ -48,9 +49,7 @@ struct Piece {
 };
 
 int64_t tileKey(const Vec3& p, double size) {
-  const int64_t ix = int64_t(std::floor(p.x() / size));
-  const int64_t iy = int64_t(std::floor(p.y() / size));
-  return int64_t((uint64_t(ix) << 32) ^ (uint64_t(iy) & 0xffffffffULL));  // no signed shift
+  return voxel_grid::cellKey2d(p.x(), p.y(), size);
 }
 
 // Pieces an observation gives at most (one per tile crossing of a segment, plus one per

@@ -6,27 +6,22 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "mapfuse/core/voxel_grid.hpp"
 #include "mapfuse/io/bounds.hpp"
 
 namespace mapfuse::aggregate {
 
 double coveredRoadKm(const std::vector<Lsm>& lsms, const RoadLengthSettings& settings) {
   const double tolerance = settings.tolerance;
-  auto cellKey = [](int64_t ix, int64_t iy) {  // unsigned: no shift of a negative value
-    return (uint64_t(ix) << 32) ^ (uint64_t(iy) & 0xffffffffULL);
-  };
-  auto key = [&](const Eigen::Vector3d& p) {
-    return cellKey(int64_t(std::floor(p.x() / tolerance)), int64_t(std::floor(p.y() / tolerance)));
-  };
-  std::unordered_multimap<uint64_t, Eigen::Vector3d> accepted;
+  using voxel_grid::cellKey2d;
+  auto key = [&](const Eigen::Vector3d& p) { return cellKey2d(p.x(), p.y(), tolerance); };
+  std::unordered_multimap<int64_t, Eigen::Vector3d> accepted;
   // Cells of tolerance / 1.5 holding an accepted sample: any two points in one such cell lie
   // within 0.943 tolerance, so a sample whose cell is taken is known without a search (the
   // answer the search would give; with many drives on a road nearly every sample's is).
   const double fine = tolerance / 1.5;
-  auto fineKey = [&](const Eigen::Vector3d& p) {
-    return cellKey(int64_t(std::floor(p.x() / fine)), int64_t(std::floor(p.y() / fine)));
-  };
-  std::unordered_set<uint64_t> taken;
+  auto fineKey = [&](const Eigen::Vector3d& p) { return cellKey2d(p.x(), p.y(), fine); };
+  std::unordered_set<int64_t> taken;
   double metres = 0.0;
   for (const Lsm& lsm : lsms) {
     std::vector<Eigen::Vector3d> samples;
@@ -51,7 +46,7 @@ double coveredRoadKm(const std::vector<Lsm>& lsms, const RoadLengthSettings& set
         for (int c = 0; c < 10 && !known; ++c) {
           const int64_t dx = c == 0 ? 0 : (c - 1) % 3 - 1, dy = c == 0 ? 0 : (c - 1) / 3 - 1;
           if (c > 0 && dx == 0 && dy == 0) continue;
-          auto range = accepted.equal_range(cellKey(ix + dx, iy + dy));
+          auto range = accepted.equal_range(cellKey2d(ix + dx, iy + dy));
           for (auto it = range.first; it != range.second && !known; ++it)
             known = (it->second - s).head<2>().norm() <= tolerance;
         }

@@ -14,6 +14,7 @@
 #include <unordered_map>
 
 #include "mapfuse/aggregate/geometry2d.hpp"
+#include "mapfuse/core/voxel_grid.hpp"
 #include "mapfuse/geo/origin.hpp"
 
 namespace mapfuse::eval {
@@ -309,11 +310,7 @@ VectorMap clipToCoverage(const VectorMap& truth, const std::vector<Pose3>& poses
   const double cell = std::hypot(wedge.range, wedge.lateral);  // farthest covered point
   const double tan_fov =
       wedge.half_fov_deg < 90 ? std::tan(wedge.half_fov_deg * M_PI / 180.0) : 1e18;
-  auto key = [&](double x, double y) {
-    const auto ix = uint64_t(int64_t(std::floor(x / cell))),
-               iy = uint64_t(int64_t(std::floor(y / cell)));
-    return int64_t((ix << 32) ^ (iy & 0xffffffffULL));  // unsigned: a negative cell shifts too
-  };
+  auto key = [&](double x, double y) { return voxel_grid::cellKey2d(x, y, cell); };
   std::unordered_multimap<int64_t, const Pose3*> grid;
   for (const auto& p : poses) grid.emplace(key(p.translation().x(), p.translation().y()), &p);
   auto covered = [&](const Vec3& q) {

@@ -48,7 +48,7 @@ std::vector<int> PieceIndex::near(const Eigen::Vector3d& c, double radius) const
   std::set<int> out;
   voxel_grid::forEachCell2d(c.x() - radius, c.y() - radius, c.x() + radius, c.y() + radius, cell_,
                             [&](int64_t x, int64_t y) {
-                              const auto it = grid_.find(PointCells::key(x, y));
+                              const auto it = grid_.find(voxel_grid::cellKey2d(x, y));
                               if (it != grid_.end())
                                 out.insert(it->second.begin(), it->second.end());
                             });

@@ -1,20 +1,14 @@
 #include "mapfuse/sim/point_cells.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 #include "mapfuse/core/voxel_grid.hpp"
 
 namespace mapfuse::sim {
 
-int64_t PointCells::key(double x, double y, double cell) {
-  return key(static_cast<int64_t>(std::floor(x / cell)),
-             static_cast<int64_t>(std::floor(y / cell)));
-}
-
 PointCells::PointCells(const Polyline& points, double cell) : cell_(cell) {
   for (std::size_t k = 0; k < points.size(); ++k) {
-    auto& r = ranges_[key(points[k].x(), points[k].y(), cell_)];
+    auto& r = ranges_[voxel_grid::cellKey2d(points[k].x(), points[k].y(), cell_)];
     if (!r.empty() && r.back().second == k)
       ++r.back().second;
     else
@@ -26,7 +20,7 @@ std::vector<uint32_t> PointCells::near(const Eigen::Vector3d& c, double radius) 
   std::vector<uint32_t> out;
   voxel_grid::forEachCell2d(c.x() - radius, c.y() - radius, c.x() + radius, c.y() + radius, cell_,
                             [&](int64_t x, int64_t y) {
-                              const auto it = ranges_.find(key(x, y));
+                              const auto it = ranges_.find(voxel_grid::cellKey2d(x, y));
                               if (it == ranges_.end()) return;
                               for (const auto& [begin, end] : it->second)
                                 for (uint32_t k = begin; k < end; ++k) out.push_back(k);

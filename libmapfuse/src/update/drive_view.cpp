@@ -1,13 +1,11 @@
 #include "drive_view.hpp"
 
-#include <cmath>
+#include "mapfuse/core/voxel_grid.hpp"
 
 namespace mapfuse::update {
 
 int64_t DriveView::key(double x, double y) const {
-  const auto ix = static_cast<int64_t>(std::floor(x / cell_));
-  const auto iy = static_cast<int64_t>(std::floor(y / cell_));
-  return int64_t((uint64_t(ix) << 32) ^ (uint64_t(iy) & 0xffffffffULL));
+  return voxel_grid::cellKey2d(x, y, cell_);
 }
 
 DriveView::DriveView(const Lsm& lsm, const ViewSettings& settings) : s_(settings) {

@@ -25,6 +25,19 @@ inline uint64_t pointKey(const Eigen::Vector3d& p, double inv_cell) {
               static_cast<int64_t>(std::floor(p.z() * inv_cell)));
 }
 
+/// @brief Packs 2-D cell coordinates into one key, x in the high 32 bits (unsigned shift:
+/// defined for a negative x).
+inline int64_t cellKey2d(int64_t ix, int64_t iy) {
+  return int64_t((uint64_t(ix) << 32) ^ (uint64_t(iy) & 0xffffffffULL));
+}
+
+/// @brief The key of the 2-D cell of side `cell` (m) holding (x, y): floor(x / cell),
+/// floor(y / cell), as forEachCell2d visits them.
+inline int64_t cellKey2d(double x, double y, double cell) {
+  return cellKey2d(static_cast<int64_t>(std::floor(x / cell)),
+                   static_cast<int64_t>(std::floor(y / cell)));
+}
+
 /// @brief splitmix64 finaliser: cheap and well mixed for packed integer keys.
 inline uint64_t mix(uint64_t k) {
   k ^= k >> 31;

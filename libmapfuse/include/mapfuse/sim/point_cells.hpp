@@ -21,13 +21,8 @@ class PointCells {
   /// @brief Indices, ascending, of the points in the cells that the square of half-side `radius`
   /// around `center` (xy) touches.
   std::vector<uint32_t> near(const Eigen::Vector3d& center, double radius) const;
-  /// @brief Cell keys the points occupy (each once).
+  /// @brief Cell keys the points occupy (each once; voxel_grid::cellKey2d).
   std::vector<int64_t> cells() const;
-  /// @brief Cell key of (x, y) for a grid of `cell` m.
-  static int64_t key(double x, double y, double cell);
-  static int64_t key(int64_t ix, int64_t iy) {  // unsigned shift: defined for negative ix
-    return int64_t((uint64_t(ix) << 32) ^ (uint64_t(iy) & 0xffffffffULL));
-  }
 
  private:
   double cell_ = 10.0;
