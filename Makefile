@@ -20,7 +20,7 @@ SANITIZE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMAPFUSE_FUZZ=ON -DMAPFUSE_
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$(SANITIZE_OPT)" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=$(SANITIZE_OPT)"
 
-.PHONY: deps deps-demo configure build demo unity-check test test-release sanitizer-pass bench format clean \
+.PHONY: deps deps-demo configure configure-demo build demo unity-check test test-release sanitizer-pass bench format clean \
         sanitize-configure sanitize-build test-sanitize test-sanitize-and-fuzz fuzz-corpus fuzz
 
 deps:
@@ -40,8 +40,10 @@ build: configure
 # (CMakeLists.txt, MAPFUSE_UNITY_BUILD: half the compile time; the tools keep shared runtimes).
 DEMO_BUILD ?= build-demo
 DEMO_FLAGS ?= $(CMAKE_FLAGS) -DMAPFUSE_UNITY_BUILD=ON -DMAPFUSE_BUILD_TESTS=OFF -DMAPFUSE_BUILD_BENCH=OFF
-demo: deps-demo
+configure-demo: deps-demo
 	@if [ ! -f $(DEMO_BUILD)/build.ninja ]; then cmake -S . -B $(DEMO_BUILD) -G Ninja $(DEMO_FLAGS); fi
+
+demo: configure-demo
 	cmake --build $(DEMO_BUILD) -j $(JOBS) --target demo_tools
 	bash scripts/demo.sh $(DEMO_BUILD)/bin out/demo
 
@@ -57,8 +59,7 @@ test-release: build unity-check
 
 # make demo's unity batches must compile too: the library as make demo builds it (two sources of
 # one area that define the same name at namespace scope meet in a batch; about 4 minutes cold).
-unity-check: deps-demo
-	@if [ ! -f $(DEMO_BUILD)/build.ninja ]; then cmake -S . -B $(DEMO_BUILD) -G Ninja $(DEMO_FLAGS); fi
+unity-check: configure-demo
 	cmake --build $(DEMO_BUILD) -j $(JOBS) --target mapfuse
 
 # The sanitizer pass of CI: the unit tests under ASan + UBSan, then every fuzz target
