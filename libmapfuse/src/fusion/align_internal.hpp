@@ -5,19 +5,12 @@
 #include <vector>
 
 #include "mapfuse/fusion/align.hpp"
+#include "mapfuse/fusion/displacement_vote.hpp"
 
 namespace mapfuse::fusion::detail {
 
-/// Registration labels: the crowd classes, plus dashed lane lines as their own label so that a
-/// dashed divider never matches a solid centre or edge line one lane width away.
-constexpr int kLabelDashedLine = kNumCrowdClasses;
-constexpr int kNumAlignLabels = kNumCrowdClasses + 1;
-
 /// @brief Registration label of an element (class, or kLabelDashedLine).
 int alignLabel(const Element& e);
-
-/// @brief Per-label weights from per-class weights (dashed lines weigh like lane lines).
-std::vector<double> labelWeights(const std::vector<double>& class_weights);
 
 /// A chunk of one LSM's keyframes and its element points in the LSM (ENU) frame. The full cloud
 /// (every point with its covariance, ~100 B a point) is built only while the submap is
@@ -54,26 +47,5 @@ struct SubmapPair {
 std::vector<SubmapPair> selectPairs(const std::vector<Submap>& maps, const AlignSettings& s,
                                     long* overlaps = nullptr);
 
-struct CoarseResult {
-  Eigen::Vector2d t = Eigen::Vector2d::Zero();  ///< m, shift that maps B onto A
-  double score = 0;                             ///< votes at the peak
-};
-
-/// Displacement histogram a - b over [-half, half]^2 bins of `bin` m (row-major, y rows).
-struct VoteGrid {
-  int half = 0;
-  double bin = 0.5;
-  std::vector<double> votes;
-  void add(const VoteGrid& o, double w) {
-    for (std::size_t i = 0; i < votes.size() && i < o.votes.size(); ++i) votes[i] += w * o.votes[i];
-  }
-};
-
-/// @brief Votes of every same-label pair (a, b) within `radius` (weights per label, bilinear).
-VoteGrid voteDisplacements(const Cloud& A, const Cloud& B, const std::vector<double>& weights,
-                           double radius, double bin);
-
-/// @brief Peak of a (summed) vote grid after [1 2 1]^2 smoothing and the Gaussian prior.
-CoarseResult votePeak(const VoteGrid& g, double prior_sigma);
 
 }  // namespace mapfuse::fusion::detail

@@ -37,7 +37,7 @@ std::vector<InterConstraint> registerSubmaps(const std::vector<Lsm>& lsms, const
   // Coarse level: displacement votes per pair, summed with the votes of the pairs of adjacent
   // submaps of the same two LSMs (their relative GPS error is nearly the same; more road
   // directions and landmarks remove lane and dash aliases).
-  std::vector<VoteGrid> votes(gicp ? pairs.size() : 0);
+  std::vector<DisplacementVotes> votes(gicp ? pairs.size() : 0);
   std::vector<double> vw = labelWeights(s.coarse_class_weights);
   for (int l = 0; l < kNumAlignLabels; ++l) vw[l] *= weights[l];
 #pragma omp parallel for schedule(dynamic) num_threads(s.threads)
@@ -60,7 +60,7 @@ std::vector<InterConstraint> registerSubmaps(const std::vector<Lsm>& lsms, const
     Pose3 delta = Pose3::Identity();  // maps B's ENU points onto A's
     if (gicp) {
       // Coarsest level of the semantic pyramid: displacement voting (align_coarse.cpp).
-      VoteGrid sum = votes[p];
+      DisplacementVotes sum = votes[p];
       for (int da = -s.coarse_neighbors; da <= s.coarse_neighbors; ++da)
         for (int db = -s.coarse_neighbors; db <= s.coarse_neighbors; ++db) {
           const int a2 = pairs[p].a + da, b2 = pairs[p].b + db;
@@ -70,7 +70,7 @@ std::vector<InterConstraint> registerSubmaps(const std::vector<Lsm>& lsms, const
           const auto it = pair_index.find({a2, b2});
           if (it != pair_index.end()) sum.add(votes[it->second], 0.5);
         }
-      const CoarseResult cr = votePeak(sum, s.coarse_prior_sigma);
+      const DisplacementPeak cr = votePeak(sum, s.coarse_prior_sigma);
       delta.translation().head<2>() = cr.t;
     }
     // Target: every point; source: every 2nd point of solid lane lines (0.75 m apart in the

@@ -43,14 +43,6 @@ int alignLabel(const Element& e) {
   return int(e.cls);
 }
 
-std::vector<double> labelWeights(const std::vector<double>& class_weights) {
-  std::vector<double> w(kNumAlignLabels, 1.0);
-  for (int c = 0; c < kNumCrowdClasses && c < int(class_weights.size()); ++c)
-    w[c] = class_weights[c];
-  w[kLabelDashedLine] = w[int(CrowdClass::kLaneLine)];
-  return w;
-}
-
 }  // namespace detail
 
 namespace {
@@ -100,6 +92,14 @@ Cloud cloudOf(const Lsm& lsm, const std::vector<int>& elements, double sigma, in
 }
 
 }  // namespace
+
+std::vector<double> labelWeights(const std::vector<double>& class_weights) {
+  std::vector<double> w(kNumAlignLabels, 1.0);
+  for (int c = 0; c < kNumCrowdClasses && c < int(class_weights.size()); ++c)
+    w[c] = class_weights[c];
+  w[kLabelDashedLine] = w[int(CrowdClass::kLaneLine)];
+  return w;
+}
 
 Cloud elementCloud(const Lsm& lsm, int kf_begin, int kf_end, double sigma) {
   std::vector<int> elements;

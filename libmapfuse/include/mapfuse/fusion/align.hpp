@@ -179,6 +179,14 @@ struct InterConstraint {
   double graph_chi2 = 0;       ///< whitened squared residual at the last pose-graph solution
 };
 
+/// Registration labels of elementCloud: the crowd classes, plus dashed lane lines as their own
+/// label so that a dashed divider never matches a solid centre or edge line one lane width away.
+constexpr int kLabelDashedLine = kNumCrowdClasses;
+constexpr int kNumAlignLabels = kNumCrowdClasses + 1;
+
+/// @brief Per-label weights from per-class weights (dashed lines weigh like lane lines).
+std::vector<double> labelWeights(const std::vector<double>& class_weights);
+
 /// @brief Element points of a keyframe range as a labelled cloud in the LSM frame, with
 /// geometry-aware covariances (lines: free along the line; planar: free in the plane; poles:
 /// free vertically), `point_sigma` across.

@@ -1,22 +1,17 @@
-// Coarse level of the semantic pyramid: displacement voting between two labelled clouds.
-//
-// GPS-level initial errors between traversals (1-6 m) exceed half a lane width (1.75 m) and
-// half the dash period, so GICP started at the georeferenced poses converges to the neighbouring
-// lane line or dash. Every same-label pair (a, b) within `radius` votes for the shift a - b; the
-// true shift collects the votes of all lines and landmarks at once, an alias only those of a
-// subset (lines one lane over have other neighbours, landmarks do not repeat within the radius).
+// Displacement voting (mapfuse/fusion/displacement_vote.hpp): landmarks do not repeat within the
+// radius and lines one lane over have other neighbours, so aliases collect fewer votes.
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
-#include "align_internal.hpp"
+#include "mapfuse/fusion/displacement_vote.hpp"
 #include "mapfuse/fusion/voxel_hash.hpp"
 
-namespace mapfuse::fusion::detail {
+namespace mapfuse::fusion {
 
-VoteGrid voteDisplacements(const Cloud& A, const Cloud& B, const std::vector<double>& weights,
-                           double radius, double bin) {
-  VoteGrid g;
+DisplacementVotes voteDisplacements(const Cloud& A, const Cloud& B,
+                                    const std::vector<double>& weights, double radius, double bin) {
+  DisplacementVotes g;
   g.bin = bin;
   const int half = g.half = int(std::ceil(radius / bin));
   const int w = 2 * half + 1;
@@ -58,8 +53,9 @@ VoteGrid voteDisplacements(const Cloud& A, const Cloud& B, const std::vector<dou
   return g;
 }
 
-CoarseResult votePeak(const VoteGrid& g, double prior_sigma) {
-  CoarseResult res;
+DisplacementPeak votePeak(const DisplacementVotes& g, double prior_sigma,
+                          const Eigen::Vector2d& prior_centre) {
+  DisplacementPeak res;
   const int half = g.half, w = 2 * half + 1;
   const double bin = g.bin;
   const std::vector<double>& hist = g.votes;
@@ -72,7 +68,8 @@ CoarseResult votePeak(const VoteGrid& g, double prior_sigma) {
       for (int j = -1; j <= 1; ++j)
         for (int i = -1; i <= 1; ++i)
           v += k3[j + 1] * k3[i + 1] * hist[std::size_t(y + j) * w + x + i];
-      const double dx = (x - half) * bin, dy = (y - half) * bin;
+      const double dx = (x - half) * bin - prior_centre.x(),
+                   dy = (y - half) * bin - prior_centre.y();
       sm[std::size_t(y) * w + x] =
           v * std::exp(-0.5 * (dx * dx + dy * dy) / (prior_sigma * prior_sigma));
     }
@@ -96,4 +93,4 @@ CoarseResult votePeak(const VoteGrid& g, double prior_sigma) {
   return res;
 }
 
-}  // namespace mapfuse::fusion::detail
+}  // namespace mapfuse::fusion
