@@ -28,11 +28,15 @@ void CrowdStats::add(const CrowdStats& s) {
   frames.aerial_observations += s.frames.aerial_observations;
 }
 
+std::vector<Polyline> crowdRoutes(const World& world, const CrowdSettings& s) {
+  return planRoutes(world, s.routes, s.route_length, deriveSeed(s.seed, kRoutesSeedIndex),
+                    s.route_outward);
+}
+
 Crowd::Crowd(const World& world, const geo::GeoOrigin& origin, const CrowdSettings& s)
     : world_(world),
       settings_(s),
-      routes_(planRoutes(world, s.routes, s.route_length, deriveSeed(s.seed, kRoutesSeedIndex),
-                         s.route_outward)),
+      routes_(crowdRoutes(world, s)),
       index_(world, s.obs.point_spacing),
       camera_(s.camera),
       enu_(origin) {}

@@ -5,9 +5,11 @@
 #include <functional>
 #include <random>
 #include <set>
+#include <unordered_map>
 
 #include "mapfuse/core/angles.hpp"
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/core/voxel_grid.hpp"
 
 namespace mapfuse::sim {
 namespace {
@@ -29,9 +31,52 @@ constexpr double kAddedSignSize = 0.6;    // m
 const std::vector<Eigen::Vector2d> kArrowShape{{-2.5, -0.15}, {1.0, -0.15}, {1.0, -0.6}, {2.5, 0.0},
                                                {1.0, 0.6},    {1.0, 0.15},  {-2.5, 0.15}};
 
+/// Where changes may go: within `distance` of a route (route samples 1 m apart, hashed in cells
+/// of `distance`), or anywhere without routes.
+class RouteScope {
+ public:
+  RouteScope(const std::vector<Polyline>& routes, double distance) : d_(distance) {
+    if (routes.empty() || distance <= 0) return;
+    for (const auto& r : routes)
+      for (const auto& p : resample(r, kRouteStep)) {
+        samples_.push_back(p.head<2>());
+        cells_[voxel_grid::cellKey2d(p.x(), p.y(), d_)].push_back(samples_.size() - 1);
+      }
+  }
+  bool near(const Eigen::Vector3d& p) const {
+    if (samples_.empty()) return true;
+    const int64_t cx = int64_t(std::floor(p.x() / d_)), cy = int64_t(std::floor(p.y() / d_));
+    for (int64_t dx = -1; dx <= 1; ++dx)
+      for (int64_t dy = -1; dy <= 1; ++dy) {
+        const auto it = cells_.find(voxel_grid::cellKey2d(cx + dx, cy + dy));
+        if (it == cells_.end()) continue;
+        for (const std::size_t i : it->second)
+          if ((samples_[i] - p.head<2>()).norm() <= d_) return true;
+      }
+    return false;
+  }
+  /// Point elements by their centre; lines and areas with every point (lines resampled).
+  bool holds(const MapInstance& m) const {
+    if (samples_.empty()) return true;
+    if (m.cls == CrowdClass::kLaneLine) {
+      for (const auto& p : resample(m.points, kRouteStep))
+        if (!near(p)) return false;
+      return true;
+    }
+    return near(instanceCentre(m));
+  }
+
+ private:
+  static constexpr double kRouteStep = 1.0;  // m
+  double d_;
+  std::vector<Eigen::Vector2d> samples_;
+  std::unordered_map<int64_t, std::vector<std::size_t>> cells_;
+};
+
 class Changer {
  public:
-  Changer(World& world, const ChangeSettings& s) : world_(world), s_(s), rng_(s.seed) {}
+  Changer(World& world, const ChangeSettings& s, const std::vector<Polyline>& routes)
+      : world_(world), s_(s), rng_(s.seed), scope_(routes, s.route_distance) {}
 
   MapChanges run() {
     MapChanges out;
@@ -87,11 +132,14 @@ class Changer {
             const std::function<void(MapInstance&)>& apply, ChangeKind kind, MapChanges& out) {
     std::vector<std::size_t> pool;
     for (std::size_t i = 0; i < world_.truth.instances.size(); ++i)
-      if (!changed_.count(i) && eligible(world_.truth.instances[i])) pool.push_back(i);
+      if (!changed_.count(i) && eligible(world_.truth.instances[i]) &&
+          scope_.holds(world_.truth.instances[i]))
+        pool.push_back(i);
     if (int(pool.size()) < count)
       throw ConfigError(std::string(key) + " = " + std::to_string(count) + ": the world " +
                         world_.name + " has only " + std::to_string(pool.size()) +
-                        " elements left that can take this change");
+                        " elements left that can take this change" +
+                        (s_.route_distance > 0 ? " within change_route_distance of a route" : ""));
     for (int k = 0; k < count; ++k) {  // partial Fisher-Yates: the first `count` of a shuffle
       const std::size_t j =
           std::uniform_int_distribution<std::size_t>(std::size_t(k), pool.size() - 1)(rng_);
@@ -229,7 +277,7 @@ class Changer {
       // world's), the second half of the tries place it across the lane (a new stop).
       const bool at_end = cls == CrowdClass::kStopLine && attempt < kPlacementTries / 2;
       placeNew(m, lane, at_end ? length - kLaneEndGap : uniform(10.0, length - 10.0));
-      if (!isClear(m)) continue;
+      if (!isClear(m) || !scope_.holds(m)) continue;
       world_.truth.instances.push_back(m);
       MapChange c;
       c.kind = ChangeKind::kAdded;
@@ -305,6 +353,7 @@ class Changer {
   World& world_;
   const ChangeSettings& s_;
   std::mt19937_64 rng_;
+  RouteScope scope_;
   std::set<std::size_t> changed_, removed_;
   /// Where changed elements stood before: additions keep clear of them too.
   std::vector<std::pair<CrowdClass, Eigen::Vector3d>> changed_centres_;
@@ -312,9 +361,10 @@ class Changer {
 
 }  // namespace
 
-MapChanges applyWorldChanges(World& world, const ChangeSettings& settings) {
+MapChanges applyWorldChanges(World& world, const ChangeSettings& settings,
+                             const std::vector<Polyline>& routes) {
   if (settings.total() == 0) return {world.truth.origin, "simulate change truth", {}};
-  return Changer(world, settings).run();
+  return Changer(world, settings, routes).run();
 }
 
 }  // namespace mapfuse::sim

@@ -11,6 +11,7 @@
 #include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
+#include "mapfuse/sim/crowd.hpp"
 #include "mapfuse/sim/crowd_files.hpp"
 #include "mapfuse/sim/map_world.hpp"
 #include "mapfuse/sim/world_changes.hpp"
@@ -70,7 +71,9 @@ SimulateRun runSimulate(const SimulateParams& P, const std::filesystem::path& ou
   run.origin = {P.origin_lat, P.origin_lon, P.origin_alt};
   sim::World world = buildWorld(P, run.origin);
   if (world.lanes.empty()) throw InputError("simulate: the world has no drivable lanes");
-  const MapChanges changes = sim::applyWorldChanges(world, P.changes);  // before any drive
+  // Before any drive, near the routes the drives will take (change_route_distance).
+  const MapChanges changes =
+      sim::applyWorldChanges(world, P.changes, sim::crowdRoutes(world, P.crowd));
   for (const auto& c : changes.changes) ++run.changes[changeKindName(c.kind)];
   MAPFUSE_INFO("simulate: world " << world.name << ": " << world.lanes.size() << " lanes, "
                                   << world.truth.instances.size() << " true elements");

@@ -85,6 +85,10 @@ struct CrowdStats {
   void add(const CrowdStats& other);
 };
 
+/// @brief The crowd's routes over `world` (deterministic in settings.seed; the lanes only, not the
+/// truth, so a changed world keeps them).
+std::vector<Polyline> crowdRoutes(const World& world, const CrowdSettings& settings);
+
 /// The fleet on one world: routes planned once, any traversal on demand.
 class Crowd {
  public:

@@ -25,6 +25,9 @@ struct ChangeSettings {
   double move_max = 5.0;   ///< m
   double shift_min = 0.3;  ///< m, sideways shift of a restriped lane line
   double shift_max = 3.5;  ///< m
+  /// m: only elements this near a planned route change (a lane line: all of it), additions too;
+  /// 0: anywhere in the world. Changes no drive passes cannot be detected by any update.
+  double route_distance = 12.0;
 
   template <class V>
   void visit(V& v) {
@@ -50,6 +53,8 @@ struct ChangeSettings {
     v("change_shift_max", shift_max, "m", "sideways shift of a restriped lane line, max",
       in(0.01, 20));
     v.relation("change_shift_max", shift_max, shift_max >= shift_min, ">= change_shift_min");
+    v("change_route_distance", route_distance, "m",
+      "only elements this near a planned route change (0: anywhere in the world)", in(0, 10000));
   }
 
   int total() const { return removed + added + moved + restriped + retyped; }
@@ -62,9 +67,12 @@ constexpr double kAddedClearance = 10.0;
 /// @brief Draws settings.total() changes (exactly the requested count of each kind, each element
 /// changed at most once) and applies them to world.truth: removed elements leave it, changed
 /// ones keep their id and place in it, added ones are appended with fresh ids (above the
-/// largest). Drives simulated afterwards see the changed world.
+/// largest). Drives simulated afterwards see the changed world. With `routes` and
+/// settings.route_distance > 0 only elements (and places of additions) within route_distance of
+/// a route are drawn.
 /// @return the change truth, ids of the world before (after_id == before_id for changed ones).
 /// @throws ConfigError when the world has too few candidates for a kind, naming the key.
-MapChanges applyWorldChanges(World& world, const ChangeSettings& settings);
+MapChanges applyWorldChanges(World& world, const ChangeSettings& settings,
+                             const std::vector<Polyline>& routes = {});
 
 }  // namespace mapfuse::sim
