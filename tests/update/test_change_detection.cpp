@@ -112,8 +112,9 @@ TEST_CASE("update detects each kind of change from three traversals", "[update]"
   REQUIRE(removed);
   CHECK(removed->kind == ChangeKind::kRemoved);
   CHECK(removed->supporting_traversals.size() == 3);
-  // three misses at Pd 0.95, Pfa 0.02, prior 0.01: l = -4.60 + 3 * 2.97 = 4.32
-  CHECK(*removed->confidence == Approx(1 / (1 + std::exp(-4.3165))).margin(1e-3));
+  // three misses at Pd 0.95 (a map without support counts), Pfa 0.02, prior 0.03:
+  // l = -3.48 + 3 * 2.98 = 5.45
+  CHECK(*removed->confidence == Approx(1 / (1 + std::exp(-5.4505))).margin(1e-3));
   const MapChange* moved = changeOf(r.changes, 3);
   REQUIRE(moved);
   CHECK(moved->kind == ChangeKind::kMoved);
@@ -139,8 +140,8 @@ TEST_CASE("update detects each kind of change from three traversals", "[update]"
 }
 
 TEST_CASE("update removes nothing on one missed observation", "[update]") {
-  // one traversal that missed pole 2: l = -4.60 + 2.97 < 0, no removal (a 5 % miss is likelier
-  // than a 1 % removal); the element is in view, neither confirmed nor changed
+  // one traversal that missed pole 2: l = -3.48 + 2.98 < 0, no removal (a 5 % miss is likelier
+  // than a 3 % removal); the element is in view, neither confirmed nor changed
   const update::UpdateResult r =
       update::detectChanges(beforeMap(), {drive("a")}, {"a.json"}, detectionOnly());
   CHECK(changeOf(r.changes, 2) == nullptr);

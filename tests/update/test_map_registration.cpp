@@ -188,6 +188,13 @@ TEST_CASE("update finds the changes of a drifting drive only when registered", "
     removed += c.kind == ChangeKind::kRemoved;
     added += c.kind == ChangeKind::kAdded;
   }
+  // the restriped line is the right one (id 1), shifted about 0.6 m to the left on [400, 460]
+  for (const auto& c : r.changes.changes)
+    if (c.kind == ChangeKind::kRestriped) {
+      CHECK(c.before->id == 1);
+      const Eigen::Vector3d d = c.after->points[430] - c.before->points[430];
+      CHECK(d.y() == Approx(0.6).margin(0.1));
+    }
   CHECK(moved == 4);  // poles k = 5, 12, 19, 26
   CHECK(restriped == 1);
   CHECK(added == 3);

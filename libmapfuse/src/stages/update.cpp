@@ -58,12 +58,14 @@ update::UpdateResult runUpdate(const std::filesystem::path& map_path,
   io::OutputTransaction outputs(out_dir);  // locked and writable before the work
   const VectorMap map = io::readVectorMap(map_path);
   const std::vector<Lsm> lsms = io::readLsmInputs(inputs, /*covariances=*/false);
-  const update::UpdateResult result = update::detectChanges(map, lsms, inputs, params.detection);
+  update::UpdateResult result = update::detectChanges(map, lsms, inputs, params.detection);
   MAPFUSE_INFO("update: " << result.changes.changes.size() << " changes, "
                           << result.stats.not_verified.size() << " of " << map.instances.size()
                           << " map elements not verified (no new drive had them in view)");
   io::writeMapChanges(out_dir / "changes.json", result.changes);
   io::writeMapChangesGeoJson(out_dir / "changes.geojson", result.changes);
+  // The new drives in the map's frame, whole (covariances re-read): for a rebuild with them.
+  io::writeWithKeyframes(inputs, result.registered, out_dir / "registered");
   io::writeResolvedConfig(out_dir, "update", paramsToJson(params));
   io::writeSummary(out_dir, "update", toJson(result, inputs));
   outputs.commit();

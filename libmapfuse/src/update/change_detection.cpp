@@ -4,12 +4,14 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <unordered_map>
 
 #include "drive_view.hpp"
 #include "evidence.hpp"
 #include "mapfuse/aggregate/dbscan.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
 #include "mapfuse/core/error.hpp"
+#include "mapfuse/core/voxel_grid.hpp"
 #include "mapfuse/geo/origin.hpp"
 
 namespace mapfuse::update {
@@ -78,17 +80,53 @@ std::vector<std::string> driveIds(const std::vector<Evidence>& evs, const std::v
   return ids;
 }
 
+// Per map element the probability that a drive passing it observes it, from the map's own
+// history (docs/update.md "Accumulation"): of the drives that passed its place (the largest
+// support of the map's elements within support_radius: the lane lines there, which every
+// passing drive sees), the share that observed it, (drives + 1) / (passed + 2), at most
+// max_detection_probability. An element few of its passing drives saw (a sign seen from behind, a
+// stop line of a crossing road) is weak evidence when missed. Without support (a map not made
+// by aggregate): detection_probability.
+std::vector<double> detectionProbabilities(const VectorMap& map, const DecisionSettings& d) {
+  const double cell = d.support_radius;
+  std::unordered_map<int64_t, std::vector<std::size_t>> grid;
+  std::vector<Eigen::Vector3d> centre(map.instances.size());
+  for (std::size_t e = 0; e < map.instances.size(); ++e) {
+    centre[e] = instanceCentre(map.instances[e]);
+    grid[voxel_grid::cellKey2d(centre[e].x(), centre[e].y(), cell)].push_back(e);
+  }
+  std::vector<double> pd(map.instances.size(), d.detection_probability);
+  for (std::size_t e = 0; e < map.instances.size(); ++e) {
+    const int own = map.instances[e].support.drives;
+    if (own <= 0) continue;
+    int passed = own;
+    const int64_t cx = int64_t(std::floor(centre[e].x() / cell));
+    const int64_t cy = int64_t(std::floor(centre[e].y() / cell));
+    for (int64_t dx = -1; dx <= 1; ++dx)
+      for (int64_t dy = -1; dy <= 1; ++dy) {
+        const auto it = grid.find(voxel_grid::cellKey2d(cx + dx, cy + dy));
+        if (it == grid.end()) continue;
+        for (const std::size_t o : it->second)
+          if ((centre[o] - centre[e]).head<2>().norm() <= cell)
+            passed = std::max(passed, map.instances[o].support.drives);
+      }
+    pd[e] = std::min(d.max_detection_probability, double(own + 1) / double(passed + 2));
+  }
+  return pd;
+}
+
 // Removal by log-odds over the traversals that had the element in view: each one that missed
-// it adds log((1 - Pfa) / (1 - Pd)), each one that saw it adds log(Pfa / Pd).
-std::optional<MapChange> decideDiscrete(const MapInstance& m, const std::vector<Evidence>& present,
+// it adds log((1 - Pfa) / (1 - Pd)), each one that saw it adds log(Pfa / Pd), Pd the element's
+// detection probability (detectionProbabilities).
+std::optional<MapChange> decideDiscrete(const MapInstance& m, double pd,
+                                        const std::vector<Evidence>& present,
                                         const std::vector<Evidence>& missing,
                                         const std::vector<Lsm>& lsms, const UpdateSettings& s) {
   const DecisionSettings& d = s.decision;
-  const double l =
-      logit(d.removal_prior) +
-      double(missing.size()) *
-          std::log((1 - d.false_alarm_probability) / (1 - d.detection_probability)) +
-      double(present.size()) * std::log(d.false_alarm_probability / d.detection_probability);
+  const double pfa = std::min(d.false_alarm_probability, 0.5 * pd);  // a miss stays evidence
+  const double l = logit(d.removal_prior) +
+                   double(missing.size()) * std::log((1 - pfa) / (1 - pd)) +
+                   double(present.size()) * std::log(pfa / pd);
   MapChange c;
   c.cls = m.cls;
   c.before = m;
@@ -202,6 +240,7 @@ void detectElementChanges(const VectorMap& map, const std::vector<Lsm>& lsms,
                           const std::vector<DriveView>& views, const Assignment& a,
                           const UpdateSettings& s, UpdateResult* out) {
   const auto neighbours = laneLineNeighbours(map, s.evidence.line_search);
+  const std::vector<double> pd = detectionProbabilities(map, s.decision);
   for (std::size_t e = 0; e < map.instances.size(); ++e) {
     const MapInstance& m = map.instances[e];
     std::vector<Evidence> present, missing;
@@ -227,7 +266,7 @@ void detectElementChanges(const VectorMap& map, const std::vector<Lsm>& lsms,
     ++out->stats.elements_in_view;
     const auto change = m.cls == CrowdClass::kLaneLine
                             ? decideLine(m, present, lsms)
-                            : decideDiscrete(m, present, missing, lsms, s);
+                            : decideDiscrete(m, pd[e], present, missing, lsms, s);
     if (change)
       out->changes.changes.push_back(*change);
     else if (present.empty())
@@ -333,6 +372,7 @@ UpdateResult detectChanges(const VectorMap& map, const std::vector<Lsm>& new_dri
   out.stats.traversals = int(lsms.size());
   detectElementChanges(map, lsms, views, a, settings, &out);
   detectAdditions(map, lsms, views, a, settings, &out);
+  out.registered = std::move(lsms);
   return out;
 }
 

@@ -1,5 +1,8 @@
 #include "drive_view.hpp"
 
+#include <Eigen/Geometry>
+#include <cmath>
+
 #include "mapfuse/core/voxel_grid.hpp"
 
 namespace mapfuse::update {
@@ -9,10 +12,27 @@ int64_t DriveView::key(double x, double y) const {
 }
 
 DriveView::DriveView(const Lsm& lsm, const ViewSettings& settings) : s_(settings) {
+  // The camera fires between keyframes too (several metres apart; in a turn the heading
+  // changes by tens of degrees between two): poses interpolated every pose_step m.
+  auto add = [&](const Pose3& T) {
+    grid_[key(T.translation().x(), T.translation().y())].push_back(int(body_from_enu_.size()));
+    body_from_enu_.push_back(T.inverse());
+  };
   for (std::size_t k = 0; k < lsm.keyframes.size(); ++k) {
     const Pose3& T = lsm.keyframes[k].T_frame_body;
-    body_from_enu_.push_back(T.inverse());
-    grid_[key(T.translation().x(), T.translation().y())].push_back(int(k));
+    if (k > 0) {
+      const Pose3& P = lsm.keyframes[k - 1].T_frame_body;
+      const int n = int(std::ceil((T.translation() - P.translation()).norm() / s_.pose_step));
+      const Eigen::Quaterniond qa(P.linear()), qb(T.linear());
+      for (int i = 1; i < n; ++i) {
+        const double w = double(i) / n;
+        Pose3 M = Pose3::Identity();
+        M.linear() = qa.slerp(w, qb).toRotationMatrix();
+        M.translation() = (1 - w) * P.translation() + w * T.translation();
+        add(M);
+      }
+    }
+    add(T);
   }
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 /// @file The expected observation area of one drive (docs/update.md): the union over its
-/// keyframes of the camera footprint, a range band and a field of view in the body frame.
+/// keyframes (and poses interpolated between them) of the camera footprint, a range band and a field of view in the body frame.
 #include <Eigen/Core>
 #include <cstdint>
 #include <unordered_map>
@@ -14,11 +14,11 @@ namespace mapfuse::update {
 class DriveView {
  public:
   DriveView(const Lsm& lsm, const ViewSettings& settings);
-  /// @brief True when some keyframe had the ENU point inside its shrunk camera footprint.
+  /// @brief True when some pose had the ENU point inside its shrunk camera footprint.
   bool sees(const Eigen::Vector3d& p) const;
 
  private:
-  std::vector<Pose3> body_from_enu_;  ///< inverse keyframe poses
+  std::vector<Pose3> body_from_enu_;  ///< inverse keyframe poses and poses between them
   std::unordered_map<int64_t, std::vector<int>> grid_;
   ViewSettings s_;
   double cell_ = 20.0;

@@ -27,8 +27,9 @@ struct ViewSettings {
   double max_range = 40.0;      ///< m from the camera
   double half_fov = 0.5696;     ///< rad, atan(640 / 1000)
   double lateral_range = 12.0;  ///< m, |y| in the body frame
-  double view_margin = 2.0;     ///< m, the band is shrunk by this on every side
+  double view_margin = 1.0;     ///< m, the band is shrunk by this on every side
   double sample_spacing = 2.0;  ///< m between the samples of a lane line
+  double pose_step = 1.0;       ///< m, poses interpolated between keyframes this far apart
 
   template <class V>
   void visit(V& v) {
@@ -44,6 +45,8 @@ struct ViewSettings {
     v("view_margin", view_margin, "m", "the view is shrunk by this on every side", in(0, 100));
     v("sample_spacing", sample_spacing, "m", "spacing of the in-view samples of a lane line",
       in(0.1, 100));
+    v("view_pose_step", pose_step, "m",
+      "camera poses interpolated between keyframes this far apart", in(0.1, 1000));
   }
 };
 
@@ -80,9 +83,11 @@ struct EvidenceSettings {
 
 /// How evidence accumulates over traversals (docs/update.md "Accumulation").
 struct DecisionSettings {
-  double detection_probability = 0.95;    ///< P(observed | present, in view)
+  double detection_probability = 0.95;      ///< P(observed | present, in view), map without support
+  double max_detection_probability = 0.99;  ///< the same from an element's support, at most
+  double support_radius = 50.0;  ///< m, drives that passed an element: most support within this
   double false_alarm_probability = 0.02;  ///< P(observed | absent, in view)
-  double removal_prior = 0.01;            ///< prior probability that an element was removed
+  double removal_prior = 0.03;            ///< prior probability that an element was removed
   int added_min_traversals = 1;           ///< traversals that must see an addition
   double added_cluster_eps = 1.5;         ///< m, DBSCAN eps of the addition clusters
 
@@ -90,7 +95,16 @@ struct DecisionSettings {
   void visit(V& v) {
     using namespace param;
     v("detection_probability", detection_probability, "",
-      "probability that a drive observes an element it has in view", gt(0) & lt(1));
+      "probability that a drive observes an element it has in view, for a map without support "
+      "counts",
+      gt(0) & lt(1));
+    v("max_detection_probability", max_detection_probability, "",
+      "largest per-element detection probability from its support (the share of the drives "
+      "that passed it and observed it)",
+      gt(0) & lt(1));
+    v("support_radius", support_radius, "m",
+      "the drives that passed an element: the largest support of the map's elements this near",
+      gt(0) & le(10000));
     v("false_alarm_probability", false_alarm_probability, "",
       "probability that a drive observes an absent element in view", gt(0) & lt(1));
     v.relation("detection_probability", detection_probability,
@@ -132,6 +146,7 @@ struct UpdateStats {
 struct UpdateResult {
   MapChanges changes;  ///< mapfuse.map_changes, ids of `map`, confidence and traversals set
   UpdateStats stats;
+  std::vector<Lsm> registered;  ///< the new drives as registered to the map (keyframes moved)
 };
 
 /// @brief Detects the changes between `map` and the new drives.

@@ -19,6 +19,10 @@ struct RegistrationSettings {
   std::vector<double> distances = {2.0, 1.0, 0.5};  ///< m, max correspondence per GICP level
   double huber = 3.0;                               ///< sigma, Huber delta on whitened residuals
   int min_inliers = 30;                             ///< a stretch with fewer is not registered
+  double stretch_sigma = 2.0;     ///< m, a stretch's coarse shift about its neighbour's
+  double smooth_rate = 0.02;      ///< m of offset change per m of path between keyframes
+  double smooth_yaw_rate = 5e-4;  ///< rad of yaw change per m of path between keyframes
+  int refine_iterations = 5;      ///< per-keyframe refinement iterations per distance level
 
   template <class V>
   void visit(V& v) {
@@ -34,6 +38,14 @@ struct RegistrationSettings {
       in(0, 1e6));
     v("register_min_inliers", min_inliers, "", "a stretch with fewer correspondences is skipped",
       in(6, 1000000));
+    v("register_stretch_sigma", stretch_sigma, "m",
+      "prior sigma of a stretch's coarse shift about its neighbour's", gt(0) & le(100));
+    v("register_smooth_rate", smooth_rate, "m/m",
+      "per-keyframe refinement: sigma of the offset change per m of path", gt(0) & le(10));
+    v("register_smooth_yaw_rate", smooth_yaw_rate, "rad/m",
+      "per-keyframe refinement: sigma of the yaw change per m of path", gt(0) & le(1));
+    v("register_refine_iterations", refine_iterations, "",
+      "per-keyframe refinement iterations per distance level (0: stretches only)", in(0, 100));
   }
 };
 
@@ -51,7 +63,10 @@ struct StretchOffset {
 
 /// @brief Registers every stretch of each drive to the map and moves its keyframes by the
 /// offsets interpolated along the keyframe path (linear between stretch centres, a [1 2 1]
-/// smoothing of interior stretches). A drive without any registered stretch is left as it is.
+/// smoothing of interior stretches); then refines a planar offset and yaw per keyframe against
+/// the map (a smooth deformation: the GPS error of a georeferenced drive changes by metres
+/// within 100 m, faster than stretches follow). A drive without any registered stretch is left
+/// as it is.
 /// @return the stretches of all drives, in drive order.
 std::vector<StretchOffset> registerToMap(const VectorMap& map, std::vector<Lsm>& lsms,
                                          const RegistrationSettings& settings);
