@@ -187,6 +187,7 @@ Json vectorMapToGeoJson(const VectorMap& map) {
     }
     props["support_drives"] = inst.support.drives;
     props["support_observations"] = inst.support.observations;
+    if (inst.version != 1) props["version"] = inst.version;
     if (!note.empty()) props["geometry_note"] = note;
     features.push_back({{"type", "Feature"},
                         {"id", inst.id},

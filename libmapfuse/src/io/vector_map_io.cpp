@@ -45,6 +45,7 @@ Json instanceToJson(const MapInstance& inst, const VectorMapWriteOptions& opt) {
   j["support"] = {{"drives", inst.support.drives}, {"observations", inst.support.observations}};
   if (!inst.source_ids.empty()) j["source_ids"] = inst.source_ids;
   if (!inst.note.empty()) j["note"] = inst.note;
+  if (inst.version != 1) j["version"] = inst.version;  // absent: 1 (maps before updates)
   return j;
 }
 
@@ -78,7 +79,7 @@ void checkChainLength(const JsonView& field, const std::vector<BezierSegment>& c
 MapInstance instanceFromJson(const JsonView& v, std::optional<double> quantum,
                              double& chain_total) {
   v.onlyKeys({"id", "class", "style", "color", "points", "points_q", "bezier", "bezier_q", "height",
-              "support", "source_ids", "note"});
+              "support", "source_ids", "note", "version"});
   MapInstance inst;
   inst.id = v.at("id").integer();
   readClassAndAttributes(v, inst.cls, inst.attributes);
@@ -116,6 +117,7 @@ MapInstance instanceFromJson(const JsonView& v, std::optional<double> quantum,
   if (auto ids = v.find("source_ids"))
     for (std::size_t i = 0; i < ids->size(); ++i) inst.source_ids.push_back(ids->at(i).integer());
   if (auto n = v.find("note")) inst.note = n->string();
+  if (auto ver = v.find("version")) inst.version = ver->integerInt(1);
   return inst;
 }
 

@@ -655,6 +655,13 @@ void orient(const LaneletPlan& plan, LaneletPlan::Lanelet& ll) {
 
 }  // namespace
 
+std::vector<DrivePath> drivePaths(const std::vector<Lsm>& lsms) {
+  std::vector<DrivePath> drives(lsms.size());
+  for (std::size_t d = 0; d < lsms.size(); ++d)
+    for (const auto& k : lsms[d].keyframes) drives[d].push_back(k.T_frame_body.translation());
+  return drives;
+}
+
 LaneletPlan planLanelets(const VectorMap& map, const std::vector<DrivePath>& drives,
                          const LaneletSettings& settings) {
   const LineSet set = collectLines(map, settings);

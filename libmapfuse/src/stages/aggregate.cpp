@@ -30,11 +30,8 @@ std::vector<std::function<void()>> mapWriters(const std::filesystem::path& out_d
                                               const AggregateParams& params,
                                               io::Lanelet2ExportStats* osm_stats) {
   return {[&, osm_stats] {  // the two slowest first
-            std::vector<lanelet::DrivePath> drives(lsms.size());
-            for (std::size_t d = 0; d < lsms.size(); ++d)
-              for (const auto& k : lsms[d].keyframes)
-                drives[d].push_back(k.T_frame_body.translation());
-            io::writeOsm(out_dir / "map.osm", map, lanelet::planExport(map, drives, params.lanelet),
+            io::writeOsm(out_dir / "map.osm", map,
+                         lanelet::planExport(map, lanelet::drivePaths(lsms), params.lanelet),
                          osm_stats);
           },
           [&] {

@@ -1,15 +1,21 @@
 #include "mapfuse/stages/update.hpp"
 
+#include <functional>
 #include <map>
 
 #include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
+#include "mapfuse/core/parallel_for.hpp"
+#include "mapfuse/io/geojson.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/map_changes_io.hpp"
+#include "mapfuse/io/osm_export.hpp"
 #include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
+#include "mapfuse/lanelet/regulatory.hpp"
+#include "mapfuse/update/map_apply.hpp"
 
 namespace mapfuse::stages {
 
@@ -29,6 +35,33 @@ nlohmann::json stretchesToJson(const std::vector<update::StretchOffset>& stretch
                  {"inliers", o.inliers},
                  {"rmse_m", o.rmse}});
   return j;
+}
+
+// The updated map in aggregate's formats; map.osm's lanelets take their travel directions from
+// the new drives (registered), the only drives update reads.
+void writeUpdatedMap(const std::filesystem::path& out_dir, const VectorMap& map,
+                     const std::vector<Lsm>& drives, io::Lanelet2ExportStats* osm_stats) {
+  std::vector<std::function<void()>> writers = {
+      [&] {
+        io::writeOsm(out_dir / "map.osm", map,
+                     lanelet::planExport(map, lanelet::drivePaths(drives)), osm_stats);
+      },
+      [&] { io::writeVectorMap(out_dir / "map.cbor", map); },
+      [&] { io::writeVectorMap(out_dir / "map.json", map); },
+      [&] { io::writeGeoJson(out_dir / "map.geojson", map); }};
+  parallelFor(writers.size(), [&](std::size_t i) { writers[i](); });
+}
+
+nlohmann::json toJson(const update::UpdatedMap& m, std::size_t before,
+                      const io::Lanelet2ExportStats& osm) {
+  return {{"instances_before", before},
+          {"instances_after", m.map.instances.size()},
+          {"unchanged", m.unchanged.size()},
+          {"changed_ids", m.changed},
+          {"removed_ids", m.removed},
+          {"added_ids", m.added},
+          {"lanelets", osm.lanelets},
+          {"lanelets_direction_known", osm.lanelets_direction_known}};
 }
 
 }  // namespace
@@ -62,12 +95,17 @@ update::UpdateResult runUpdate(const std::filesystem::path& map_path,
   MAPFUSE_INFO("update: " << result.changes.changes.size() << " changes, "
                           << result.stats.not_verified.size() << " of " << map.instances.size()
                           << " map elements not verified (no new drive had them in view)");
+  const update::UpdatedMap updated = update::applyChanges(map, result.changes);
+  io::Lanelet2ExportStats osm;
+  writeUpdatedMap(out_dir, updated.map, result.registered, &osm);
   io::writeMapChanges(out_dir / "changes.json", result.changes);
   io::writeMapChangesGeoJson(out_dir / "changes.geojson", result.changes);
   // The new drives in the map's frame, whole (covariances re-read): for a rebuild with them.
   io::writeWithKeyframes(inputs, result.registered, out_dir / "registered");
   io::writeResolvedConfig(out_dir, "update", paramsToJson(params));
-  io::writeSummary(out_dir, "update", toJson(result, inputs));
+  nlohmann::json summary = toJson(result, inputs);
+  summary["updated_map"] = toJson(updated, map.instances.size(), osm);
+  io::writeSummary(out_dir, "update", summary);
   outputs.commit();
   return result;
 }

@@ -34,6 +34,7 @@ struct MapInstance {
   double height = 0.0;                ///< m; poles, lights: vertical extent above the base
   Support support;
   std::vector<int64_t> source_ids;  ///< provenance (truth ids, or ids of merged elements)
+  int version = 1;  ///< 1 as built; a map update that changes the element adds 1 (docs/update.md)
   std::string note;                 ///< free text, e.g. "placed by simulator"
 };
 

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "mapfuse/core/lsm.hpp"
 #include "mapfuse/core/vector_map.hpp"
 #include "mapfuse/lanelet/settings.hpp"
 
@@ -21,6 +22,9 @@ namespace mapfuse::lanelet {
 
 /// A drive's path in the map's ENU frame, in driving order (e.g. LSM keyframe positions).
 using DrivePath = std::vector<Eigen::Vector3d>;
+
+/// @brief The keyframe paths of drives in the map's frame (LSMs in frame enu of the map).
+std::vector<DrivePath> drivePaths(const std::vector<Lsm>& lsms);
 
 struct LaneletPlan {
   /// A lane line with its cut points inserted; pieces run between consecutive cuts.
