@@ -8,6 +8,9 @@
 #   ... TRUTH=truth/vector_map.json TRUTH_TRAJ=truth/   # adds evaluate
 #   ... TILE_SIZE=500                          # align per tile, balance, aggregate per tile, stitch
 #   ... MAX_UNTRUSTED_SHARE=0.1   # the trust check (check.json) fails above this share (default 0)
+#   make -j2 -f scripts/crowd.mk UPDATE_MAP=out/crowd/aggregate/map.json LSM_DIR=new/ WORK=out/upd
+#                                  # map update: the drives of LSM_DIR / FRAMES_DIR are the new
+#                                  # ones, georeferenced in the map's frame (docs/update.md)
 #
 # Variables: BIN (tools, default build/bin), METHOD (align method, default gba_sgicp),
 # CONFIG_DIR (folder with <stage>.json configs; default: none, built-in defaults),
@@ -22,6 +25,7 @@ TRUTH_TRAJ ?=
 TILE_SIZE ?=
 TILE_MARGIN ?= 50
 CONFIG_DIR ?=
+UPDATE_MAP ?=
 Q ?= -q
 
 cfg = $(if $(CONFIG_DIR),$(if $(wildcard $(CONFIG_DIR)/$(1).json),--config $(CONFIG_DIR)/$(1).json))
@@ -53,9 +57,14 @@ endif
 EVAL_SUMMARY := $(WORK)/evaluate/evaluate.summary.json
 CHECK := $(WORK)/check.json
 MAX_UNTRUSTED_SHARE ?= 0
+UPDATE_SUMMARY := $(WORK)/update/update.summary.json
 
-.PHONY: all map evaluate check clean
+.PHONY: all map evaluate check update clean
+ifneq ($(UPDATE_MAP),)
+all: $(UPDATE_SUMMARY)
+else
 all: $(if $(TRUTH),$(EVAL_SUMMARY),$(MAP_SUMMARY)) $(CHECK)
+endif
 check: $(CHECK)
 map: $(MAP_SUMMARY)
 evaluate: $(EVAL_SUMMARY)
@@ -68,10 +77,11 @@ $(WORK)/lsm/$(1).lsm.json: $(FRAMES_DIR)/$(1)/frames.json
 endef
 $(foreach d,$(DRIVES),$(eval $(call LSM_BUILD_RULE,$(d))))
 
-# ---- the batch's one ENU origin, derived once ----
-$(WORK)/origin.txt: | $(firstword $(LSMS))
+# ---- the batch's one ENU origin, derived once (a map update: the map's) ----
+ORIGIN_SOURCE := $(if $(UPDATE_MAP),$(UPDATE_MAP),$(firstword $(LSMS)))
+$(WORK)/origin.txt: | $(ORIGIN_SOURCE)
 	@mkdir -p $(WORK)
-	$(if $(ORIGIN),echo $(ORIGIN),$(BIN)/info --origin $(firstword $(LSMS))) > $@.tmp && mv $@.tmp $@
+	$(if $(ORIGIN),echo $(ORIGIN),$(BIN)/info --origin $(ORIGIN_SOURCE)) > $@.tmp && mv $@.tmp $@
 
 # ---- georef: one rule per drive, all sharing origin.txt ----
 define GEOREF_RULE
@@ -129,6 +139,13 @@ $(EVAL_SUMMARY): $(MAP_SUMMARY) $(TRUTH)
 # above MAX_UNTRUSTED_SHARE the check exits 3 (make then stops with "Error 3") ----
 $(CHECK): $(MAP_SUMMARY)
 	python3 $(CROWD_MK_DIR)crowd_check.py $(WORK) --max-untrusted-share $(MAX_UNTRUSTED_SHARE)
+
+# ---- map update (issue 34): the new drives, georeferenced in the map's frame, against the map;
+# outputs replaced as a set, so a killed update leaves the previous WORK/update as it was ----
+update: $(UPDATE_SUMMARY)
+$(UPDATE_SUMMARY): $(GEOREF_DONE) $(UPDATE_MAP)
+	$(if $(UPDATE_MAP),,$(error set UPDATE_MAP=<the existing map> for the update target))
+	$(BIN)/update $(Q) $(call cfg,update) --map $(UPDATE_MAP) -o $(WORK)/update $(GEOREF)
 
 clean:
 	rm -rf $(WORK)

@@ -13,10 +13,11 @@ int main(int argc, char** argv) {
   const auto& paths = tool.inputs("files", "mapfuse files, @list.txt, or - for a list on stdin");
   bool origin = false;
   tool.app().add_flag("--origin", origin,
-                      "Print the shared ENU origin of the first LSM as lat,lon,alt");
+                      "Print the shared ENU origin as lat,lon,alt: of the first file, an LSM (its "
+                      "origin, else its first GPS fix) or a vector map (its origin)");
   return tool.run(argc, argv, [&](const stages::InfoParams&) {
     if (origin) {
-      const geo::GeoOrigin o = stages::originOfLsm(paths.at(0));
+      const geo::GeoOrigin o = stages::originOf(paths.at(0));
       std::cout << std::setprecision(12) << o.lat << ',' << o.lon << ',' << std::setprecision(8)
                 << o.alt << '\n';
       return;

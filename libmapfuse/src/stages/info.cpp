@@ -91,8 +91,11 @@ FileInfo describeFile(const std::filesystem::path& path) {
   return info;
 }
 
-geo::GeoOrigin originOfLsm(const std::filesystem::path& path) {
-  const Lsm lsm = io::readLsm(path);
+geo::GeoOrigin originOf(const std::filesystem::path& path) {
+  const nlohmann::json doc = io::readDocument(path);
+  if (doc.is_object() && doc.value("format", "") == io::kVectorMapFormat)
+    return io::vectorMapFromJson(doc, path.string()).origin;  // a map update's batch
+  const Lsm lsm = io::lsmFromJson(doc, path.string());
   if (lsm.origin) return *lsm.origin;
   if (lsm.gps.empty())
     throw InputError(path.string() + ": no origin and no GPS fix to derive one from");

@@ -57,8 +57,9 @@ nlohmann::json toJson(const FileInfo& info);
 /// @throws IoError, ParseError (malformed file or unknown format).
 FileInfo describeFile(const std::filesystem::path& path);
 
-/// @brief The ENU origin an LSM implies: its own origin when georeferenced, else its first GPS
-/// fix. @throws InputError when it has neither.
-geo::GeoOrigin originOfLsm(const std::filesystem::path& path);
+/// @brief The ENU origin a file implies for a batch: an LSM's own origin when georeferenced,
+/// else its first GPS fix; a vector map's origin (new drives of a map update share the map's).
+/// @throws InputError when an LSM has neither, ParseError for other documents.
+geo::GeoOrigin originOf(const std::filesystem::path& path);
 
 }  // namespace mapfuse::stages
