@@ -25,7 +25,7 @@ struct ChangeSettings {
   double move_max = 5.0;   ///< m
   double shift_min = 0.3;  ///< m, sideways shift of a restriped lane line
   double shift_max = 3.5;  ///< m
-  /// m: only elements this near a planned route change (a lane line: all of it), additions too;
+  /// m: only elements this near a planned route change (a lane line: half of it), additions too;
   /// 0: anywhere in the world. Changes no drive passes cannot be detected by any update.
   double route_distance = 12.0;
 
@@ -54,7 +54,9 @@ struct ChangeSettings {
       in(0.01, 20));
     v.relation("change_shift_max", shift_max, shift_max >= shift_min, ">= change_shift_min");
     v("change_route_distance", route_distance, "m",
-      "only elements this near a planned route change (0: anywhere in the world)", in(0, 10000));
+      "only elements this near a planned route change (a lane line: half its length; 0: anywhere "
+      "in the world)",
+      in(0, 10000));
   }
 
   int total() const { return removed + added + moved + restriped + retyped; }
