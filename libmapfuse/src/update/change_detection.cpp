@@ -13,6 +13,7 @@
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/voxel_grid.hpp"
 #include "mapfuse/geo/origin.hpp"
+#include "spatial_index.hpp"
 
 namespace mapfuse::update {
 namespace {
@@ -39,12 +40,14 @@ struct Assignment {
   std::vector<int> element;                                 ///< per observation
   std::vector<std::vector<DriveObservations>> per_element;  ///< [element][drive]
   std::vector<DriveObservations> lines;                     ///< lane lines per drive
+  std::vector<SegmentIndex> line_index;                     ///< their segments, per drive
 };
 
 void assign(const VectorMap& map, std::size_t drives, const EvidenceSettings& s, Assignment& a) {
   a.element.assign(a.set.items.size(), -1);
   a.per_element.assign(map.instances.size(), std::vector<DriveObservations>(drives));
   a.lines.assign(drives, {});
+  const ElementIndex index(map, s.move_max);  // the candidates within move_max of a point
   for (std::size_t i = 0; i < a.set.items.size(); ++i) {
     const Observation& o = a.set.items[i];
     if (o.confidence < s.min_confidence) continue;
@@ -53,13 +56,14 @@ void assign(const VectorMap& map, std::size_t drives, const EvidenceSettings& s,
       continue;
     }
     double best = s.move_max;
-    for (std::size_t e = 0; e < map.instances.size(); ++e) {
+    for (const std::size_t e : index.near(observationCentre(o))) {
       if (map.instances[e].cls != o.cls) continue;
       const double d = assignmentDistance(map.instances[e], o);
       if (d < best) best = d, a.element[i] = int(e);
     }
     if (a.element[i] >= 0) a.per_element[a.element[i]][o.drive].push_back(&o);
   }
+  for (const auto& lines : a.lines) a.line_index.emplace_back(lines, s.line_search);
 }
 
 Assignment assignObservations(const VectorMap& map, const std::vector<Lsm>& lsms,
@@ -212,9 +216,10 @@ std::optional<MapChange> decideLine(const MapInstance& m, const std::vector<Evid
   return std::nullopt;
 }
 
-// Per lane line the map's other lane lines whose bounding box comes within `reach` of its own.
-std::vector<std::vector<const MapInstance*>> laneLineNeighbours(const VectorMap& map,
-                                                                double reach) {
+// Per lane line the map's other lane lines whose bounding box comes within `reach` of its own
+// (`only`: the lines to do it for; the others get none).
+std::vector<std::vector<const MapInstance*>> laneLineNeighbours(const VectorMap& map, double reach,
+                                                                const std::vector<char>& only) {
   const std::size_t n = map.instances.size();
   std::vector<Eigen::Vector2d> lo(n), hi(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -222,34 +227,51 @@ std::vector<std::vector<const MapInstance*>> laneLineNeighbours(const VectorMap&
     for (const auto& p : map.instances[i].points)
       lo[i] = lo[i].cwiseMin(p.head<2>()), hi[i] = hi[i].cwiseMax(p.head<2>());
   }
+  const ElementIndex index(map, reach);
   std::vector<std::vector<const MapInstance*>> out(n);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < n; ++j) {
-      if (i == j || map.instances[i].cls != CrowdClass::kLaneLine ||
-          map.instances[j].cls != CrowdClass::kLaneLine)
-        continue;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!only[i] || map.instances[i].cls != CrowdClass::kLaneLine) continue;
+    for (const std::size_t j : index.within(lo[i], hi[i])) {
+      if (i == j || map.instances[j].cls != CrowdClass::kLaneLine) continue;
       const bool apart = (lo[j].array() > hi[i].array() + reach).any() ||
                          (hi[j].array() < lo[i].array() - reach).any();
       if (!apart) out[i].push_back(&map.instances[j]);
     }
+  }
   return out;
+}
+
+// The map elements a new drive may have had in view: those whose box comes within the camera's
+// reach of one of its keyframes (the rest are not verified without a look at their evidence).
+std::vector<char> nearDrives(const VectorMap& map, const std::vector<Lsm>& lsms,
+                             const ViewSettings& v) {
+  const double reach = v.camera_x + v.max_range;
+  const ElementIndex index(map, 0.0);
+  std::vector<char> near(map.instances.size(), 0);
+  for (const Lsm& lsm : lsms)
+    for (const auto& k : lsm.keyframes) {
+      const Eigen::Vector2d c = k.T_frame_body.translation().head<2>();
+      for (const std::size_t e : index.within(c.array() - reach, c.array() + reach)) near[e] = 1;
+    }
+  return near;
 }
 
 // Per element: the traversals that had it in view and what each saw; then the decision.
 void detectElementChanges(const VectorMap& map, const std::vector<Lsm>& lsms,
                           const std::vector<DriveView>& views, const Assignment& a,
                           const UpdateSettings& s, UpdateResult* out) {
-  const auto neighbours = laneLineNeighbours(map, s.evidence.line_search);
+  const std::vector<char> near = nearDrives(map, lsms, s.view);
+  const auto neighbours = laneLineNeighbours(map, s.evidence.line_search, near);
   const std::vector<double> pd = detectionProbabilities(map, s.decision);
   for (std::size_t e = 0; e < map.instances.size(); ++e) {
     const MapInstance& m = map.instances[e];
     std::vector<Evidence> present, missing;
     bool any_view = false;
-    for (std::size_t d = 0; d < lsms.size(); ++d) {
+    for (std::size_t d = 0; d < lsms.size() && near[e]; ++d) {
       if (m.cls == CrowdClass::kLaneLine) {
         bool in_view = false, data = false;
-        Evidence ev =
-            laneLineEvidence(m, neighbours[e], a.lines[d], views[d], int(d), s, &in_view, &data);
+        Evidence ev = laneLineEvidence(m, neighbours[e], a.line_index[d], views[d], int(d), s,
+                                       &in_view, &data);
         any_view |= in_view;
         if (data) present.push_back(ev);
         continue;

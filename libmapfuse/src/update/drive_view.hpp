@@ -1,6 +1,7 @@
 #pragma once
 /// @file The expected observation area of one drive (docs/update.md): the union over its
-/// keyframes (and poses interpolated between them) of the camera footprint, a range band and a field of view in the body frame.
+/// keyframes (and poses interpolated between them) of the camera footprint, a range band and a
+/// field of view in the body frame.
 #include <Eigen/Core>
 #include <cstdint>
 #include <unordered_map>

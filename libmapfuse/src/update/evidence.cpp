@@ -6,9 +6,9 @@
 
 #include "drive_view.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
+#include "spatial_index.hpp"
 
 namespace mapfuse::update {
-namespace {
 
 Eigen::Vector3d observationCentre(const aggregate::Observation& o) {
   MapInstance m;
@@ -16,6 +16,8 @@ Eigen::Vector3d observationCentre(const aggregate::Observation& o) {
   m.points = o.points;
   return instanceCentre(m);
 }
+
+namespace {
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
@@ -43,27 +45,25 @@ struct LineSample {
 };
 
 // The nearest roughly parallel observed segment beside `p` (tangent `t`), within line_search.
-bool nearestBeside(const Eigen::Vector3d& p, const Eigen::Vector2d& t,
-                   const DriveObservations& lines, double search, LineSample* out) {
+bool nearestBeside(const Eigen::Vector3d& p, const Eigen::Vector2d& t, const SegmentIndex& lines,
+                   double search, LineSample* out) {
   const Eigen::Vector2d n(-t.y(), t.x());
   double best = search;
   bool found = false;
-  for (const auto* o : lines)
-    for (std::size_t i = 0; i + 1 < o->points.size(); ++i) {
-      const Eigen::Vector2d a = o->points[i].head<2>(), b = o->points[i + 1].head<2>();
-      const Eigen::Vector2d d = b - a;
-      const double len = d.norm();
-      if (len < 1e-6 || std::abs(d.dot(t)) < 0.9 * len) continue;  // not parallel
-      const double u = (p.head<2>() - a).dot(d) / (len * len);
-      if (u < -0.3 / len || u > 1 + 0.3 / len) continue;  // p not beside this segment
-      const Eigen::Vector2d foot = a + std::clamp(u, 0.0, 1.0) * d;
-      const double off = (foot - p.head<2>()).dot(n);
-      if (std::abs(off) < best) {
-        best = std::abs(off);
-        *out = LineSample{0, off, o->attributes.style == LineStyle::kDashed};
-        found = true;
-      }
+  lines.visit(p, [&](const SegmentIndex::Segment& sg) {
+    const Eigen::Vector2d d = sg.b - sg.a;
+    const double len = d.norm();
+    if (len < 1e-6 || std::abs(d.dot(t)) < 0.9 * len) return;  // not parallel
+    const double u = (p.head<2>() - sg.a).dot(d) / (len * len);
+    if (u < -0.3 / len || u > 1 + 0.3 / len) return;  // p not beside this segment
+    const Eigen::Vector2d foot = sg.a + std::clamp(u, 0.0, 1.0) * d;
+    const double off = (foot - p.head<2>()).dot(n);
+    if (std::abs(off) < best) {
+      best = std::abs(off);
+      *out = LineSample{0, off, sg.dashed};
+      found = true;
     }
+  });
   return found;
 }
 
@@ -143,7 +143,7 @@ Evidence discreteEvidence(const MapInstance& element, const DriveObservations& a
 
 Evidence laneLineEvidence(const MapInstance& line,
                           const std::vector<const MapInstance*>& neighbours,
-                          const DriveObservations& lines, const DriveView& view, int drive,
+                          const SegmentIndex& lines, const DriveView& view, int drive,
                           const UpdateSettings& s, bool* in_view, bool* has_data) {
   Evidence ev;
   ev.drive = drive;

@@ -11,6 +11,7 @@
 namespace mapfuse::update {
 
 class DriveView;
+class SegmentIndex;
 
 /// One traversal's evidence about one element it had in view.
 struct Evidence {
@@ -39,8 +40,11 @@ Evidence discreteEvidence(const MapInstance& element, const DriveObservations& a
 /// theirs, not evidence about this one.
 Evidence laneLineEvidence(const MapInstance& line,
                           const std::vector<const MapInstance*>& neighbours,
-                          const DriveObservations& lines, const DriveView& view, int drive,
+                          const SegmentIndex& lines, const DriveView& view, int drive,
                           const UpdateSettings& s, bool* in_view, bool* has_data);
+
+/// @brief Centre of an observation, as instanceCentre of an element of its geometry.
+Eigen::Vector3d observationCentre(const aggregate::Observation& o);
 
 /// @brief Horizontal distance used to assign an observation to an element: centre to centre,
 /// or for a stop line the observed centre to the mapped segment (a partly seen stop line).
