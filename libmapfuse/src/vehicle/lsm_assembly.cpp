@@ -363,15 +363,8 @@ Lsm assembleLsm(const std::vector<Pose3>& poses, const std::vector<double>& stam
   for (std::size_t i = 1; i < poses.size(); ++i)
     path_s[i] = path_s[i - 1] + (poses[i].translation() - poses[i - 1].translation()).norm();
 
-  auto nearestKeyframe = [&](const Eigen::Vector3d& p) {
-    std::size_t best = 0;
-    double bd = 1e300;
-    for (std::size_t k = 0; k < keyframes.size(); ++k) {
-      const double d = (poses[keyframes[k]].translation() - p).head<2>().squaredNorm();
-      if (d < bd) bd = d, best = k;
-    }
-    return best;
-  };
+  std::vector<Pose3> keyframe_poses;
+  for (const std::size_t f : keyframes) keyframe_poses.push_back(poses[f]);
   auto addElement = [&](CrowdClass cls, const Attributes& attr,
                         const std::vector<Eigen::Vector3d>& pts,
                         const std::vector<Eigen::Matrix3d>& covs, int observations, int64_t truth,
@@ -379,7 +372,7 @@ Lsm assembleLsm(const std::vector<Pose3>& poses, const std::vector<double>& stam
     Eigen::Vector3d mid = Eigen::Vector3d::Zero();
     for (const auto& p : pts) mid += p;
     mid /= double(pts.size());
-    const std::size_t k = nearestKeyframe(mid);
+    const std::size_t k = nearestFrame(keyframe_poses, mid);
     const Pose3 T_body_odom = poses[keyframes[k]].inverse();
     Element e;
     e.id = int64_t(lsm.elements.size());
