@@ -168,24 +168,68 @@ std::optional<MapChange> decideDiscrete(const MapInstance& m, double pd,
   return std::nullopt;
 }
 
-// The mapped line with the stretch [from, to] (m along it) offset sideways by `shift`.
-std::vector<Eigen::Vector3d> shiftedLine(const std::vector<Eigen::Vector3d>& pts, double from,
-                                         double to, double shift) {
-  std::vector<Eigen::Vector3d> out = pts;
-  double s = 0;
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    if (i > 0) s += (pts[i] - pts[i - 1]).head<2>().norm();
-    const std::size_t a = i > 0 ? i - 1 : i, b = std::min(pts.size() - 1, i + 1);
-    Eigen::Vector2d t = (pts[b] - pts[a]).head<2>();
-    if (s < from || s > to || t.norm() < 1e-9) continue;
-    t.normalize();
-    out[i].head<2>() += shift * Eigen::Vector2d(-t.y(), t.x());
+// The re-striped line from what the traversals saw: the line's samples (every `spacing` m, as
+// the evidence indexes them) within the shifted stretch grown by `grow` m at each end, each
+// moved sideways by the median offset the shifting traversals observed there (running median
+// of 5 samples; samples no traversal saw take the nearest seen one's); outside the stretch the
+// mapped points as they were. A ramp where the paint moves over comes out as observed.
+std::vector<Eigen::Vector3d> restripedLine(const std::vector<Eigen::Vector3d>& pts,
+                                           const std::vector<Evidence>& shifted, double spacing,
+                                           double from, double to, double grow) {
+  const auto samples = aggregate::resamplePolyline(pts, spacing);
+  const int n = int(samples.size());
+  std::vector<std::vector<double>> seen(static_cast<std::size_t>(n));
+  for (const auto& e : shifted)
+    for (const auto& [i, off] : e.offsets)
+      if (i >= 0 && i < n) seen[std::size_t(i)].push_back(off);
+  const int a = std::max(0, int(std::floor((from - grow) / spacing)));
+  const int b = std::min(n - 1, int(std::ceil((to + grow) / spacing)));
+  std::vector<double> off(static_cast<std::size_t>(n), 0.0);
+  std::vector<char> known(static_cast<std::size_t>(n), 0);
+  for (int i = a; i <= b; ++i)
+    if (!seen[std::size_t(i)].empty()) off[i] = medianOf(seen[i]), known[i] = 1;
+  for (int i = a; i <= b; ++i) {  // unseen samples: the nearest seen one's offset
+    if (known[i]) continue;
+    for (int d = 1; d <= b - a; ++d) {
+      if (i - d >= a && known[i - d]) {
+        off[i] = off[i - d];
+        break;
+      }
+      if (i + d <= b && known[i + d]) {
+        off[i] = off[i + d];
+        break;
+      }
+    }
   }
+  std::vector<double> smooth = off;
+  for (int i = a; i <= b; ++i) {
+    std::vector<double> w;
+    for (int j = std::max(a, i - 2); j <= std::min(b, i + 2); ++j) w.push_back(off[j]);
+    smooth[i] = medianOf(w);
+  }
+  std::vector<double> along(pts.size(), 0.0);  // arc length of each mapped point
+  for (std::size_t k = 1; k < pts.size(); ++k)
+    along[k] = along[k - 1] + (pts[k] - pts[k - 1]).head<2>().norm();
+  std::vector<Eigen::Vector3d> out;
+  for (std::size_t k = 0; k < pts.size(); ++k)  // the mapped points before the stretch
+    if (along[k] < (a - 0.5) * spacing) out.push_back(pts[k]);
+  for (int i = a; i <= b; ++i) {
+    const int j0 = std::max(0, i - 1), j1 = std::min(n - 1, i + 1);
+    Eigen::Vector2d t = (samples[j1] - samples[j0]).head<2>();
+    if (t.norm() < 1e-9) continue;
+    t.normalize();
+    Eigen::Vector3d q = samples[i];
+    q.head<2>() += smooth[i] * Eigen::Vector2d(-t.y(), t.x());
+    out.push_back(q);
+  }
+  for (std::size_t k = 0; k < pts.size(); ++k)  // and after it
+    if (along[k] > (b + 0.5) * spacing) out.push_back(pts[k]);
   return out;
 }
 
 std::optional<MapChange> decideLine(const MapInstance& m, const std::vector<Evidence>& seen,
-                                    const std::vector<Lsm>& lsms) {
+                                    const std::vector<Lsm>& lsms, double spacing,
+                                    double restripe_grow) {
   std::vector<Evidence> shifted, retyped;
   for (const auto& e : seen) {
     if (e.shifted) shifted.push_back(e);
@@ -195,11 +239,11 @@ std::optional<MapChange> decideLine(const MapInstance& m, const std::vector<Evid
   c.cls = m.cls;
   c.before = c.after = m;
   if (2 * shifted.size() > seen.size()) {
-    std::vector<double> shift, from, to;
-    for (const auto& e : shifted)
-      shift.push_back(e.shift), from.push_back(e.shift_from), to.push_back(e.shift_to);
+    std::vector<double> from, to;
+    for (const auto& e : shifted) from.push_back(e.shift_from), to.push_back(e.shift_to);
     c.kind = ChangeKind::kRestriped;
-    c.after->points = shiftedLine(m.points, medianOf(from), medianOf(to), medianOf(shift));
+    c.after->points =
+        restripedLine(m.points, shifted, spacing, medianOf(from), medianOf(to), restripe_grow);
     c.after->bezier.clear();
     c.confidence = double(shifted.size()) / double(seen.size());
     c.supporting_traversals = driveIds(shifted, lsms);
@@ -286,9 +330,10 @@ void detectElementChanges(const VectorMap& map, const std::vector<Lsm>& lsms,
       continue;
     }
     ++out->stats.elements_in_view;
-    const auto change = m.cls == CrowdClass::kLaneLine
-                            ? decideLine(m, present, lsms)
-                            : decideDiscrete(m, pd[e], present, missing, lsms, s);
+    const auto change =
+        m.cls == CrowdClass::kLaneLine
+            ? decideLine(m, present, lsms, s.view.sample_spacing, s.evidence.restripe_min_length)
+            : decideDiscrete(m, pd[e], present, missing, lsms, s);
     if (change)
       out->changes.changes.push_back(*change);
     else if (present.empty())

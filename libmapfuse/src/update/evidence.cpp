@@ -165,7 +165,8 @@ Evidence laneLineEvidence(const MapInstance& line,
         samples[i] + ls.offset * Eigen::Vector3d(-t.y(), t.x(), 0.0);  // the observed line
     bool theirs = false;
     for (const MapInstance* n : neighbours)
-      theirs = theirs || aggregate::distanceToPolyline2d(seen_at, n->points) < std::abs(ls.offset);
+      theirs = theirs || aggregate::distanceToPolyline2d(seen_at, n->points) <
+                             std::min(std::abs(ls.offset), 2.0 * s.evidence.restripe_min_shift);
     if (theirs) continue;
     ls.index = int(i);
     seen.push_back(ls);
@@ -174,6 +175,7 @@ Evidence laneLineEvidence(const MapInstance& line,
   if (seen.empty()) return ev;
   *has_data = true;
   ev.present = true;
+  for (const LineSample& ls : seen) ev.offsets.emplace_back(ls.index, ls.offset);
   longestShiftedStretch(seen, s.evidence, spacing, &ev);
   const bool mapped_dashed = line.attributes.style == LineStyle::kDashed;
   const int agree = mapped_dashed ? dashed : solid, disagree = mapped_dashed ? solid : dashed;

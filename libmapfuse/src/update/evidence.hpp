@@ -2,6 +2,7 @@
 /// @file What one new traversal says about one map element (docs/update.md "Evidence").
 #include <Eigen/Core>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "mapfuse/aggregate/observations.hpp"
@@ -22,6 +23,9 @@ struct Evidence {
   bool shifted = false;                     ///< lane line: a stretch shifted sideways
   double shift = 0.0;                       ///< m, median offset of that stretch (left +)
   double shift_from = 0.0, shift_to = 0.0;  ///< m along the line, the stretch
+  /// lane line: per in-view sample with an observed line beside it (index of the line's samples
+  /// every sample_spacing m), the signed sideways offset of that line (left +), m
+  std::vector<std::pair<int, double>> offsets;
 };
 
 /// The observations of one drive, one class, confident enough.
