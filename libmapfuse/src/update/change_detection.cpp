@@ -435,7 +435,8 @@ UpdateResult detectChanges(const VectorMap& map, const std::vector<Lsm>& new_dri
   for (const auto& o : a.set.items)
     out.stats.observations_used += o.confidence >= settings.evidence.min_confidence ? 1 : 0;
   std::vector<DriveView> views;
-  for (const Lsm& lsm : lsms) views.emplace_back(lsm, settings.view);
+  for (const Lsm& lsm : lsms)
+    views.emplace_back(lsm, settings.view, settings.evidence.min_confidence);
   out.stats.traversals = int(lsms.size());
   detectElementChanges(map, lsms, views, a, settings, &out);
   detectAdditions(map, lsms, views, a, settings, &out);

@@ -11,7 +11,8 @@ int64_t DriveView::key(double x, double y) const {
   return voxel_grid::cellKey2d(x, y, cell_);
 }
 
-DriveView::DriveView(const Lsm& lsm, const ViewSettings& settings) : s_(settings) {
+DriveView::DriveView(const Lsm& lsm, const ViewSettings& settings, double min_confidence)
+    : s_(settings) {
   // The camera fires between keyframes too (several metres apart; in a turn the heading
   // changes by tens of degrees between two): poses interpolated every pose_step m.
   auto add = [&](const Pose3& T) {
@@ -34,6 +35,29 @@ DriveView::DriveView(const Lsm& lsm, const ViewSettings& settings) : s_(settings
     }
     add(T);
   }
+  // Where the drive looked: its observations of confidence >= min_confidence (ground markings
+  // enter an LSM only where the ground was ranged, near the car; a corner the camera swept past
+  // in a turn holds none).
+  if (s_.coverage_radius > 0)
+    for (const Element& e : lsm.elements) {
+      if (e.confidence < min_confidence) continue;
+      for (const auto& q : lsm.pointsInFrame(e))
+        covered_[voxel_grid::cellKey2d(q.x(), q.y(), s_.coverage_radius)].push_back(q.head<2>());
+    }
+}
+
+bool DriveView::covered(const Eigen::Vector3d& p) const {
+  if (s_.coverage_radius <= 0) return true;
+  const double r = s_.coverage_radius;
+  const int64_t cx = int64_t(std::floor(p.x() / r)), cy = int64_t(std::floor(p.y() / r));
+  for (int64_t dx = -1; dx <= 1; ++dx)
+    for (int64_t dy = -1; dy <= 1; ++dy) {
+      const auto it = covered_.find(voxel_grid::cellKey2d(cx + dx, cy + dy));
+      if (it == covered_.end()) continue;
+      for (const auto& q : it->second)
+        if ((q - p.head<2>()).squaredNorm() <= r * r) return true;
+    }
+  return false;
 }
 
 bool DriveView::sees(const Eigen::Vector3d& p) const {
@@ -51,7 +75,7 @@ bool DriveView::sees(const Eigen::Vector3d& p) const {
         const double r = std::hypot(x, b.y());
         if (r < lo || r > hi || std::abs(b.y()) > lateral || x <= 0) continue;
         // the field of view shrunk by the margin at this range
-        if (std::abs(std::atan2(b.y(), x)) <= s_.half_fov - s_.view_margin / r) return true;
+        if (std::abs(std::atan2(b.y(), x)) <= s_.half_fov - s_.view_margin / r) return covered(p);
       }
     }
   return false;

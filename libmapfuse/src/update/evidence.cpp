@@ -163,10 +163,30 @@ Evidence laneLineEvidence(const MapInstance& line,
     if (!nearestBeside(samples[i], t, lines, s.evidence.line_search, &ls)) continue;
     const Eigen::Vector3d seen_at =
         samples[i] + ls.offset * Eigen::Vector3d(-t.y(), t.x(), 0.0);  // the observed line
+    // An observed line nearer to a neighbouring map line than to this one is the neighbour's
+    // paint, unless the neighbour has paint of its own nearer to it there (then this is a second
+    // line beside it: this one, moved next to it).
+    const Eigen::Vector3d normal(-t.y(), t.x(), 0.0);
+    const double noise = 2.0 * s.evidence.restripe_min_shift;
     bool theirs = false;
-    for (const MapInstance* n : neighbours)
-      theirs = theirs || aggregate::distanceToPolyline2d(seen_at, n->points) <
-                             std::min(std::abs(ls.offset), 2.0 * s.evidence.restripe_min_shift);
+    for (const MapInstance* n : neighbours) {
+      const double dn = aggregate::distanceToPolyline2d(seen_at, n->points);
+      if (dn >= std::abs(ls.offset)) continue;
+      if (dn < noise) {
+        theirs = true;
+        break;
+      }
+      const Eigen::Vector3d a = seen_at + dn * normal, b = seen_at - dn * normal;
+      const Eigen::Vector3d foot = aggregate::distanceToPolyline2d(a, n->points) <
+                                           aggregate::distanceToPolyline2d(b, n->points)
+                                       ? a
+                                       : b;
+      LineSample own;
+      if (!nearestBeside(foot, t, lines, dn - noise, &own)) {
+        theirs = true;
+        break;
+      }
+    }
     if (theirs) continue;
     ls.index = int(i);
     seen.push_back(ls);

@@ -22,14 +22,15 @@ namespace mapfuse::update {
 /// and the observer's lateral range 12 m, shrunk by `view_margin` so that an element at the edge
 /// of the view, which a drive may or may not have kept, is no evidence either way.
 struct ViewSettings {
-  double camera_x = 1.8;        ///< m, camera ahead of the body origin
-  double min_range = 4.0;       ///< m from the camera
-  double max_range = 40.0;      ///< m from the camera
-  double half_fov = 0.5696;     ///< rad, atan(640 / 1000)
-  double lateral_range = 12.0;  ///< m, |y| in the body frame
-  double view_margin = 1.0;     ///< m, the band is shrunk by this on every side
-  double sample_spacing = 2.0;  ///< m between the samples of a lane line
-  double pose_step = 1.0;       ///< m, poses interpolated between keyframes this far apart
+  double camera_x = 1.8;          ///< m, camera ahead of the body origin
+  double min_range = 4.0;         ///< m from the camera
+  double max_range = 40.0;        ///< m from the camera
+  double half_fov = 0.5696;       ///< rad, atan(640 / 1000)
+  double lateral_range = 12.0;    ///< m, |y| in the body frame
+  double view_margin = 1.0;       ///< m, the band is shrunk by this on every side
+  double sample_spacing = 2.0;    ///< m between the samples of a lane line
+  double pose_step = 1.0;         ///< m, poses interpolated between keyframes this far apart
+  double coverage_radius = 6.0;  ///< m, the drive observed something this near (0: off)
 
   template <class V>
   void visit(V& v) {
@@ -47,6 +48,9 @@ struct ViewSettings {
       in(0.1, 100));
     v("view_pose_step", pose_step, "m",
       "camera poses interpolated between keyframes this far apart", in(0.1, 1000));
+    v("view_coverage_radius", coverage_radius, "m",
+      "in view only where the drive observed something (any class) this near (0: off)",
+      in(0, 1000));
   }
 };
 
