@@ -33,19 +33,30 @@ done
 "$bin/lidar-semantic-map" train --help 2>/dev/null | grep -q -- --validation || {
   echo "train-classifiers: this lidar-semantic-map has no 'train --validation'" >&2; exit 2; }
 
-simulate() {  # seed -> drive folder
-  "$bin/simulate-lidar" -o "$work" --seed "$1" --drive "$(printf 'train%s' "$1")" \
+simulate() {  # seed -> drive folder (its own output folder: a run locks the one it writes)
+  "$bin/simulate-lidar" -o "$work/sim-$1" --seed "$1" --drive "$(printf 'train%s' "$1")" \
     --frames "$frames" --quiet
 }
+# The drives are independent (one seed each): JOBS of them at a time (default: the cores), each
+# writing its folder's name to a file, read back in seed order (same forests whatever JOBS).
+mkdir -p "$work"
+jobs=${JOBS:-$(nproc 2>/dev/null || echo 1)}
+running=()
+for seed in $seeds $val_seeds; do
+  echo "train-classifiers: simulating seed $seed ($frames frames)" >&2
+  simulate "$seed" > "$work/drive-$seed.txt" &
+  running+=($!)
+  if ((${#running[@]} >= jobs)); then
+    wait "${running[0]}" || { echo "train-classifiers: simulate-lidar failed" >&2; exit 1; }
+    running=("${running[@]:1}")
+  fi
+done
+for pid in "${running[@]}"; do
+  wait "$pid" || { echo "train-classifiers: simulate-lidar failed" >&2; exit 1; }
+done
 drives=() held=()
-for seed in $seeds; do
-  echo "train-classifiers: simulating training seed $seed ($frames frames)" >&2
-  drives+=("$(simulate "$seed")")
-done
-for seed in $val_seeds; do
-  echo "train-classifiers: simulating validation seed $seed ($frames frames)" >&2
-  held+=("$(simulate "$seed")")
-done
+for seed in $seeds; do drives+=("$(cat "$work/drive-$seed.txt")"); done
+for seed in $val_seeds; do held+=("$(cat "$work/drive-$seed.txt")"); done
 echo "train-classifiers: training on ${#drives[@]} drives, validating on ${#held[@]} -> $out" >&2
 "$bin/lidar-semantic-map" train -o "$out" "${drives[@]}" --validation "${held[@]}" --quiet \
   > /dev/null
