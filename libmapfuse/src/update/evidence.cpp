@@ -181,8 +181,17 @@ Evidence laneLineEvidence(const MapInstance& line,
                                            aggregate::distanceToPolyline2d(b, n->points)
                                        ? a
                                        : b;
+      // the neighbour's own paint near the foot, up to 6 m along (a dashed neighbour's gaps)
       LineSample own;
-      if (!nearestBeside(foot, t, lines, dn - noise, &own)) {
+      bool has_own = false;
+      for (const double along : {0.0, -3.0, 3.0, -6.0, 6.0}) {
+        const Eigen::Vector3d q = foot + along * Eigen::Vector3d(t.x(), t.y(), 0.0);
+        if (nearestBeside(q, t, lines, dn - noise, &own)) {
+          has_own = true;
+          break;
+        }
+      }
+      if (!has_own) {
         theirs = true;
         break;
       }
