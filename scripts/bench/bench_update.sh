@@ -247,11 +247,12 @@ set title 'Map update: change-detection F1 against new traversals'
 set xlabel 'new traversals'
 set ylabel 'F1 over all changes'
 set logscale x
+set xrange [0.8:30]
 set yrange [0:1]
 set grid
 set key bottom right
 set arrow from graph 0, first 0.8805 to graph 1, first 0.8805 nohead dt 2
-set label 'anchor: one drive 0.8805 (GND map, J. Adv. Transport. 2022)' at graph 0.02, first 0.86
+set label 'dashed: anchor, one drive 0.8805 (GND map, J. Adv. Transport. 2022)' at graph 0.02, graph 0.06
 plot {plots}
 """
     try:
