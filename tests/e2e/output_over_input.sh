@@ -50,6 +50,8 @@ refused "$drive/out" "$BIN/lidar-semantic-map" -q "$drive" -o "$drive/out"
 refused "$drive" "$BIN/lidar-semantic-map" train -q "$drive" -o "$drive"
 refused "$drive" "$BIN/lsm-build" -q "$drive" -o "$drive"
 refused agg "$BIN/evaluate" map -q --map agg/map.cbor --truth sim/truth/vector_map.json -o agg
+refused agg "$BIN/update" -q --map agg/map.json -o agg geo/*.cbor    # the map's folder
+refused geo "$BIN/update" -q --map agg/map.json -o geo geo/*.cbor    # the new drives' folder
 refused "$drive/labels" "$BIN/evaluate" voxels -q --drive "$drive" \
   --predicted-labels "$drive/labels" -o "$drive/labels"
 # a list on stdin is known only once read: still refused before any work
