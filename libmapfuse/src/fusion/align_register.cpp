@@ -38,8 +38,7 @@ std::vector<InterConstraint> registerSubmaps(const std::vector<Lsm>& lsms, const
   // submaps of the same two LSMs (their relative GPS error is nearly the same; more road
   // directions and landmarks remove lane and dash aliases).
   std::vector<DisplacementVotes> votes(gicp ? pairs.size() : 0);
-  std::vector<double> vw = labelWeights(s.coarse_class_weights);
-  for (int l = 0; l < kNumAlignLabels; ++l) vw[l] *= weights[l];
+  const std::vector<double> vw = coarseVoteWeights(s);
 #pragma omp parallel for schedule(dynamic) num_threads(s.threads)
   for (int p = 0; p < int(votes.size()); ++p)
     votes[p] = voteDisplacements(maps[pairs[p].a].coarse, maps[pairs[p].b].coarse, vw,

@@ -101,6 +101,13 @@ std::vector<double> labelWeights(const std::vector<double>& class_weights) {
   return w;
 }
 
+std::vector<double> coarseVoteWeights(const AlignSettings& s) {
+  std::vector<double> w = labelWeights(s.coarse_class_weights);
+  const std::vector<double> wc = labelWeights(s.class_weights);
+  for (std::size_t l = 0; l < w.size(); ++l) w[l] *= wc[l];
+  return w;
+}
+
 Cloud elementCloud(const Lsm& lsm, int kf_begin, int kf_end, double sigma) {
   std::vector<int> elements;
   for (int i = 0; i < int(lsm.elements.size()); ++i) {

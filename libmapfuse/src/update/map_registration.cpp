@@ -91,15 +91,13 @@ struct StretchCloud {
   fusion::DisplacementVotes votes;
 };
 
-StretchCloud stretchCloud(const fusion::Cloud& map_cloud, fusion::Cloud source) {
+StretchCloud stretchCloud(const fusion::Cloud& map_cloud, fusion::Cloud source,
+                          const std::vector<double>& w) {
   StretchCloud sc;
   sc.cloud = std::move(source);
   if (sc.cloud.size() == 0) return sc;
   for (const auto& p : sc.cloud.points) sc.centre += p;
   sc.centre /= double(sc.cloud.size());
-  std::vector<double> w = fusion::labelWeights(kCoarse.coarse_class_weights);
-  const std::vector<double> wc = fusion::labelWeights(kCoarse.class_weights);
-  for (std::size_t l = 0; l < w.size(); ++l) w[l] *= wc[l];
   sc.votes = fusion::voteDisplacements(
       fusion::voxelDownsample(cropped(map_cloud, sc.cloud, kCoarse.coarse_radius + 1.0), 1.0),
       fusion::voxelDownsample(sc.cloud, 1.0), w, kCoarse.coarse_radius, kCoarse.coarse_bin);
@@ -333,6 +331,7 @@ std::vector<StretchOffset> registerDrive(const fusion::Cloud& map_cloud, int dri
   const int n = std::max(1, int(std::lround(total / s.stretch_length)));
   std::vector<StretchOffset> st(n);
   std::vector<StretchCloud> clouds(n);
+  const std::vector<double> vote_weights = fusion::coarseVoteWeights(kCoarse);
   std::size_t kb = 0;
   for (int j = 0; j < n; ++j) {
     StretchOffset& o = st[j];
@@ -341,7 +340,9 @@ std::vector<StretchOffset> registerDrive(const fusion::Cloud& map_cloud, int dri
     o.to = total * (j + 1) / n;
     std::size_t ke = kb;
     while (ke < path.size() && (j == n - 1 || path[ke] < o.to)) ++ke;
-    if (ke > kb) clouds[j] = stretchCloud(map_cloud, fusion::elementCloud(lsm, int(kb), int(ke)));
+    if (ke > kb)
+      clouds[j] =
+          stretchCloud(map_cloud, fusion::elementCloud(lsm, int(kb), int(ke)), vote_weights);
     kb = ke;
   }
   // Coarse shifts: each stretch's votes with half its neighbours'; the stretch with the

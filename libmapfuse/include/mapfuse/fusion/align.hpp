@@ -187,6 +187,10 @@ constexpr int kNumAlignLabels = kNumCrowdClasses + 1;
 /// @brief Per-label weights from per-class weights (dashed lines weigh like lane lines).
 std::vector<double> labelWeights(const std::vector<double>& class_weights);
 
+/// @brief Per-label weights of the coarse displacement vote: coarse_class_weights times the GICP
+/// class_weights (w_l), per registration label.
+std::vector<double> coarseVoteWeights(const AlignSettings& s);
+
 /// @brief Element points of a keyframe range as a labelled cloud in the LSM frame, with
 /// geometry-aware covariances (lines: free along the line; planar: free in the plane; poles:
 /// free vertically), `point_sigma` across.
