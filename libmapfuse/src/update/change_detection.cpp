@@ -4,14 +4,12 @@
 #include <cmath>
 #include <map>
 #include <set>
-#include <unordered_map>
 
 #include "drive_view.hpp"
 #include "evidence.hpp"
 #include "mapfuse/aggregate/dbscan.hpp"
 #include "mapfuse/aggregate/geometry2d.hpp"
 #include "mapfuse/core/error.hpp"
-#include "mapfuse/core/voxel_grid.hpp"
 #include "mapfuse/geo/origin.hpp"
 #include "spatial_index.hpp"
 
@@ -92,28 +90,18 @@ std::vector<std::string> driveIds(const std::vector<Evidence>& evs, const std::v
 // stop line of a crossing road) is weak evidence when missed. Without support (a map not made
 // by aggregate): detection_probability.
 std::vector<double> detectionProbabilities(const VectorMap& map, const DecisionSettings& d) {
-  const double cell = d.support_radius;
-  std::unordered_map<int64_t, std::vector<std::size_t>> grid;
+  const ElementIndex index(map, d.support_radius);  // every element within reach of a point
   std::vector<Eigen::Vector3d> centre(map.instances.size());
-  for (std::size_t e = 0; e < map.instances.size(); ++e) {
+  for (std::size_t e = 0; e < map.instances.size(); ++e)
     centre[e] = instanceCentre(map.instances[e]);
-    grid[voxel_grid::cellKey2d(centre[e].x(), centre[e].y(), cell)].push_back(e);
-  }
   std::vector<double> pd(map.instances.size(), d.detection_probability);
   for (std::size_t e = 0; e < map.instances.size(); ++e) {
     const int own = map.instances[e].support.drives;
     if (own <= 0) continue;
     int passed = own;
-    const int64_t cx = int64_t(std::floor(centre[e].x() / cell));
-    const int64_t cy = int64_t(std::floor(centre[e].y() / cell));
-    for (int64_t dx = -1; dx <= 1; ++dx)
-      for (int64_t dy = -1; dy <= 1; ++dy) {
-        const auto it = grid.find(voxel_grid::cellKey2d(cx + dx, cy + dy));
-        if (it == grid.end()) continue;
-        for (const std::size_t o : it->second)
-          if ((centre[o] - centre[e]).head<2>().norm() <= cell)
-            passed = std::max(passed, map.instances[o].support.drives);
-      }
+    for (const std::size_t o : index.near(centre[e]))
+      if ((centre[o] - centre[e]).head<2>().norm() <= d.support_radius)
+        passed = std::max(passed, map.instances[o].support.drives);
     pd[e] = std::min(d.max_detection_probability, double(own + 1) / double(passed + 2));
   }
   return pd;

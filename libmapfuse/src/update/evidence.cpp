@@ -161,12 +161,11 @@ Evidence laneLineEvidence(const MapInstance& line,
     t.normalize();
     LineSample ls;
     if (!nearestBeside(samples[i], t, lines, s.evidence.line_search, &ls)) continue;
-    const Eigen::Vector3d seen_at =
-        samples[i] + ls.offset * Eigen::Vector3d(-t.y(), t.x(), 0.0);  // the observed line
+    const Eigen::Vector3d normal(-t.y(), t.x(), 0.0);
+    const Eigen::Vector3d seen_at = samples[i] + ls.offset * normal;  // the observed line
     // An observed line nearer to a neighbouring map line than to this one is the neighbour's
     // paint, unless the neighbour has paint of its own nearer to it there (then this is a second
     // line beside it: this one, moved next to it).
-    const Eigen::Vector3d normal(-t.y(), t.x(), 0.0);
     const double noise = 2.0 * s.evidence.restripe_min_shift;
     bool theirs = false;
     for (const MapInstance* n : neighbours) {
