@@ -5,11 +5,10 @@
 #include <functional>
 #include <random>
 #include <set>
-#include <unordered_map>
 
 #include "mapfuse/core/angles.hpp"
 #include "mapfuse/core/error.hpp"
-#include "mapfuse/core/voxel_grid.hpp"
+#include "mapfuse/sim/point_cells.hpp"
 
 namespace mapfuse::sim {
 namespace {
@@ -31,28 +30,22 @@ constexpr double kAddedSignSize = 0.6;    // m
 const std::vector<Eigen::Vector2d> kArrowShape{{-2.5, -0.15}, {1.0, -0.15}, {1.0, -0.6}, {2.5, 0.0},
                                                {1.0, 0.6},    {1.0, 0.15},  {-2.5, 0.15}};
 
-/// Where changes may go: within `distance` of a route (route samples 1 m apart, hashed in cells
-/// of `distance`), or anywhere without routes.
+/// Where changes may go: within `distance` of a route (route samples 1 m apart, by grid cell:
+/// PointCells), or anywhere without routes.
 class RouteScope {
  public:
   RouteScope(const std::vector<Polyline>& routes, double distance) : d_(distance) {
-    if (routes.empty() || distance <= 0) return;
-    for (const auto& r : routes)
-      for (const auto& p : resample(r, kRouteStep)) {
-        samples_.push_back(p.head<2>());
-        cells_[voxel_grid::cellKey2d(p.x(), p.y(), d_)].push_back(samples_.size() - 1);
-      }
+    if (distance <= 0) return;
+    for (const auto& r : routes) {
+      samples_.push_back(resample(r, kRouteStep));
+      cells_.emplace_back(samples_.back(), d_);
+    }
   }
   bool near(const Eigen::Vector3d& p) const {
     if (samples_.empty()) return true;
-    const int64_t cx = int64_t(std::floor(p.x() / d_)), cy = int64_t(std::floor(p.y() / d_));
-    for (int64_t dx = -1; dx <= 1; ++dx)
-      for (int64_t dy = -1; dy <= 1; ++dy) {
-        const auto it = cells_.find(voxel_grid::cellKey2d(cx + dx, cy + dy));
-        if (it == cells_.end()) continue;
-        for (const std::size_t i : it->second)
-          if ((samples_[i] - p.head<2>()).norm() <= d_) return true;
-      }
+    for (std::size_t r = 0; r < samples_.size(); ++r)
+      for (const uint32_t i : cells_[r].near(p, d_))
+        if ((samples_[r][i] - p).head<2>().norm() <= d_) return true;
     return false;
   }
   /// Point and area elements by their centre; a lane line by at least half its length (a long
@@ -71,8 +64,8 @@ class RouteScope {
  private:
   static constexpr double kRouteStep = 1.0;  // m
   double d_;
-  std::vector<Eigen::Vector2d> samples_;
-  std::unordered_map<int64_t, std::vector<std::size_t>> cells_;
+  std::vector<Polyline> samples_;  ///< per route
+  std::vector<PointCells> cells_;  ///< per route, its samples by cell
 };
 
 class Changer {
