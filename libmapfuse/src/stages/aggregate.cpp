@@ -3,55 +3,46 @@
 #include <chrono>
 #include <functional>
 
+#include "map_writers.hpp"
 #include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/core/parallel_for.hpp"
-#include "mapfuse/io/geojson.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/map_png.hpp"
 #include "mapfuse/io/osm_export.hpp"
 #include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
-#include "mapfuse/lanelet/regulatory.hpp"
 
 namespace mapfuse::stages {
 namespace {
 
-// The writers of the map in every format (each file written atomically), map.png over the
-// observations in grey; map.osm's lanelets take their travel direction from the drives' keyframe
-// paths. The files are independent, so the caller runs the writers side by side. The writers
-// refer to the arguments (all references, `osm_stats` copied), which must outlive them.
+// The writers of the map in every format (map_writers.hpp), map.png over the observations in
+// grey second (after map.osm, the slowest); map.osm's lanelets take their travel direction from
+// the drives' keyframe paths. They refer to the arguments (`osm_stats` copied), which must
+// outlive them.
 std::vector<std::function<void()>> mapWriters(const std::filesystem::path& out_dir,
                                               const VectorMap& map,
                                               const aggregate::ObservationSet& set,
                                               const std::vector<Lsm>& lsms,
                                               const AggregateParams& params,
                                               io::Lanelet2ExportStats* osm_stats) {
-  return {[&, osm_stats] {  // the two slowest first
-            io::writeOsm(out_dir / "map.osm", map,
-                         lanelet::planExport(map, lanelet::drivePaths(lsms), params.lanelet),
-                         osm_stats);
-          },
-          [&] {
-            if (!params.write_png) return;
-            std::vector<std::vector<Eigen::Vector3d>> background;
-            background.reserve(set.items.size());
-            for (const auto& o : set.items) background.push_back(o.points);
-            io::MapPngOptions png;
-            png.resolution = params.png_resolution;
-            png.title = "aggregated map (" + std::to_string(lsms.size()) + " drives)";
-            io::writeMapPng(out_dir / "map.png", map, background, png);
-          },
-          [&] {
-            io::VectorMapWriteOptions compact;
-            compact.compact = true;
-            compact.coordinate_quantum = params.coordinate_quantum;
-            io::writeVectorMap(out_dir / "map.cbor", map, compact);
-          },
-          [&] { io::writeVectorMap(out_dir / "map.json", map); },
-          [&] { io::writeGeoJson(out_dir / "map.geojson", map); }};
+  io::VectorMapWriteOptions compact;
+  compact.compact = true;
+  compact.coordinate_quantum = params.coordinate_quantum;
+  auto writers = vectorMapWriters(out_dir, map, lsms, params.lanelet, compact, osm_stats);
+  writers.insert(writers.begin() + 1, [&, out_dir] {
+    if (!params.write_png) return;
+    std::vector<std::vector<Eigen::Vector3d>> background;
+    background.reserve(set.items.size());
+    for (const auto& o : set.items) background.push_back(o.points);
+    io::MapPngOptions png;
+    png.resolution = params.png_resolution;
+    png.title = "aggregated map (" + std::to_string(lsms.size()) + " drives)";
+    io::writeMapPng(out_dir / "map.png", map, background, png);
+  });
+  return writers;
 }
 
 }  // namespace

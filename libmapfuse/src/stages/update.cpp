@@ -1,20 +1,17 @@
 #include "mapfuse/stages/update.hpp"
 
-#include <functional>
 #include <map>
 
+#include "map_writers.hpp"
 #include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/core/parallel_for.hpp"
-#include "mapfuse/io/geojson.hpp"
 #include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/io/map_changes_io.hpp"
-#include "mapfuse/io/osm_export.hpp"
 #include "mapfuse/io/output_transaction.hpp"
 #include "mapfuse/io/stage_report.hpp"
 #include "mapfuse/io/vector_map_io.hpp"
-#include "mapfuse/lanelet/regulatory.hpp"
 #include "mapfuse/update/map_apply.hpp"
 
 namespace mapfuse::stages {
@@ -37,18 +34,13 @@ nlohmann::json stretchesToJson(const std::vector<update::StretchOffset>& stretch
   return j;
 }
 
-// The updated map in aggregate's formats; map.osm's lanelets take their travel directions from
-// the new drives (registered), the only drives update reads.
+// The updated map in aggregate's formats (map_writers.hpp; map.cbor at full precision, not
+// compact); map.osm's lanelets take their travel directions from the new drives (registered),
+// the only drives update reads.
 void writeUpdatedMap(const std::filesystem::path& out_dir, const VectorMap& map,
                      const std::vector<Lsm>& drives, io::Lanelet2ExportStats* osm_stats) {
-  std::vector<std::function<void()>> writers = {
-      [&] {
-        io::writeOsm(out_dir / "map.osm", map,
-                     lanelet::planExport(map, lanelet::drivePaths(drives)), osm_stats);
-      },
-      [&] { io::writeVectorMap(out_dir / "map.cbor", map); },
-      [&] { io::writeVectorMap(out_dir / "map.json", map); },
-      [&] { io::writeGeoJson(out_dir / "map.geojson", map); }};
+  const lanelet::LaneletSettings lanelet;
+  const auto writers = vectorMapWriters(out_dir, map, drives, lanelet, {}, osm_stats);
   parallelFor(writers.size(), [&](std::size_t i) { writers[i](); });
 }
 
