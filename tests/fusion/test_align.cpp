@@ -198,6 +198,85 @@ TEST_CASE("align: traversals on roads that share nothing are not pulled together
   CHECK(std::abs(d1 - d_true) < kGpsBias);
 }
 
+namespace {
+
+/// Keyframes (and their elements and GPS fixes) of a traversal up to true x = `x_end` m.
+test::Traversal truncated(test::Traversal tr, double x_end) {
+  std::size_t n = 0;
+  while (n < tr.truth.size() && tr.truth[n].translation().x() <= x_end) ++n;
+  tr.truth.resize(n);
+  tr.lsm.keyframes.resize(n);
+  const int64_t last_id = tr.lsm.keyframes.back().id;
+  const double last_stamp = tr.lsm.keyframes.back().stamp;
+  std::vector<Element> kept;
+  for (const auto& e : tr.lsm.elements)
+    if (e.anchor <= last_id) kept.push_back(e);
+  tr.lsm.elements = kept;
+  std::vector<GpsFix> fixes;
+  for (const auto& f : tr.lsm.gps)
+    if (f.stamp <= last_stamp) fixes.push_back(f);
+  tr.lsm.gps = fixes;
+  return tr;
+}
+
+/// Mean horizontal error (aligned - true) of keyframes [k0, k1) of traversal `lsm`.
+Eigen::Vector2d meanError(const Lsm& lsm, const std::vector<Pose3>& truth, std::size_t k0,
+                          std::size_t k1) {
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (std::size_t k = k0; k < k1; ++k)
+    sum += (lsm.keyframes[k].T_frame_body.translation() - truth[k].translation()).head<2>();
+  return sum / double(k1 - k0);
+}
+
+}  // namespace
+
+TEST_CASE("align: a traversal tied to others on part of its road keeps their GPS bias beyond") {
+  // Issue 36: a crowd of many routes. Six traversals drive the first 100 m of the road, one
+  // drives all 300 m; each has its own GPS bias (2 m). On the shared 100 m the registrations tie
+  // the seventh to the six. Beyond, with one independent prior per keyframe (eq. (9) as
+  // printed), it slides back to its own GPS (the map of a road driven by few shows their bias);
+  // with the GPS bias model (gps_bias.hpp) its bias is one slowly varying quantity along the
+  // drive, so its keyframes beyond 150 m stay where the six put the shared ones. Measured over
+  // four seeds: 0.15 m with the model, 0.50 m without.
+  constexpr double kTiedTol = 0.3;  // m, bias model: |unshared mean error - the six's|
+  constexpr double kGain = 2.0;      // the independent priors leave it at least this much further
+  const auto world = test::trueWorld();
+  double with_model = 0, without = 0;
+  for (uint64_t seed : {11, 12, 13, 14}) {
+    test::FixtureOptions o;
+    o.seed = seed;
+    o.gps_bias = kGpsBias;
+    o.scale_error = 0.001;  // odometry nearly exact: the error beyond is the GPS bias alone
+    o.yaw_drift = 0.0003;
+    std::vector<test::Traversal> trs;
+    for (int t = 0; t < 7; ++t)
+      trs.push_back(t < 6 ? truncated(test::makeTraversal(world, t, o), 100.0)
+                          : test::makeTraversal(world, t, o));
+    std::vector<Lsm> geo;
+    for (const auto& tr : trs)
+      geo.push_back(fusion::georeferenceLsm(tr.lsm, test::fixtureOrigin(), {}, "fixture").lsm);
+    for (const bool model : {true, false}) {
+      std::vector<Lsm> lsms = geo;
+      fusion::AlignSettings s;
+      if (!model) s.gps_bias_sigma = 0;
+      fusion::alignLsms(lsms, s);
+      Eigen::Vector2d six = Eigen::Vector2d::Zero();
+      for (int t = 0; t < 6; ++t) six += meanError(lsms[t], trs[t].truth, 0, trs[t].truth.size());
+      six /= 6.0;
+      std::size_t mid = 0;
+      while (trs[6].truth[mid].translation().x() <= 150.0) ++mid;
+      const double gap =
+          (meanError(lsms[6], trs[6].truth, mid, trs[6].truth.size()) - six).norm();
+      (model ? with_model : without) += gap / 4.0;
+      INFO("seed " << seed << (model ? " bias model" : " independent priors") << ": " << gap);
+    }
+  }
+  WARN("unshared stretch off the six traversals' mean error: " << with_model
+       << " m with the GPS bias model, " << without << " m with independent priors");
+  CHECK(with_model < kTiedTol);
+  CHECK(without > kGain * with_model);
+}
+
 TEST_CASE("align: GBA and pairing parameters out of range are refused by name") {
   auto refused = [](auto set, const char* field) {
     stages::AlignParams p;

@@ -7,6 +7,7 @@
 
 #include "fusion/element_factor.hpp"
 #include "fusion/factors.hpp"
+#include "fusion/gps_bias.hpp"
 #include "fusion/graph_covariances.hpp"
 #include "fusion/pose_factors.hpp"
 #include "fusion/pose_problem.hpp"
@@ -99,19 +100,39 @@ double solveReference(ceres::Problem& problem, double function_tolerance, double
 // The pose graph as align solved it before: Ceres, sparse normal Cholesky, Huber InterRPCs.
 void ceresPoseGraph(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors,
                     const std::vector<InterConstraint>& cs, const AlignSettings& s) {
-  std::vector<std::vector<detail::PoseParams>> P(lsms.size());
+  const int n = int(lsms.size());
+  std::vector<std::vector<detail::PoseParams>> P(n), B(n);  // keyframes, GPS bias nodes
   ceres::Problem problem;
-  for (std::size_t l = 0; l < lsms.size(); ++l) {
-    const auto& kfs = priors[l].keyframes;
-    P[l].resize(kfs.size());
-    for (std::size_t k = 0; k < kfs.size(); ++k) P[l][k].set(lsms[l].keyframes[k].T_frame_body);
-    for (std::size_t k = 0; k < kfs.size(); ++k) {
+  const detail::GpsPriorTerms g = detail::gpsPriorTerms(priors, s);
+  const std::vector<Pose3> node_start = detail::gpsBiasNodeStart(g, lsms, priors);
+  std::size_t next_node = 0;
+  for (int l = 0; l < n; ++l) {
+    P[l].resize(lsms[l].keyframes.size());
+    for (std::size_t k = 0; k < P[l].size(); ++k) {
+      P[l][k].set(lsms[l].keyframes[k].T_frame_body);
       detail::addPose(problem, P[l][k]);
-      problem.AddResidualBlock(
-          detail::PosePriorFactor::create(
-              kfs[k].T_frame_body, detail::sqrtInformation<6>(detail::priorCovariance(kfs[k], s))),
-          nullptr, P[l][k].t, P[l][k].q);
-      if (k == 0) continue;
+    }
+    B[l].resize(g.nodes[l].size());
+    for (auto& b : B[l]) {
+      b.set(node_start[next_node++]);
+      detail::addPose(problem, b);
+    }
+  }
+  const auto pose = [&](int chain, int index) -> detail::PoseParams& {
+    return chain < n ? P[chain][index] : B[chain - n][index];
+  };
+  for (const auto& a : g.anchors) {  // eq. (9): keyframe priors or bias-node priors
+    detail::PoseParams& x = pose(a.chain, a.index);
+    problem.AddResidualBlock(detail::PosePriorFactor::create(a.T0, a.L), nullptr, x.t, x.q);
+  }
+  for (const auto& t : g.terms) {  // keyframes tied to their bias nodes, the nodes' walk
+    detail::PoseParams &xa = pose(t.chain_a, t.index_a), &xb = pose(t.chain_b, t.index_b);
+    problem.AddResidualBlock(detail::RelativePoseFactor::create(t.T_ab, t.L), nullptr, xa.t,
+                             xa.q, xb.t, xb.q);
+  }
+  for (int l = 0; l < n; ++l) {
+    const auto& kfs = priors[l].keyframes;
+    for (std::size_t k = 1; k < kfs.size(); ++k) {
       const Pose3 rel = kfs[k - 1].T_frame_body.inverse() * kfs[k].T_frame_body;
       problem.AddResidualBlock(
           detail::RelativePoseFactor::create(
@@ -349,8 +370,9 @@ TEST_CASE("pose solver: GBA's normal equations hold a bounded number of blocks p
            << " keyframes, " << g.residuals << " residuals");
   }
   // each keyframe: its odometry neighbour and about two keyframes of each of its two partners
-  // (its elements reach 25 m ahead, three keyframes), each block shared by two keyframes
-  constexpr double kBlocksPerKeyframe = 1 + 2 * 3;
+  // (its elements reach 25 m ahead, three keyframes), each block shared by two keyframes; and
+  // its two GPS bias nodes (gps_bias.hpp)
+  constexpr double kBlocksPerKeyframe = 1 + 2 * 3 + 2;
   CHECK(per_keyframe[24] < kBlocksPerKeyframe);
   CHECK(per_keyframe[24] < 1.3 * per_keyframe[6]);
 }

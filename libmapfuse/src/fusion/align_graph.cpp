@@ -10,6 +10,7 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "gps_bias.hpp"
 #include "graph_covariances.hpp"
 #include "mapfuse/core/log.hpp"
 #include "mapfuse/core/parallel_for.hpp"
@@ -23,16 +24,17 @@ namespace {
 
 using detail::PoseProblem;
 using detail::PoseVar;
-
-/// Square-root information (upper-triangular L^T with L L^T = info) of a covariance.
-Matrix6d sqrtInformation(const Matrix6d& cov) {
-  const Matrix6d info = cov.inverse();
-  return info.llt().matrixL().transpose();
-}
+using detail::sqrtInformation;
 
 std::vector<int> chainSizes(const std::vector<Lsm>& lsms) {
   std::vector<int> n;
   for (const auto& l : lsms) n.push_back(int(l.keyframes.size()));
+  return n;
+}
+
+int keyframeCount(const std::vector<Lsm>& lsms) {
+  int n = 0;
+  for (const auto& l : lsms) n += int(l.keyframes.size());
   return n;
 }
 
@@ -50,16 +52,30 @@ void writeBack(std::vector<Lsm>& lsms, const PoseProblem<D>& P) {
       lsms[l].keyframes[k].T_frame_body = P.poses()[P.poseIndex(l, k)].pose();
 }
 
-// eq. (9) priors and eq. (10) odometry, both from the georeferenced keyframes.
+// The problem over the keyframes of `lsms` (as they are now) and the GPS bias nodes of `g`.
+template <int D>
+PoseProblem<D> makeProblem(const std::vector<Lsm>& lsms, const std::vector<Lsm>& priors,
+                           const detail::GpsPriorTerms& g) {
+  std::vector<int> sizes = chainSizes(lsms);
+  std::vector<PoseVar> x = posesOf(lsms);
+  for (const auto& nodes : g.nodes) sizes.push_back(int(nodes.size()));
+  for (const Pose3& T : detail::gpsBiasNodeStart(g, lsms, priors)) x.push_back(PoseVar::from(T));
+  return PoseProblem<D>(sizes, std::move(x));
+}
+
+// eq. (9) priors (with the GPS bias nodes, gps_bias.hpp) and eq. (10) odometry, both from the
+// georeferenced keyframes.
 template <int D>
 void addPriorsAndOdometry(PoseProblem<D>& P, const std::vector<Lsm>& priors,
-                          const AlignSettings& s) {
+                          const detail::GpsPriorTerms& g, const AlignSettings& s) {
+  for (const auto& a : g.anchors)
+    P.addPrior(P.poseIndex(a.chain, a.index), PoseVar::from(a.T0), a.L);
+  for (const auto& t : g.terms)
+    P.addRelative(P.poseIndex(t.chain_a, t.index_a), P.poseIndex(t.chain_b, t.index_b), t.T_ab,
+                  t.L);
   for (int l = 0; l < int(priors.size()); ++l) {
     const auto& kfs = priors[l].keyframes;
-    for (int k = 0; k < int(kfs.size()); ++k) {
-      P.addPrior(P.poseIndex(l, k), PoseVar::from(kfs[k].T_frame_body),
-                 sqrtInformation(detail::priorCovariance(kfs[k], s)));
-      if (k == 0) continue;
+    for (int k = 1; k < int(kfs.size()); ++k) {
       const Pose3 rel = kfs[k - 1].T_frame_body.inverse() * kfs[k].T_frame_body;
       P.addRelative(P.poseIndex(l, k - 1), P.poseIndex(l, k), rel,
                     sqrtInformation(detail::odometryCovariance(rel, s)));
@@ -241,8 +257,9 @@ void associate(PoseProblem<D>& P, const std::vector<AnchoredPoint>& pts,
 
 template <int D>
 GraphSolve gba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const AlignSettings& s) {
-  PoseProblem<D> P(chainSizes(lsms), posesOf(lsms));
-  addPriorsAndOdometry(P, priors, s);
+  const detail::GpsPriorTerms g = detail::gpsPriorTerms(priors, s);
+  PoseProblem<D> P = makeProblem<D>(lsms, priors, g);
+  addPriorsAndOdometry(P, priors, g, s);
   P.setElementHuber(s.gba_huber);
   // Element points (anchor body frames) and their problem ids, per class; of each point the
   // association keeps only its pose and body point (held through every round).
@@ -272,10 +289,10 @@ GraphSolve gba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const Ali
     const bool last = round + 1 >= s.gba_rounds;
     const auto r =
         P.solve(problemSettings(s, last ? s.function_tolerance : s.gba_early_round_tolerance));
-    addSolve(out, r, int(P.poses().size()));
+    addSolve(out, r, keyframeCount(lsms));
     MAPFUSE_DEBUG("align: GBA round "
                   << round << ": " << P.elementPairs() << " residuals, " << r.blocks
-                  << " blocks over " << P.poses().size() << " keyframes, " << r.iterations
+                  << " blocks over " << keyframeCount(lsms) << " keyframes, " << r.iterations
                   << " LM / " << r.pcg_iterations << " PCG iterations, cost " << r.initial_cost
                   << " -> " << r.final_cost);
   }
@@ -288,17 +305,18 @@ GraphSolve gba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const Ali
 GraphSolve solveMultiPoseGraph(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors,
                                std::vector<InterConstraint>& constraints, const AlignSettings& s) {
   GraphSolve out;
+  const detail::GpsPriorTerms g = detail::gpsPriorTerms(priors, s);
   for (int round = 0; round < std::max(1, s.graph_rejection_rounds); ++round) {
     // Later rounds start from the previous solution: only the dropped constraints changed.
-    PoseProblem<6> P(chainSizes(lsms), posesOf(lsms));
-    addPriorsAndOdometry(P, priors, s);
+    PoseProblem<6> P = makeProblem<6>(lsms, priors, g);
+    addPriorsAndOdometry(P, priors, g, s);
     for (const auto& c : constraints) {  // eq. (11), Huber-robust
       if (!c.consistent || c.graph_outlier) continue;
       P.addRelative(P.poseIndex(c.lsm_a, c.kf_a), P.poseIndex(c.lsm_b, c.kf_b), c.T_a_b,
                     sqrtInformation(c.covariance), s.inter_huber);
     }
     const auto r = P.solve(problemSettings(s, s.function_tolerance));
-    addSolve(out, r, int(P.poses().size()));
+    addSolve(out, r, keyframeCount(lsms));
     MAPFUSE_DEBUG("align: pose graph round " << round << ": " << r.blocks << " blocks, "
                                              << r.iterations << " LM / " << r.pcg_iterations
                                              << " PCG iterations, cost " << r.initial_cost << " -> "

@@ -2,6 +2,7 @@
 /// @file The covariances of align's pose graph terms built from the georeferenced keyframes:
 /// the pose prior of eq. (9) and the odometry between consecutive keyframes of eq. (10), Song et
 /// al. 2023 (private to libmapfuse/src/fusion; the Ceres reference of tests/fusion uses them).
+#include <Eigen/Cholesky>
 #include <algorithm>
 
 #include "mapfuse/core/lsm.hpp"
@@ -9,6 +10,12 @@
 #include "mapfuse/fusion/align.hpp"
 
 namespace mapfuse::fusion::detail {
+
+/// @brief Square-root information (upper-triangular L^T with L L^T = info) of a covariance.
+inline Matrix6d sqrtInformation(const Matrix6d& cov) {
+  const Matrix6d info = cov.inverse();
+  return info.llt().matrixL().transpose();
+}
 
 /// @brief Eq. (9): georef's position covariance of the keyframe (plus 1e-6 m^2 so that it
 /// stays invertible) and `prior_rotation_sigma` on the attitude.

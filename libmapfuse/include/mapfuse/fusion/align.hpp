@@ -55,6 +55,13 @@ struct AlignSettings {
   double odom_sigma_per_m = 0.01;         ///< relative odometry sigma per metre (pose graph, PCM)
   double odom_min_sigma = 0.02;           ///< m / rad floor
   double prior_rotation_sigma = 0.05;     ///< rad, GPS prior on attitude (eq. 9)
+  /// GPS bias per traversal (src/fusion/gps_bias.hpp): eq. (9)'s priors are relative to a bias
+  /// that walks slowly along the drive, so that registrations move a traversal's bias, not one
+  /// keyframe. 0 disables it (independent priors per keyframe).
+  double gps_bias_sigma = 2.5;           ///< m, horizontal bias at the start of a traversal
+  double gps_bias_vertical_sigma = 5.0;  ///< m, vertical bias at the start
+  double gps_bias_walk = 0.05;           ///< m/sqrt(s), random walk of the bias per axis
+  double gps_bias_interval = 10.0;       ///< s, between bias nodes (linear in between)
   double inter_huber = 1.0;               ///< Huber delta on whitened inter-trajectory residuals
   double graph_reject_chi2 = 100.0;       ///< drop InterRPCs this far off the graph solution
   int graph_rejection_rounds = 3;         ///< pose-graph solves (reject, re-solve)
@@ -125,6 +132,15 @@ struct AlignSettings {
     v("odom_min_sigma", odom_min_sigma, "m", "odometry sigma floor", gt(0) & le(100));
     v("prior_rotation_sigma", prior_rotation_sigma, "rad", "GPS prior sigma on attitude",
       gt(0) & le(10));
+    v("gps_bias_sigma", gps_bias_sigma, "m",
+      "horizontal GPS bias at the start of a traversal (0: independent priors per keyframe)",
+      in(0, 1e4));
+    v("gps_bias_vertical_sigma", gps_bias_vertical_sigma, "m",
+      "vertical GPS bias at the start of a traversal", gt(0) & le(1e4));
+    v("gps_bias_walk", gps_bias_walk, "m/sqrt(s)", "random walk of the GPS bias per axis",
+      gt(0) & le(100));
+    v("gps_bias_interval", gps_bias_interval, "s", "time between GPS bias nodes",
+      gt(0) & le(1e6));
     v("inter_huber", inter_huber, "sigma", "Huber delta on inter-trajectory factors",
       gt(0) & le(1e6));
     v("constraint_min_sigma", constraint_min_sigma, "m", "floor of an InterRPC translation sigma",

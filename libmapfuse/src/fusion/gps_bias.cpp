@@ -1,0 +1,108 @@
+// Eq. (9) GPS priors with a slowly varying bias per traversal (gps_bias.hpp).
+#include "gps_bias.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "graph_covariances.hpp"
+
+namespace mapfuse::fusion::detail {
+
+namespace {
+
+constexpr double kNodeRotationSigma = 1e-4;  // rad: a bias node's rotation is held (identity)
+
+/// Square-root information of a diagonal with these sigmas (0: no information on that row).
+Matrix6d diagonalSqrtInformation(const Vector6d& sigma) {
+  Matrix6d L = Matrix6d::Zero();
+  for (int i = 0; i < 6; ++i) L(i, i) = sigma[i] > 0 ? 1.0 / sigma[i] : 0.0;
+  return L;
+}
+
+Pose3 translationOnly(const Eigen::Vector3d& t) {
+  Pose3 T = Pose3::Identity();
+  T.translation() = t;
+  return T;
+}
+
+}  // namespace
+
+GpsPriorTerms gpsPriorTerms(const std::vector<Lsm>& priors, const AlignSettings& s) {
+  GpsPriorTerms g;
+  const int n = int(priors.size());
+  g.nodes.resize(n);
+  g.node_keyframe.resize(n);
+  if (s.gps_bias_sigma <= 0) {  // eq. (9) as printed: one independent prior per keyframe
+    for (int l = 0; l < n; ++l)
+      for (int k = 0; k < int(priors[l].keyframes.size()); ++k) {
+        const Keyframe& kf = priors[l].keyframes[k];
+        g.anchors.push_back({l, k, kf.T_frame_body, sqrtInformation(priorCovariance(kf, s))});
+      }
+    return g;
+  }
+  Vector6d held;  // the rotation of a node; its translation free
+  held << 0, 0, 0, kNodeRotationSigma, kNodeRotationSigma, kNodeRotationSigma;
+  for (int l = 0; l < n; ++l) {
+    const auto& kfs = priors[l].keyframes;
+    if (kfs.empty()) continue;
+    const double t0 = kfs.front().stamp, span = std::max(0.0, kfs.back().stamp - t0);
+    const int steps = std::max(0, int(std::ceil(span / s.gps_bias_interval - 1e-9)));
+    const double dt = steps > 0 ? span / steps : 0.0;
+    // Nodes at t0 + j dt, each anchored at the keyframe nearest in time.
+    std::size_t k = 0;
+    for (int j = 0; j <= steps; ++j) {
+      const double t = t0 + j * dt;
+      while (k + 1 < kfs.size() && std::abs(kfs[k + 1].stamp - t) <= std::abs(kfs[k].stamp - t))
+        ++k;
+      g.node_keyframe[l].push_back(int(k));
+      g.nodes[l].push_back(translationOnly(kfs[k].T_frame_body.translation()));
+    }
+    const int chain = n + l;
+    // The first node: the bias is zero-mean with gps_bias_sigma; every node's rotation held.
+    Vector6d first;
+    first << s.gps_bias_sigma, s.gps_bias_sigma, s.gps_bias_vertical_sigma, kNodeRotationSigma,
+        kNodeRotationSigma, kNodeRotationSigma;
+    for (int j = 0; j <= steps; ++j)
+      g.anchors.push_back({chain, j, g.nodes[l][j], diagonalSqrtInformation(j == 0 ? first : held)});
+    // Random walk between consecutive nodes: the anchors' difference, gps_bias_walk sqrt(dt).
+    const double sw = s.gps_bias_walk * std::sqrt(dt);
+    Vector6d walk;
+    walk << sw, sw, sw, 0, 0, 0;
+    for (int j = 0; j < steps; ++j)
+      g.terms.push_back({chain, j, chain, j + 1,
+                         g.nodes[l][j].inverse() * g.nodes[l][j + 1],
+                         diagonalSqrtInformation(walk)});
+    // Keyframe k seen from its two nodes, its prior's information split 1 - a / a (the
+    // minimum is the linear interpolation of the two biases).
+    for (int kk = 0; kk < int(kfs.size()); ++kk) {
+      const Matrix6d L = sqrtInformation(priorCovariance(kfs[kk], s));
+      const double f = dt > 0 ? std::clamp((kfs[kk].stamp - t0) / dt, 0.0, double(steps)) : 0.0;
+      const int j = std::min(int(f), std::max(0, steps - 1));
+      const double a = steps > 0 ? f - j : 0.0;
+      const auto tie = [&](int node, double w) {
+        if (w <= 1e-6) return;
+        g.terms.push_back({chain, node, l, kk, g.nodes[l][node].inverse() * kfs[kk].T_frame_body,
+                           std::sqrt(w) * L});
+      };
+      tie(j, 1.0 - a);
+      if (steps > 0) tie(j + 1, a);
+    }
+  }
+  return g;
+}
+
+std::vector<Pose3> gpsBiasNodeStart(const GpsPriorTerms& g, const std::vector<Lsm>& lsms,
+                                    const std::vector<Lsm>& priors) {
+  std::vector<Pose3> out;
+  for (std::size_t l = 0; l < g.nodes.size(); ++l)
+    for (std::size_t j = 0; j < g.nodes[l].size(); ++j) {
+      const int k = g.node_keyframe[l][j];
+      Pose3 T = g.nodes[l][j];
+      T.translation() += lsms[l].keyframes[k].T_frame_body.translation() -
+                         priors[l].keyframes[k].T_frame_body.translation();
+      out.push_back(T);
+    }
+  return out;
+}
+
+}  // namespace mapfuse::fusion::detail
