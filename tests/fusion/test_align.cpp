@@ -333,3 +333,27 @@ TEST_CASE("align app: outputs, summary, exit codes, and configs/align.json mirro
   CHECK(test::runCommand(app + " " + (dir / "t0.lsm.cbor").string() + " -o " +
                          (dir / "o3").string() + " --method nope 2>/dev/null") == 2);
 }
+
+TEST_CASE("align: tie statistics count the traversals each 500 m stretch is tied to") {
+  // Three traversals along the x axis, keyframes every 10 m over 1 km: two stretches each.
+  std::vector<Lsm> lsms(3);
+  for (auto& l : lsms)
+    for (int k = 0; k < 100; ++k) {
+      Keyframe kf;
+      kf.id = k;
+      kf.T_frame_body.translation() = Eigen::Vector3d(10.0 * k, 0, 0);
+      l.keyframes.push_back(kf);
+    }
+  auto tie = [](int a, int ka, int b, int kb, bool kept) {
+    fusion::InterConstraint c;
+    c.lsm_a = a, c.kf_a = ka, c.lsm_b = b, c.kf_b = kb;
+    c.accepted = c.consistent = kept;
+    return c;
+  };
+  // 0's first stretch to 1 (twice) and 2; 1's second stretch to 2; a refused pair counts not.
+  const std::vector<fusion::InterConstraint> cs = {tie(0, 10, 1, 12, true), tie(0, 20, 1, 22, true),
+                                                   tie(0, 30, 2, 30, true), tie(1, 80, 2, 80, true),
+                                                   tie(0, 90, 2, 90, false)};
+  const fusion::TieStatistics t = fusion::tieStatistics(lsms, cs, 500.0);
+  CHECK(t.tied == std::vector<int>{2, 0, 1, 1, 1, 1});
+}

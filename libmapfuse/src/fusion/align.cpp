@@ -57,6 +57,7 @@ AlignResult alignLsms(std::vector<Lsm>& lsms, const AlignSettings& s) {
     r.constraints_accepted += c.accepted;
     r.constraints_graph_outliers += c.graph_outlier;
   }
+  r.ties = tieStatistics(lsms, r.constraints, kTieStretch);
   return r;
 }
 

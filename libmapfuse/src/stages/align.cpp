@@ -1,6 +1,8 @@
 #include "mapfuse/stages/align.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "mapfuse/cli/params.hpp"
 #include "mapfuse/core/error.hpp"
@@ -21,6 +23,27 @@ void writeSolve(nlohmann::json& sum, const std::string& name, const fusion::Grap
   sum[name + "_iterations"] = g.iterations;
   sum[name + "_pcg_iterations"] = g.pcg_iterations;
   sum["seconds_" + name] = seconds;
+}
+
+/// Tie statistics: the stretches by number of tied traversals (0 .. 9, "10+"), the median and
+/// the share tied to none.
+nlohmann::json tiesJson(const fusion::TieStatistics& t) {
+  nlohmann::json j;
+  j["stretch_m"] = t.stretch_m;
+  j["stretches"] = t.tied.size();
+  nlohmann::json hist = nlohmann::json::object();
+  int none = 0;
+  for (int n : t.tied) {
+    const std::string key = n >= 10 ? "10+" : std::to_string(n);
+    hist[key] = hist.value(key, 0) + 1;
+    none += n == 0;
+  }
+  j["by_tied_traversals"] = hist;
+  std::vector<int> sorted = t.tied;
+  std::sort(sorted.begin(), sorted.end());
+  j["median_tied_traversals"] = sorted.empty() ? 0 : sorted[sorted.size() / 2];
+  j["untied_share"] = sorted.empty() ? 0.0 : double(none) / double(sorted.size());
+  return j;
 }
 
 }  // namespace
@@ -56,6 +79,7 @@ nlohmann::json toJson(const fusion::AlignResult& r) {
   sum["constraints_proposed"] = r.constraints.size();
   sum["constraints_accepted"] = r.constraints_accepted;
   sum["constraints_pcm_kept"] = r.constraints_pcm_kept;
+  sum["ties"] = tiesJson(r.ties);
   sum["converged"] = r.converged;
   return sum;
 }
@@ -85,7 +109,12 @@ fusion::AlignResult runAlign(const std::vector<std::string>& inputs,
   summary["inputs"] = inputs;
   summary["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   MAPFUSE_INFO("align: " << result.constraints.size() << " constraints proposed, "
-                         << result.constraints_pcm_kept << " kept by PCM");
+                         << result.constraints_pcm_kept << " kept by PCM; "
+                         << summary["ties"]["median_tied_traversals"].get<int>()
+                         << " other traversals tied to the median "
+                         << fusion::kTieStretch << " m stretch, "
+                         << std::round(1000.0 * summary["ties"]["untied_share"].get<double>()) / 10.0
+                         << " % tied to none");
   io::writeResolvedConfig(out_dir, "align", paramsToJson(params));
   io::writeSummary(out_dir, "align", summary);
   outputs.commit();

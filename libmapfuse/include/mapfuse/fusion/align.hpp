@@ -251,6 +251,19 @@ GraphSolve solveMultiPoseGraph(std::vector<Lsm>& lsms, const std::vector<Lsm>& p
 /// `gba_max_partners` other traversals, chosen per keyframe. Updates keyframe poses in place.
 GraphSolve solveGba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, const AlignSettings& s);
 
+/// How far the crowd ties each stretch of road (issue 36): per stretch of `stretch_m` of each
+/// traversal's keyframe path, the other traversals its kept registrations (accepted, PCM
+/// consistent, not graph outliers) reach directly. A stretch tied to none keeps its own GPS
+/// bias in the map; one tied to many shares their mean (src/fusion/gps_bias.hpp).
+struct TieStatistics {
+  double stretch_m = 0;
+  std::vector<int> tied;  ///< per stretch, traversal after traversal, in path order
+};
+
+/// @brief Ties per `stretch_m` of path. O(keyframes + constraints).
+TieStatistics tieStatistics(const std::vector<Lsm>& lsms,
+                            const std::vector<InterConstraint>& constraints, double stretch_m);
+
 /// What align did: every registration with its checks, the solves' costs and timings.
 struct AlignResult {
   AlignMethod method = AlignMethod::kGbaSgicp;
@@ -263,7 +276,11 @@ struct AlignResult {
   GraphSolve gba;                            ///< eq. (12)-(14), when ran_gba
   bool converged = false;                    ///< the last solve converged
   double seconds_registration = 0, seconds_pcm = 0, seconds_pose_graph = 0, seconds_gba = 0;
+  TieStatistics ties;  ///< per kTieStretch m of path (tieStatistics)
 };
+
+/// m, the stretch of alignLsms' tie statistics: about eight submaps (submap_length 60 m).
+constexpr double kTieStretch = 500.0;
 
 /// @brief The whole of §4.2: registrations (eq. 7), PCM, the multi-trajectory pose graph
 /// (eq. 8-11) and, for gba_sgicp, GBA (eq. 12-14). Moves the keyframes of `lsms` in place.
