@@ -95,4 +95,18 @@ std::pair<std::vector<Eigen::Vector3d>, std::vector<Eigen::Vector3d>> crosswalkB
 /// @brief True when p lies inside the closed ring (xy).
 bool insideRingXY(const std::vector<Eigen::Vector3d>& ring, const Eigen::Vector3d& p);
 
+/// The xy bounding box of a ring: a point outside it is outside the ring, so a test of many
+/// points against all lanelets reads only the rings whose box holds the point (stop lines
+/// against every lanelet cost O(stop lines x lanelets x ring) before: a third of aggregate's
+/// time at 119 road km).
+struct RingBoxXY {
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e300), hi = Eigen::Vector2d::Constant(-1e300);
+  bool holds(const Eigen::Vector3d& p) const {
+    return p.x() >= lo.x() && p.x() <= hi.x() && p.y() >= lo.y() && p.y() <= hi.y();
+  }
+};
+
+/// @brief The box of every lanelet's ring, in lanelet order.
+std::vector<RingBoxXY> laneletBoxes(const LaneletPlan& plan);
+
 }  // namespace mapfuse::lanelet
