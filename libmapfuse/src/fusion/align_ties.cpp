@@ -33,4 +33,16 @@ TieStatistics tieStatistics(const std::vector<Lsm>& lsms,
   return t;
 }
 
+int TieStatistics::median() const {
+  if (tied.empty()) return 0;
+  std::vector<int> sorted = tied;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  return sorted[sorted.size() / 2];
+}
+
+double TieStatistics::untiedShare() const {
+  if (tied.empty()) return 0.0;
+  return double(std::count(tied.begin(), tied.end(), 0)) / double(tied.size());
+}
+
 }  // namespace mapfuse::fusion

@@ -1,6 +1,5 @@
 #include "mapfuse/stages/align.hpp"
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -25,25 +24,16 @@ void writeSolve(nlohmann::json& sum, const std::string& name, const fusion::Grap
   sum["seconds_" + name] = seconds;
 }
 
-/// Tie statistics: the stretches by number of tied traversals (0 .. 9, "10+"), the median and
-/// the share tied to none.
+/// Tie statistics: the stretches by tied traversals (0 .. 9, "10+"), median, share tied to none.
 nlohmann::json tiesJson(const fusion::TieStatistics& t) {
-  nlohmann::json j;
-  j["stretch_m"] = t.stretch_m;
-  j["stretches"] = t.tied.size();
   nlohmann::json hist = nlohmann::json::object();
-  int none = 0;
   for (int n : t.tied) {
     const std::string key = n >= 10 ? "10+" : std::to_string(n);
     hist[key] = hist.value(key, 0) + 1;
-    none += n == 0;
   }
-  j["by_tied_traversals"] = hist;
-  std::vector<int> sorted = t.tied;
-  std::sort(sorted.begin(), sorted.end());
-  j["median_tied_traversals"] = sorted.empty() ? 0 : sorted[sorted.size() / 2];
-  j["untied_share"] = sorted.empty() ? 0.0 : double(none) / double(sorted.size());
-  return j;
+  return {{"stretch_m", t.stretch_m},          {"stretches", t.tied.size()},
+          {"by_tied_traversals", hist},        {"median_tied_traversals", t.median()},
+          {"untied_share", t.untiedShare()}};
 }
 
 }  // namespace
@@ -110,10 +100,9 @@ fusion::AlignResult runAlign(const std::vector<std::string>& inputs,
   summary["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   MAPFUSE_INFO("align: " << result.constraints.size() << " constraints proposed, "
                          << result.constraints_pcm_kept << " kept by PCM; "
-                         << summary["ties"]["median_tied_traversals"].get<int>()
-                         << " other traversals tied to the median "
+                         << result.ties.median() << " other traversals tied to the median "
                          << fusion::kTieStretch << " m stretch, "
-                         << std::round(1000.0 * summary["ties"]["untied_share"].get<double>()) / 10.0
+                         << std::round(1000.0 * result.ties.untiedShare()) / 10.0
                          << " % tied to none");
   io::writeResolvedConfig(out_dir, "align", paramsToJson(params));
   io::writeSummary(out_dir, "align", summary);

@@ -258,6 +258,8 @@ GraphSolve solveGba(std::vector<Lsm>& lsms, const std::vector<Lsm>& priors, cons
 struct TieStatistics {
   double stretch_m = 0;
   std::vector<int> tied;  ///< per stretch, traversal after traversal, in path order
+  int median() const;         ///< tied traversals of the median stretch (0 without stretches)
+  double untiedShare() const; ///< share of stretches tied to none
 };
 
 /// @brief Ties per `stretch_m` of path. O(keyframes + constraints).
