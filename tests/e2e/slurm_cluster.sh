@@ -12,6 +12,9 @@
 # The daemons are always stopped and the folder removed (trap), also on failure or a signal.
 # Exit 77 (ctest: skipped, with a "SKIP: ..." line) only when the daemons cannot start here (not
 # root, munged / slurmctld / slurmd refuse to run); MAPFUSE_REQUIRE_SLURM=1 makes that a failure.
+# The batch is CI's small one unless MAPFUSE_SLURM_SIMULATE gives simulate's options and
+# MAPFUSE_SLURM_TILE_SIZE the tile size (issue 36's bench: the 100 km network batch, run by
+# scripts/bench/bench_slurm_scale.sh).
 set -euo pipefail
 BIN="${MAPFUSE_BIN_DIR:?}"
 SRC="${MAPFUSE_SOURCE_DIR:?}"
@@ -152,10 +155,11 @@ echo "slurm: node $NODE idle ($CPUS CPUs, ${MEM_MB} MB) after $((SECONDS - START
 
 # ---- the sample batch of batch_pipelines.sh, and its maps from a local make run
 WORK_DIR="$T/batch"   # the cluster's "shared file system": the node is this machine
-TILE_SIZE=600         # 4 tiles of this batch (300 m: 8, twice the jobs)
+TILE_SIZE=${MAPFUSE_SLURM_TILE_SIZE:-600}  # 4 tiles of the sample batch (300 m: 8, twice the jobs)
+read -r -a SIM_ARGS <<< "${MAPFUSE_SLURM_SIMULATE:---traversals 6 --route-length 800}"
 mkdir -p "$WORK_DIR"
 cd "$WORK_DIR"        # snakemake keeps its state (and the Slurm job logs) in ./.snakemake
-"$BIN/simulate" -q --traversals 6 --route-length 800 -o sim >/dev/null
+"$BIN/simulate" -q "${SIM_ARGS[@]}" -o sim >/dev/null
 MK=(make -s -j2 -f "$SRC/scripts/crowd.mk" BIN="$BIN" LSM_DIR=sim/lsm
     TRUTH=sim/truth/vector_map.json)
 "${MK[@]}" WORK=local >/dev/null || fail "local make run (untiled)"
@@ -167,7 +171,7 @@ echo "local: make untiled and tiled done after $((SECONDS - START)) s"
 # state at most this often per second (any value above 1 it replaces by 0.03, one poll per
 # 33 s: right for a shared production scheduler, minutes of idling here).
 SK=(snakemake -s "$SRC/scripts/Snakefile" --slurm --jobs 8
-    --default-resources "slurm_partition=$PARTITION" mem_mb=2000 runtime=10
+    --default-resources "slurm_partition=$PARTITION" mem_mb=2000 runtime=60
     --max-status-checks-per-second 1 --latency-wait 10
     --config lsm_dir=sim/lsm bin="$BIN" truth=sim/truth/vector_map.json)
 slurm_run() {   # <log> <config...>: in the background, so that a signal reaches the trap at once
