@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Writes bench_chain_scale.sh's rows into docs/performance-chain.md (between the chain-scale
-markers, appended when absent) and plots seconds and peak MB against driven km with gnuplot.
+markers, appended when absent) and plots seconds and peak MB against road km per crowd shape
+(gnuplot).
 usage: chain_scale_report.py ROWS.jsonl PERFORMANCE-CHAIN.md OUT.png"""
 import json
 import os
@@ -107,7 +108,7 @@ def main(rows_file, md, png):
         lines += [f"- {r['name']}: median {r['ties']['median_tied_traversals']}, tied to none"
                   f" {100 * r['ties']['untied_share']:.1f} % of {r['ties']['stretches']} stretches"
                   for r in ties]
-    lines += ["", f"![seconds and peak MB against driven km](images/{os.path.basename(png)})", END]
+    lines += ["", f"![seconds and peak MB against road km, both crowd shapes](images/{os.path.basename(png)})", END]
     text = open(md).read() if os.path.exists(md) else ""
     if BEGIN in text and END in text:
         text = text[:text.index(BEGIN)] + "\n".join(lines) + text[text.index(END) + len(END):]
@@ -115,31 +116,44 @@ def main(rows_file, md, png):
         text = text.rstrip("\n") + "\n\n" + "\n".join(lines) + "\n"
     open(md, "w").write(text)
 
-    with tempfile.NamedTemporaryFile("w", suffix=".dat", delete=False) as f:
-        for r in sorted(untiled, key=lambda r: r["driven_km"]):
-            f.write(f"{r['driven_km']:.1f} {r['seconds']:.2f} {r['cpu_seconds']:.2f}"
-                    f" {r['rss_mb']:.1f} \"{r['route_km']:g} km x {r['traversals']}\"\n")
-        dat = f.name
+    # Two panels against road km, one series per crowd shape (50 traversals, untiled): issue 36.
+    dats = {}
+    for shape, pick in (("one route", lambda r: r.get("routes", 1) == 1),
+                        ("8 routes", lambda r: r.get("routes", 1) > 1)):
+        rows_s = sorted((r for r in untiled if pick(r) and r["traversals"] == 50 and r["road_km"]),
+                        key=lambda r: r["road_km"])
+        if not rows_s:
+            continue
+        with tempfile.NamedTemporaryFile("w", suffix=".dat", delete=False) as f:
+            for r in rows_s:
+                f.write(f"{r['road_km']:.2f} {r['seconds']:.2f} {r['cpu_seconds']:.2f}"
+                        f" {r['rss_mb']:.1f}\n")
+            dats[shape] = f.name
+    def plots(col, what):
+        return ", \\\n     ".join(
+            f"'{d}' using 1:{col} with linespoints lw 2 pt {7 + 2 * i} title '{shape}: {what}'"
+            for i, (shape, d) in enumerate(dats.items()))
     script = f"""
-set terminal pngcairo size 900,560 font ',11'
+set terminal pngcairo size 1200,520 font ',11'
 set output '{png}'
-set title 'Crowd chain (make -j2 over crowd.mk, to the map): cost against driven km'
-set xlabel 'driven km (road km x traversals)'
-set ylabel 'seconds'
-set y2label 'peak RSS, MB'
-set ytics nomirror
-set y2tics
-set yrange [0:*]
-set y2range [0:*]
-set key top left
+set multiplot layout 1,2 title 'Crowd chain, 50 traversals (make -j2 over crowd.mk, to the map), this 2-core host'
+set xlabel 'road km'
 set grid
-plot '{dat}' using 1:2 with linespoints lw 2 pt 7 title 'wall seconds (at the recorded load)', \\
-     '' using 1:3 with linespoints lw 2 pt 5 title 'CPU seconds (user + system)', \\
-     '' using 1:4 axes x1y2 with linespoints lw 2 pt 9 title 'peak RSS MB (right axis)', \\
-     '' using 1:2:5 with labels offset 0,1.2 font ',9' notitle
+set key top left
+set yrange [0:*]
+set ylabel 'seconds'
+set title 'time: wall (at the recorded load) and CPU (user + system)'
+plot {plots(2, "wall s")}, \\
+     {plots(3, "CPU s")}
+set ylabel 'MB'
+set key bottom right
+set title 'peak RSS of the largest process (bar: 1536 MB)'
+plot {plots(4, "peak MB")}, 1536 with lines dt 2 lc rgb 'red' title '1536 MB'
+unset multiplot
 """
     subprocess.run(["gnuplot"], input=script, text=True, check=True)
-    os.unlink(dat)
+    for d in dats.values():
+        os.unlink(d)
     print(f"chain_scale_report: wrote {md} and {png}", file=sys.stderr)
 
 
