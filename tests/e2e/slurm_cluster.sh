@@ -162,8 +162,17 @@ cd "$WORK_DIR"        # snakemake keeps its state (and the Slurm job logs) in ./
 "$BIN/simulate" -q "${SIM_ARGS[@]}" -o sim >/dev/null
 MK=(make -s -j2 -f "$SRC/scripts/crowd.mk" BIN="$BIN" LSM_DIR=sim/lsm
     TRUTH=sim/truth/vector_map.json)
-"${MK[@]}" WORK=local >/dev/null || fail "local make run (untiled)"
-"${MK[@]}" WORK=local_tiled TILE_SIZE=$TILE_SIZE >/dev/null || fail "local make run (tiled)"
+in_background() {   # <what> <command...>: waited for, so that a signal reaches the trap at once
+  local what="$1" rc=0   # (bash runs a trap only after the foreground command returns: a TERM
+  shift                  # during a minutes-long local run left the daemons running meanwhile)
+  "$@" >/dev/null &
+  SK_PID=$!
+  wait "$SK_PID" || rc=$?
+  SK_PID=""
+  (( rc == 0 )) || fail "$what (exit $rc)"
+}
+in_background "local make run (untiled)" "${MK[@]}" WORK=local
+in_background "local make run (tiled)" "${MK[@]}" WORK=local_tiled TILE_SIZE=$TILE_SIZE
 echo "local: make untiled and tiled done after $((SECONDS - START)) s"
 
 # ---- the same Snakefile through Slurm. Resources come from the command line: the partition,
