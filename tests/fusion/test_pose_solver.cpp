@@ -438,3 +438,31 @@ TEST_CASE("pose solver: GBA gives the same poses, bit for bit, on 1, 2 or 3 thre
     CHECK(differ == 0);
   }
 }
+
+TEST_CASE("pose solver: a drive's GPS bias prior is never looser than its own GPS sigma",
+          "[fusion][solver]") {
+  // gps_bias.hpp: the first bias node's prior is gps_bias_sigma (2.5 m) for a consumer
+  // receiver, but an RTK drive (georef sigma 2 cm) keeps its bias within its centimetres.
+  AlignSettings s;
+  for (const double sigma : {2.5, 0.02}) {
+    std::vector<Lsm> priors(1);
+    for (int k = 0; k < 40; ++k) {
+      Keyframe kf;
+      kf.id = k;
+      kf.stamp = 0.5 * k;
+      kf.T_frame_body.translation() = Eigen::Vector3d(5.0 * k, 0, 0);
+      kf.covariance = diagonalCovariance(sigma, 0.01);
+      kf.covariance(2, 2) = 4 * sigma * sigma;
+      priors[0].keyframes.push_back(kf);
+    }
+    const detail::GpsPriorTerms g = detail::gpsPriorTerms(priors, s);
+    REQUIRE(g.nodes[0].size() == 3);  // 19.5 s of drive: nodes at 0, 9.75, 19.5 s
+    const detail::GpsPriorAnchor& first = g.anchors.front();
+    CHECK(first.chain == 1);
+    CHECK(first.index == 0);
+    CHECK(1.0 / first.L(0, 0) == Approx(std::min(s.gps_bias_sigma, sigma)));
+    CHECK(1.0 / first.L(2, 2) == Approx(std::min(s.gps_bias_vertical_sigma, 2 * sigma)));
+    // every keyframe tied to one node, the nodes by a random walk
+    CHECK(g.terms.size() == 40 + 2);
+  }
+}

@@ -19,6 +19,14 @@ Matrix6d diagonalSqrtInformation(const Vector6d& sigma) {
   return L;
 }
 
+/// Median over the keyframes of the position sigma along `axis` (georef's covariance).
+double medianSigma(const std::vector<Keyframe>& kfs, int axis) {
+  std::vector<double> v;
+  for (const auto& k : kfs) v.push_back(std::sqrt(std::max(0.0, k.covariance(axis, axis))));
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return std::max(v[v.size() / 2], 1e-3);
+}
+
 Pose3 translationOnly(const Eigen::Vector3d& t) {
   Pose3 T = Pose3::Identity();
   T.translation() = t;
@@ -58,10 +66,14 @@ GpsPriorTerms gpsPriorTerms(const std::vector<Lsm>& priors, const AlignSettings&
       g.nodes[l].push_back(translationOnly(kfs[k].T_frame_body.translation()));
     }
     const int chain = n + l;
-    // The first node: the bias is zero-mean with gps_bias_sigma; every node's rotation held.
+    // The first node: the bias is zero-mean with gps_bias_sigma, but never looser than the
+    // drive's own GPS claims (its median keyframe sigma: an RTK drive's bias stays within its
+    // centimetres, and a wrong registration cannot carry the whole drive away); every node's
+    // rotation held.
+    const double sh = std::min(s.gps_bias_sigma, medianSigma(kfs, 0));
+    const double sv = std::min(s.gps_bias_vertical_sigma, medianSigma(kfs, 2));
     Vector6d first;
-    first << s.gps_bias_sigma, s.gps_bias_sigma, s.gps_bias_vertical_sigma, kNodeRotationSigma,
-        kNodeRotationSigma, kNodeRotationSigma;
+    first << sh, sh, sv, kNodeRotationSigma, kNodeRotationSigma, kNodeRotationSigma;
     for (int j = 0; j <= steps; ++j)
       g.anchors.push_back({chain, j, g.nodes[l][j], diagonalSqrtInformation(j == 0 ? first : held)});
     // Random walk between consecutive nodes: the anchors' difference, gps_bias_walk sqrt(dt).

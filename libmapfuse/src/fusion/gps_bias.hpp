@@ -18,7 +18,8 @@
 /// two nodes, tried first, gave the same maps for 18 % more align memory), the nodes a random
 /// walk of `gps_bias_walk` m/sqrt(s)
 /// with a zero-mean prior of `gps_bias_sigma` (horizontal) / `gps_bias_vertical_sigma` on the
-/// first. A bias node is a pose whose translation is its anchor (the traversal's georeferenced
+/// first, each at most the drive's median keyframe sigma (an accurate receiver's drive is held
+/// as tightly as before). A bias node is a pose whose translation is its anchor (the traversal's georeferenced
 /// position at the node) plus the bias and whose rotation is held at the identity, so that the
 /// terms are the relative-pose terms of eq. (10) / (11) and any pose-graph solver (ours, Ceres)
 /// takes them as they are. Registrations then move a traversal's bias, not one keyframe, and a
