@@ -9,19 +9,20 @@
 # (seconds and peak MB against driven km; gnuplot).
 #
 # usage: scripts/bench/bench_chain_scale.sh [BIN_DIR=<root>/build/bin] [ROW...]
-#   ROW = KM:TRAVERSALS[:ROUTES] (default: 2:50 5:50 10:50 20:50 2:100). NICE=10 runs the chain
+#   ROW = KM:TRAVERSALS[:ROUTES] (default: 2:50 5:50 10:50 20:50 2:100 and the network rows
+#   2:50:8 10:50:8 50:50:8 100:50:8). NICE=10 runs the chain
 #   with nice. With ROUTES > 1 (issue 36, a crowd over a network, e.g. 10:50:8) the world is a
 #   grid of about KM road km (3, 6, 12, 17 intersections a side for 2, 10, 50, 100 km) and each
 #   of the ROUTES random routes is 2 KM / ROUTES km long (at least 1 km): every road driven by a
 #   few of the traversals, in both directions, the routes crossing at junctions.
 #   TILE_SIZE=<m> (optional) adds a tiled run of each row (name suffix "-tiled"); with
 #   TILED_ONLY=1 only the tiled run (the untiled row already recorded stays).
-# About 10 minutes on a quiet 2-core machine, most of it simulate and the 20 km row.
+# About 8 minutes on a quiet 2-core machine (2026-11-29 host), most of it the 20 km and 119 km rows.
 set -euo pipefail
 source "$(dirname "$0")/lib.sh" "$@"  # root, bin, tmp (removed on exit), load
 shift || true
 rows_wanted=("$@")
-[[ ${#rows_wanted[@]} -gt 0 ]] || rows_wanted=(2:50 5:50 10:50 20:50 2:100)
+[[ ${#rows_wanted[@]} -gt 0 ]] || rows_wanted=(2:50 5:50 10:50 20:50 2:100 2:50:8 10:50:8 50:50:8 100:50:8)
 tile=${TILE_SIZE:-}
 nice_n=${NICE:-0}
 jsonl="$root/docs/performance-chain-scale.jsonl"
