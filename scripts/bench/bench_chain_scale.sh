@@ -76,7 +76,8 @@ def summary(stage):
 driven = json.load(open(f"{sim}/simulate.summary.json"))["km_driven"]
 size = summary("stitch" if tile else "aggregate").get("size", {})
 classes = {c["class"]: c for c in summary("evaluate")["maps"][0]["classes"]}
-keep = ("completeness", "redundancy", "relative_precision_m", "map_count", "truth_count")
+keep = ("completeness", "redundancy", "relative_precision_m", "map_count", "truth_count",
+        "completeness_observed", "truth_observed")
 row = {"name": name, "route_km": float(km), "traversals": int(trav), "tile": tile or None,
        "routes": int(routes),
        "seconds": float(t1) - float(t0), "cpu_seconds": float(user) + float(sys_s),

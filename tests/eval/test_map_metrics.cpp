@@ -4,8 +4,11 @@
 
 #include "mapfuse/eval/error_stats.hpp"
 #include "mapfuse/eval/map_metrics.hpp"
+#include "mapfuse/eval/scored_truth.hpp"
+#include "mapfuse/io/lsm_io.hpp"
 #include "mapfuse/geo/origin.hpp"
 #include "mapfuse/stages/evaluate_map.hpp"
+#include "support/test_support.hpp"
 
 using namespace mapfuse;
 using namespace mapfuse::eval;
@@ -333,4 +336,48 @@ TEST_CASE("a stop line's centre lies along its length, whatever its vertices", "
   CHECK(b.absolute.mean == Approx(a.absolute.mean).margin(kExact));
   CHECK(b.absolute.mean == Approx(0.1).margin(kExact));  // (0.2 + 0) / 2
   CHECK(b.relative.mean == Approx(a.relative.mean).margin(kExact));
+}
+
+TEST_CASE("completeness over the true elements enough drives observed", "[eval][map]") {
+  // Issue 36: poles 4 and 5 observed by three simulated drives, pole 6 by one; the map lacks
+  // pole 6. Completeness 2 / 3; over what >= observedMinDrives() (3) drives saw, 2 / 2.
+  REQUIRE(observedMinDrives() == 3);
+  const VectorMap truth = truthMap();
+  VectorMap map = truth;
+  map.instances.pop_back();  // pole 6
+  const auto dir = mapfuse::test::tempDir("observed");
+  std::vector<std::string> files;
+  for (int d = 0; d < 3; ++d) {
+    Lsm lsm;
+    lsm.drive_id = "drive" + std::to_string(d);
+    lsm.vehicle_id = "veh";
+    lsm.frame = LsmFrame::kEnu;
+    lsm.origin = truth.origin;
+    Keyframe kf;
+    lsm.keyframes.push_back(kf);
+    for (int64_t id : {4, 5, 6}) {
+      if (id == 6 && d > 0) continue;  // one drive saw pole 6
+      const MapInstance& t = truth.instances[std::size_t(id - 1)];
+      Element e;
+      e.id = id;
+      e.cls = CrowdClass::kPole;
+      e.anchor = 0;
+      e.truth_id = id;
+      e.points_body = t.points;
+      e.covariances.assign(t.points.size(), Eigen::Matrix3d::Identity() * 1e-4);
+      lsm.elements.push_back(e);
+    }
+    files.push_back((dir / (lsm.drive_id + ".lsm.cbor")).string());
+    io::writeLsm(files.back(), lsm);
+  }
+  ScoredTruth scored;
+  scored.scored = truth;
+  scored.unscored = mapOf({});
+  MapMetrics m = evaluateMap(map, truth, MapEvalParams{});
+  addObservedCompleteness(m, map, scored, files, MapEvalParams{});
+  const ClassMetrics& pole = get(m, CrowdClass::kPole);
+  CHECK(pole.completeness == Approx(2.0 / 3.0).margin(kExact));
+  CHECK(pole.truth_observed == 2);
+  CHECK(pole.completeness_observed == Approx(1.0).margin(kExact));
+  CHECK(get(m, CrowdClass::kLaneLine).completeness_observed < 0);  // by length: not computed
 }

@@ -402,6 +402,10 @@ nlohmann::json toJson(const ClassMetrics& m) {
     j["relative_precision_reason"] = m.truth_count == 0 ? "no truth element of this class"
                                      : m.map_count == 0 ? "no map element of this class"
                                                         : "no map element matched the truth";
+  if (m.completeness_observed >= 0) {
+    j["completeness_observed"] = m.completeness_observed;
+    j["truth_observed"] = m.truth_observed;
+  }
   if (m.by_length) {
     j["truth_length_m"] = m.truth_length;
     j["map_length_m"] = m.map_length;

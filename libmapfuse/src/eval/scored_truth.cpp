@@ -1,5 +1,9 @@
 #include "mapfuse/eval/scored_truth.hpp"
 
+#include <map>
+#include <set>
+
+#include "mapfuse/aggregate/settings.hpp"
 #include "mapfuse/core/error.hpp"
 #include "mapfuse/geo/origin.hpp"
 #include "mapfuse/io/lsm_io.hpp"
@@ -37,6 +41,38 @@ TrajectoryMetrics compareLsmToTruth(const std::string& lsm_file,
   if (!std::filesystem::exists(truth_file))
     throw IoError(truth_file.string(), "true trajectory of drive '" + lsm.drive_id + "' not found");
   return compareTrajectory(lsm, readTrueTrajectory(truth_file), settings.rpe_distance, lsm_file);
+}
+
+int observedMinDrives() {
+  return aggregate::DiscreteMergeParams{}.min_pts;
+}
+
+void addObservedCompleteness(MapMetrics& metrics, const VectorMap& map, const ScoredTruth& truth,
+                             const std::vector<std::string>& lsm_files, const MapEvalParams& p) {
+  // Drives per (class, true element): one LSM at a time, elements without covariances.
+  std::map<std::pair<CrowdClass, int64_t>, std::set<std::string>> drives;
+  for (const auto& file : lsm_files) {
+    const Lsm lsm = io::readLsmInputs({file}, /*covariances=*/false).front();
+    for (const auto& e : lsm.elements)
+      if (e.truth_id >= 0) drives[{e.cls, e.truth_id}].insert(lsm.drive_id);
+  }
+  if (drives.empty()) return;
+  VectorMap observed = truth.scored, rest = truth.unscored;
+  observed.instances.clear();
+  for (const auto& t : truth.scored.instances) {
+    const auto it = drives.find({t.cls, t.id});
+    const bool seen = it != drives.end() && int(it->second.size()) >= observedMinDrives();
+    (seen ? observed : rest).instances.push_back(t);
+  }
+  const MapMetrics m = evaluateMap(map, observed, p, &rest);
+  for (auto& c : metrics.classes) {
+    if (c.by_length) continue;  // a lane line's truth id names the whole line
+    for (const auto& o : m.classes)
+      if (o.cls == c.cls) {
+        c.completeness_observed = o.completeness;
+        c.truth_observed = o.truth_count;
+      }
+  }
 }
 
 }  // namespace mapfuse::eval

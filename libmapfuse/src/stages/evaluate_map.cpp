@@ -101,6 +101,7 @@ EvaluateMapRun runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
     eval::warnOrRefuse(eval::mapEvaluationProblems(map, in.maps[i], truth, in.truth), params.strict,
                        "evaluate map", run.problems);
     e.metrics = eval::evaluateMap(map, truth, params.metrics, &scored.unscored);
+    eval::addObservedCompleteness(e.metrics, map, scored, in.lsms, params.metrics);
     run.maps.push_back(std::move(e));
   }
   for (const auto& f : in.lsms)

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "mapfuse/core/vector_map.hpp"
 #include "mapfuse/eval/map_metrics.hpp"
@@ -26,6 +27,17 @@ struct ScoredTruth {
 ScoredTruth scoredTruth(VectorMap truth, const std::string& truth_name,
                         const std::filesystem::path& truth_trajectories,
                         const CoverageWedge& coverage);
+
+/// @brief Fewest drives that must observe a true element for `addObservedCompleteness` to score
+/// it: aggregate's DBSCAN MinPts, what a crowd map can confirm (aggregate/settings.hpp).
+int observedMinDrives();
+
+/// @brief Per discrete class of `metrics`, completeness over the scored true elements that at
+/// least observedMinDrives() of the simulated drives `lsm_files` observed (their elements'
+/// truth ids; the others join the unscored truth). It separates what the crowd saw too rarely
+/// from what aggregation lost (issue 36). No effect when the LSMs carry no truth ids.
+void addObservedCompleteness(MapMetrics& metrics, const VectorMap& map, const ScoredTruth& truth,
+                             const std::vector<std::string>& lsm_files, const MapEvalParams& p);
 
 /// @brief Trajectory metrics of the aligned LSM `lsm_file` against
 /// `<truth_trajectories>/<drive_id>.trajectory.json`.
