@@ -171,13 +171,10 @@ bool insideRingXY(const std::vector<Eigen::Vector3d>& ring, const Eigen::Vector3
   return inside;
 }
 
-std::vector<RingBoxXY> laneletBoxes(const LaneletPlan& plan) {
-  std::vector<RingBoxXY> out(plan.lanelets.size());
+std::vector<Eigen::AlignedBox2d> laneletBoxes(const LaneletPlan& plan) {
+  std::vector<Eigen::AlignedBox2d> out(plan.lanelets.size());  // empty boxes
   for (std::size_t l = 0; l < plan.lanelets.size(); ++l)
-    for (const auto& p : plan.lanelets[l].ring) {
-      out[l].lo = out[l].lo.cwiseMin(p.head<2>());
-      out[l].hi = out[l].hi.cwiseMax(p.head<2>());
-    }
+    for (const auto& p : plan.lanelets[l].ring) out[l].extend(p.head<2>());
   return out;
 }
 
@@ -618,14 +615,14 @@ void voteByStopLines(LaneletPlan& plan, const VectorMap& map, const LaneletSetti
   std::vector<const MapInstance*> stops;
   for (const auto& m : map.instances)
     if (m.cls == CrowdClass::kStopLine && m.points.size() >= 2) stops.push_back(&m);
-  const std::vector<RingBoxXY> boxes = laneletBoxes(plan);
+  const std::vector<Eigen::AlignedBox2d> boxes = laneletBoxes(plan);
   for (std::size_t l = 0; l < plan.lanelets.size(); ++l) {
     auto& ll = plan.lanelets[l];
     if (ll.votes_for + ll.votes_against > 0) continue;
     const auto cc = arcLengths(ll.centre);
     for (const auto* st : stops) {
       const V3 mid = 0.5 * (st->points.front() + st->points.back());
-      if (!boxes[l].holds(mid) || !insideRingXY(ll.ring, mid)) continue;
+      if (!boxes[l].contains(mid.head<2>()) || !insideRingXY(ll.ring, mid)) continue;
       std::size_t best = 0;
       for (std::size_t k = 1; k < ll.centre.size(); ++k)
         if ((ll.centre[k] - mid).head<2>().norm() < (ll.centre[best] - mid).head<2>().norm())

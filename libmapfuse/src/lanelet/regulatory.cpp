@@ -31,7 +31,7 @@ double distanceToCentre(const LaneletPlan::Lanelet& ll, const V3& p) {
 
 /// A stop line with the lanelets it crosses (a sample every kStopSample inside their outline)
 /// and the mean travel direction of the oriented ones there.
-StopLineLink linkStopLine(const LaneletPlan& plan, const std::vector<RingBoxXY>& boxes,
+StopLineLink linkStopLine(const LaneletPlan& plan, const std::vector<Eigen::AlignedBox2d>& boxes,
                           const VectorMap& map, std::size_t i) {
   const auto& pts = map.instances[i].points;
   StopLineLink st{i, 0.5 * (pts.front() + pts.back()), {}, Eigen::Vector2d::Zero()};
@@ -44,7 +44,7 @@ StopLineLink linkStopLine(const LaneletPlan& plan, const std::vector<RingBoxXY>&
   for (std::size_t l = 0; l < plan.lanelets.size(); ++l) {
     const auto& ll = plan.lanelets[l];
     for (const auto& s : samples)
-      if (boxes[l].holds(s) && insideRingXY(ll.ring, s)) {
+      if (boxes[l].contains(s.head<2>()) && insideRingXY(ll.ring, s)) {
         st.lanelets.push_back(l);
         if (ll.direction_known) st.approach += directionNear(ll, s);
         break;
@@ -126,7 +126,7 @@ LaneletExportPlan planExport(const VectorMap& map, const std::vector<DrivePath>&
                              const LaneletSettings& settings) {
   LaneletExportPlan out;
   out.lanes = planLanelets(map, drives, settings);
-  const std::vector<RingBoxXY> boxes = laneletBoxes(out.lanes);
+  const std::vector<Eigen::AlignedBox2d> boxes = laneletBoxes(out.lanes);
   for (std::size_t i = 0; i < map.instances.size(); ++i)
     if (map.instances[i].cls == CrowdClass::kStopLine)
       out.stop_lines.push_back(linkStopLine(out.lanes, boxes, map, i));

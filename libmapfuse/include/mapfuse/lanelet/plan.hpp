@@ -10,6 +10,7 @@
 /// its start across an unmarked stretch (an intersection), a connector lanelet with `virtual`
 /// bounds joins their bounds' end points (cubic Hermite curves along both lanelets' directions).
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -95,18 +96,10 @@ std::pair<std::vector<Eigen::Vector3d>, std::vector<Eigen::Vector3d>> crosswalkB
 /// @brief True when p lies inside the closed ring (xy).
 bool insideRingXY(const std::vector<Eigen::Vector3d>& ring, const Eigen::Vector3d& p);
 
-/// The xy bounding box of a ring: a point outside it is outside the ring, so a test of many
-/// points against all lanelets reads only the rings whose box holds the point (stop lines
-/// against every lanelet cost O(stop lines x lanelets x ring) before: a third of aggregate's
-/// time at 119 road km).
-struct RingBoxXY {
-  Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e300), hi = Eigen::Vector2d::Constant(-1e300);
-  bool holds(const Eigen::Vector3d& p) const {
-    return p.x() >= lo.x() && p.x() <= hi.x() && p.y() >= lo.y() && p.y() <= hi.y();
-  }
-};
-
-/// @brief The box of every lanelet's ring, in lanelet order.
-std::vector<RingBoxXY> laneletBoxes(const LaneletPlan& plan);
+/// @brief The xy bounding box of every lanelet's ring, in lanelet order: a point outside it is
+/// outside the ring, so a test of many points against all lanelets reads only the rings whose
+/// box holds the point (stop lines against every lanelet cost O(stop lines x lanelets x ring)
+/// before: a third of aggregate's time at 119 road km).
+std::vector<Eigen::AlignedBox2d> laneletBoxes(const LaneletPlan& plan);
 
 }  // namespace mapfuse::lanelet
