@@ -373,8 +373,7 @@ TEST_CASE("completeness over the true elements enough drives observed", "[eval][
   ScoredTruth scored;
   scored.scored = truth;
   scored.unscored = mapOf({});
-  MapMetrics m = evaluateMap(map, truth, MapEvalParams{});
-  addObservedCompleteness(m, map, scored, files, MapEvalParams{});
+  const MapMetrics m = scoreMap(map, scored, observedTruth(scored, files), MapEvalParams{});
   const ClassMetrics& pole = get(m, CrowdClass::kPole);
   CHECK(pole.completeness == Approx(2.0 / 3.0).margin(kExact));
   CHECK(pole.truth_observed == 2);

@@ -47,8 +47,8 @@ int observedMinDrives() {
   return aggregate::DiscreteMergeParams{}.min_pts;
 }
 
-void addObservedCompleteness(MapMetrics& metrics, const VectorMap& map, const ScoredTruth& truth,
-                             const std::vector<std::string>& lsm_files, const MapEvalParams& p) {
+std::optional<ScoredTruth> observedTruth(const ScoredTruth& truth,
+                                         const std::vector<std::string>& lsm_files) {
   // Drives per (class, true element): one LSM at a time, elements without covariances.
   std::map<std::pair<CrowdClass, int64_t>, std::set<std::string>> drives;
   for (const auto& file : lsm_files) {
@@ -56,15 +56,22 @@ void addObservedCompleteness(MapMetrics& metrics, const VectorMap& map, const Sc
     for (const auto& e : lsm.elements)
       if (e.truth_id >= 0) drives[{e.cls, e.truth_id}].insert(lsm.drive_id);
   }
-  if (drives.empty()) return;
-  VectorMap observed = truth.scored, rest = truth.unscored;
-  observed.instances.clear();
+  if (drives.empty()) return std::nullopt;
+  ScoredTruth out{truth.scored, truth.unscored, truth.coverage_trajectories};
+  out.scored.instances.clear();
   for (const auto& t : truth.scored.instances) {
     const auto it = drives.find({t.cls, t.id});
     const bool seen = it != drives.end() && int(it->second.size()) >= observedMinDrives();
-    (seen ? observed : rest).instances.push_back(t);
+    (seen ? out.scored : out.unscored).instances.push_back(t);
   }
-  const MapMetrics m = evaluateMap(map, observed, p, &rest);
+  return out;
+}
+
+MapMetrics scoreMap(const VectorMap& map, const ScoredTruth& truth,
+                    const std::optional<ScoredTruth>& observed, const MapEvalParams& p) {
+  MapMetrics metrics = evaluateMap(map, truth.scored, p, &truth.unscored);
+  if (!observed) return metrics;
+  const MapMetrics m = evaluateMap(map, observed->scored, p, &observed->unscored);
   for (auto& c : metrics.classes) {
     if (c.by_length) continue;  // a lane line's truth id names the whole line
     for (const auto& o : m.classes)
@@ -73,6 +80,7 @@ void addObservedCompleteness(MapMetrics& metrics, const VectorMap& map, const Sc
         c.truth_observed = o.truth_count;
       }
   }
+  return metrics;
 }
 
 }  // namespace mapfuse::eval

@@ -90,6 +90,7 @@ EvaluateMapRun runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
                                                in.truth_trajectories, params.coverage);
   EvaluateMapRun run{in.truth, scored.coverage_trajectories, {}, {}, {}};
   const VectorMap& truth = scored.scored;
+  const auto observed = eval::observedTruth(scored, in.lsms);  // once, for every map
   VectorMap last_map;
   for (std::size_t i = 0; i < in.maps.size(); ++i) {
     const VectorMap map = eval::inOrigin(io::readVectorMap(in.maps[i]), truth.origin);  // once
@@ -100,8 +101,7 @@ EvaluateMapRun runEvaluateMap(const EvaluateMapInputs& in, const std::filesystem
     e.traversals = in.traversals.empty() ? traversalsOf(in.maps[i], map) : in.traversals[i];
     eval::warnOrRefuse(eval::mapEvaluationProblems(map, in.maps[i], truth, in.truth), params.strict,
                        "evaluate map", run.problems);
-    e.metrics = eval::evaluateMap(map, truth, params.metrics, &scored.unscored);
-    eval::addObservedCompleteness(e.metrics, map, scored, in.lsms, params.metrics);
+    e.metrics = eval::scoreMap(map, scored, observed, params.metrics);
     run.maps.push_back(std::move(e));
   }
   for (const auto& f : in.lsms)

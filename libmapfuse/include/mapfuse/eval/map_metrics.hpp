@@ -57,7 +57,8 @@ struct ClassMetrics {
   ErrorStats absolute;  ///< position error of matched map geometry, m
   ErrorStats relative;  ///< |rd_obs - rd_truth| over neighbour pairs, m
   /// Discrete classes, simulated drives (`--lsm` whose elements carry truth ids): completeness
-  /// over the true elements at least `observed_min_drives` drives observed (< 0: not computed).
+  /// over the true elements at least observedMinDrives() drives observed (scored_truth.hpp;
+  /// < 0: not computed).
   double completeness_observed = -1;
   std::size_t truth_observed = 0;  ///< those true elements
 };

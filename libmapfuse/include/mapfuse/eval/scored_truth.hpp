@@ -4,6 +4,7 @@
 /// trajectory of an aligned LSM against its drive's true trajectory.
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,16 +29,22 @@ ScoredTruth scoredTruth(VectorMap truth, const std::string& truth_name,
                         const std::filesystem::path& truth_trajectories,
                         const CoverageWedge& coverage);
 
-/// @brief Fewest drives that must observe a true element for `addObservedCompleteness` to score
-/// it: aggregate's DBSCAN MinPts, what a crowd map can confirm (aggregate/settings.hpp).
+/// @brief Fewest drives that must observe a true element for `observedTruth` to keep it:
+/// aggregate's DBSCAN MinPts, what a crowd map can confirm (aggregate/settings.hpp).
 int observedMinDrives();
 
-/// @brief Per discrete class of `metrics`, completeness over the scored true elements that at
-/// least observedMinDrives() of the simulated drives `lsm_files` observed (their elements'
-/// truth ids; the others join the unscored truth). It separates what the crowd saw too rarely
-/// from what aggregation lost (issue 36). No effect when the LSMs carry no truth ids.
-void addObservedCompleteness(MapMetrics& metrics, const VectorMap& map, const ScoredTruth& truth,
-                             const std::vector<std::string>& lsm_files, const MapEvalParams& p);
+/// @brief `truth` split by what the simulated drives `lsm_files` observed (their elements'
+/// truth ids): `scored` the scored true elements at least observedMinDrives() drives observed,
+/// `unscored` the rest. It separates what the crowd saw too rarely from what aggregation lost
+/// (issue 36). nullopt when the LSMs carry no truth ids. Reads each LSM once.
+std::optional<ScoredTruth> observedTruth(const ScoredTruth& truth,
+                                         const std::vector<std::string>& lsm_files);
+
+/// @brief evaluateMap of `map` against truth.scored (truth.unscored out of scope) and, with
+/// `observed`, per discrete class the completeness over its scored elements
+/// (completeness_observed, truth_observed).
+MapMetrics scoreMap(const VectorMap& map, const ScoredTruth& truth,
+                    const std::optional<ScoredTruth>& observed, const MapEvalParams& p);
 
 /// @brief Trajectory metrics of the aligned LSM `lsm_file` against
 /// `<truth_trajectories>/<drive_id>.trajectory.json`.
