@@ -75,7 +75,8 @@ GpsPriorTerms gpsPriorTerms(const std::vector<Lsm>& priors, const AlignSettings&
     Vector6d first;
     first << sh, sh, sv, kNodeRotationSigma, kNodeRotationSigma, kNodeRotationSigma;
     for (int j = 0; j <= steps; ++j)
-      g.anchors.push_back({chain, j, g.nodes[l][j], diagonalSqrtInformation(j == 0 ? first : held)});
+      g.anchors.push_back(
+          {chain, j, g.nodes[l][j], diagonalSqrtInformation(j == 0 ? first : held)});
     // Random walk between consecutive nodes: the anchors' difference, gps_bias_walk sqrt(dt).
     const double sw = s.gps_bias_walk * std::sqrt(dt);
     Vector6d walk;

@@ -16,11 +16,11 @@
 /// b_j the node nearest in time, nodes every `gps_bias_interval` s (piecewise constant: two
 /// nodes differ by gps_bias_walk sqrt(interval), 0.16 m at the defaults; interpolating between
 /// two nodes, tried first, gave the same maps for 18 % more align memory), the nodes a random
-/// walk of `gps_bias_walk` m/sqrt(s)
-/// with a zero-mean prior of `gps_bias_sigma` (horizontal) / `gps_bias_vertical_sigma` on the
-/// first, each at most the drive's median keyframe sigma (an accurate receiver's drive is held
-/// as tightly as before). A bias node is a pose whose translation is its anchor (the traversal's georeferenced
-/// position at the node) plus the bias and whose rotation is held at the identity, so that the
+/// walk of `gps_bias_walk` m/sqrt(s) with a zero-mean prior of `gps_bias_sigma` (horizontal) /
+/// `gps_bias_vertical_sigma` on the first, each at most the drive's median keyframe sigma (an
+/// accurate receiver's drive is held as tightly as before). A bias node is a pose whose
+/// translation is its anchor (the traversal's georeferenced position at the node) plus the
+/// bias and whose rotation is held at the identity, so that the
 /// terms are the relative-pose terms of eq. (10) / (11) and any pose-graph solver (ours, Ceres)
 /// takes them as they are. Registrations then move a traversal's bias, not one keyframe, and a
 /// road driven by few traversals shares the mean bias of every traversal tied to them.
@@ -33,8 +33,8 @@
 
 namespace mapfuse::fusion::detail {
 
-/// One term between two poses: T_a^-1 T_b = T_ab with square-root information L (6 x 6);
-/// `a` and `b` index GpsPriorTerms::poses-style (chain, index) pairs.
+/// One term between two poses: T_a^-1 T_b = T_ab with square-root information L (6 x 6); a pose
+/// is (chain, index), as PoseProblem::poseIndex takes it.
 struct GpsPriorTerm {
   int chain_a = 0, index_a = 0;  ///< chain: a traversal (< lsms) or its bias chain (lsms + l)
   int chain_b = 0, index_b = 0;
